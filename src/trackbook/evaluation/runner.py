@@ -1,0 +1,136 @@
+"""Run a tracker over a clip and score it: ``trackbook.evaluate``."""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+
+import numpy as np
+
+from .. import clips as _clips
+from .. import trackers as _trackers
+from .._checks import clip_box
+from . import metrics
+
+
+@dataclasses.dataclass
+class Result:
+    """One run of one tracker over one clip.
+
+    Attributes
+    ----------
+    tracker, clip : names
+    boxes : (N, 4) array, frame 0 is the initial box
+    ok : (N,) bool, the tracker's own ``ok`` per frame (frame 0 True)
+    ms : (N,) milliseconds per frame (frame 0 is ``init``); decoding excluded
+    scores : dict of the OTB scores over frames 1..N-1 (see :func:`metrics.summary`),
+        plus ``ms_median`` and ``ms_mean`` over the ``update`` calls
+    params : dict of the tracker's params (empty for foreign trackers)
+    extras : per-frame values a tracker chose to report (e.g. ``search_rate``)
+    """
+
+    tracker: str
+    clip: str
+    boxes: np.ndarray
+    ok: np.ndarray
+    ms: np.ndarray
+    scores: dict
+    params: dict = dataclasses.field(default_factory=dict)
+    extras: dict = dataclasses.field(default_factory=dict)
+
+    def curves(self, gt):
+        """``(success_thresholds, success, precision_thresholds, precision)`` over frames 1..N-1."""
+        ts, s = metrics.success_curve(self.boxes[1:], gt[1:])
+        tp, p = metrics.precision_curve(self.boxes[1:], gt[1:])
+        return ts, s, tp, p
+
+
+def _make(name_or_tracker, seed, params):
+    if isinstance(name_or_tracker, str):
+        return _trackers.create(name_or_tracker, seed=seed, **params), name_or_tracker
+    if params:
+        raise ValueError("params can only be given with a tracker name, not a tracker object.")
+    t = name_or_tracker
+    if not (hasattr(t, "init") and hasattr(t, "update")):
+        raise ValueError(
+            f"{t!r} is not a tracker: pass a registered name ({', '.join(_trackers.available())}) "
+            "or an object with OpenCV's init(frame, bbox) / update(frame) methods."
+        )
+    return t, getattr(t, "name", type(t).__name__)
+
+
+def _init_foreign(t, frame, box):
+    # OpenCV's trackers take integer boxes; ours take floats.
+    if type(t).__module__.startswith("cv2"):
+        x, y, w, h = (int(round(v)) for v in box)
+        return t.init(frame, (x, y, max(w, 1), max(h, 1)))
+    return t.init(frame, tuple(float(v) for v in box))
+
+
+def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None = None,
+             init_box=None, on_frame=None, **params) -> Result:
+    """Track a clip from its first ground-truth box and score it (frame 0 excluded).
+
+    Parameters
+    ----------
+    name_or_tracker : str or tracker object
+        A registered name (``trackers.available(reference=True)``) or any object with
+        OpenCV's ``init``/``update``, e.g. ``cv2.TrackerMIL_create()``.
+    clip : Clip or str or path
+        Anything :func:`trackbook.clips.load` accepts.
+    seed : int, the tracker's seed (names only).
+    max_frames : int, optional; track only the first frames.
+    init_box : (x, y, w, h), optional; default the first ground-truth box (clipped to the frame).
+    on_frame : callable(i, tracker, frame, box), optional; called after every frame, e.g. to
+        record particles for a drawing.
+    **params : the tracker's params (names only).
+    """
+    clip = _clips.load(clip)
+    tracker, tname = _make(name_or_tracker, seed, params)
+    n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
+    if n < 2:
+        raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")
+    frames = iter(clip.frames)
+    first = next(frames)
+    box0 = clip.groundtruth[0] if init_box is None else np.asarray(init_box, dtype=float)
+    if not np.all(np.isfinite(box0)):
+        raise ValueError(
+            f"clip {clip.name!r} has no ground-truth box on frame 0; pass init_box=(x, y, w, h)."
+        )
+    box0 = clip_box(box0, first.shape)
+
+    boxes = np.full((n, 4), np.nan)
+    ok = np.zeros(n, dtype=bool)
+    ms = np.zeros(n)
+    extras: dict[str, list] = {}
+    t0 = time.perf_counter()
+    _init_foreign(tracker, first, box0)
+    ms[0] = (time.perf_counter() - t0) * 1e3
+    boxes[0], ok[0] = box0, True
+    if on_frame is not None:
+        on_frame(0, tracker, first, box0)
+    for i in range(1, n):
+        frame = next(frames)
+        t0 = time.perf_counter()
+        good, box = tracker.update(frame)
+        ms[i] = (time.perf_counter() - t0) * 1e3
+        boxes[i], ok[i] = np.asarray(box, dtype=float), bool(good)
+        report = getattr(tracker, "frame_report", None)
+        if callable(report):
+            for k, v in report().items():
+                extras.setdefault(k, [np.nan] * n)[i] = v
+        if on_frame is not None:
+            on_frame(i, tracker, frame, boxes[i])
+
+    gt = clip.groundtruth[:n]
+    try:
+        scores = metrics.summary(boxes[1:], gt[1:])
+    except ValueError:  # no ground truth (a user's video without annotation)
+        scores = {}
+    scores["ms_median"] = float(np.median(ms[1:]))
+    scores["ms_mean"] = float(np.mean(ms[1:]))
+    p = tracker.params if hasattr(tracker, "params") and dataclasses.is_dataclass(
+        getattr(tracker, "params", None)) else None
+    return Result(tname, clip.name, boxes, ok, ms, scores,
+                  params=dataclasses.asdict(p) if p is not None else {},
+                  extras={k: np.asarray(v) for k, v in extras.items()})

@@ -1,0 +1,49 @@
+"""Trackers: the registry, the shared base class and the papers' trackers.
+
+>>> from trackbook import trackers
+>>> trackers.available()          # the eleven registered names (SPEC section 2)  # doctest: +SKIP
+>>> t = trackers.create("color-hog-ipca", seed=0, n_particles=100)  # doctest: +SKIP
+>>> t.init(frame, (x, y, w, h)); ok, box = t.update(next_frame)     # doctest: +SKIP
+
+The papers' trackers register themselves when their module is imported below; each module
+matches one chapter of the book.
+"""
+
+from __future__ import annotations
+
+from .._checks import clip_box
+from . import registry as _registry
+from .base import Tracker
+from .reference import REFERENCE
+
+# The papers' trackers (each import registers its names) -------------------------------
+# (one line per paper module; the order is the book's)
+
+
+def available(reference: bool = False) -> list[str]:
+    """Registered tracker names; with ``reference=True`` also OpenCV's ``opencv-mil``."""
+    names = _registry.available()
+    return names + list(REFERENCE) if reference else names
+
+
+def get(name: str) -> type[Tracker]:
+    """The tracker class for a registered (or reference) name."""
+    if name in REFERENCE:
+        return REFERENCE[name]
+    try:
+        return _registry.get(name)
+    except ValueError:
+        raise ValueError(
+            f"unknown tracker {name!r}; registered trackers: "
+            f"{', '.join(available()) or '(none)'}; reference: {', '.join(REFERENCE)}."
+        ) from None
+
+
+def create(name: str, seed: int | None = 0, **params) -> Tracker:
+    """Create the tracker called ``name`` with a seed and keyword params (its ``Params`` fields)."""
+    return get(name)(seed=seed, **params)
+
+
+register = _registry.register
+
+__all__ = ["Tracker", "available", "create", "get", "register", "clip_box"]
