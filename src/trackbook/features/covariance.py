@@ -100,7 +100,11 @@ def region_covariance(F: np.ndarray) -> np.ndarray:
 
 
 def _integral(a: np.ndarray) -> np.ndarray:
-    """Zero-padded summed-area table: S[y, x] = Σ a[:y, :x] (first axis rows)."""
+    """Zero-padded summed-area table: S[y, x] = Σ a[:y, :x] (first axis rows), float64."""
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    if a.ndim == 3 and a.shape[2] <= 512:   # OpenCV's channel limit
+        S = cv2.integral(a, sdepth=cv2.CV_64F)
+        return S.reshape(a.shape[0] + 1, a.shape[1] + 1, a.shape[2])
     S = np.zeros((a.shape[0] + 1, a.shape[1] + 1) + a.shape[2:], dtype=np.float64)
     np.cumsum(a, axis=0, out=S[1:, 1:])
     np.cumsum(S[1:, 1:], axis=1, out=S[1:, 1:])
@@ -142,13 +146,16 @@ class IntegralCovariance:
         self.origin = (int(origin[0]), int(origin[1]))
         self.shape = F.shape[:2]
         self.radial = bool(radial)
-        self.offset = F.mean(axis=(0, 1))
-        G = F - self.offset
-        k = G.shape[-1]
+        k = F.shape[-1]
+        # Contiguous per-channel planes, interleaved once by cv2.merge: the fastest way to
+        # build the [F_i, F_i F_j] table that cv2.integral then sums in float64.
+        self.offset = np.array([F[..., i].mean() for i in range(k)])
+        planes = [F[..., i] - self.offset[i] for i in range(k)]
         self._iu = np.triu_indices(k)
-        self.P = _integral(G)
-        self.Q = _integral(G[..., self._iu[0]] * G[..., self._iu[1]])
-        self._G = G if radial else None
+        planes += [planes[i] * planes[j] for i, j in zip(*self._iu)]
+        S = _integral(cv2.merge(planes) if len(planes) <= 512 else np.stack(planes, -1))
+        self.P, self.Q = S[..., :k], S[..., k:]
+        self._G = F - self.offset if radial else None
         self._rcache: dict = {}
         self.d = k + (1 if radial else 0)
 
