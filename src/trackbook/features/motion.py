@@ -29,7 +29,7 @@ def motion_mask(frame0: np.ndarray, frame1: np.ndarray, threshold: float = 25.0,
 
 
 def find_moving_region(frame0: np.ndarray, frame1: np.ndarray, threshold: float = 25.0,
-                       open_size: int = 3, close_size: int = 7, min_area: int = 16):
+                       open_size: int = 3, close_size: int = 15, min_area: int = 16):
     """The bounding box ``(x, y, w, h)`` of the largest moving region between two frames.
 
     Frame differencing |I₁ − I₀| > threshold, an opening against noise, a closing that joins
@@ -41,6 +41,9 @@ def find_moving_region(frame0: np.ndarray, frame1: np.ndarray, threshold: float 
     -----
     The difference image covers both where the object was and where it is, so the box is the
     union of the two positions: larger than the object by the displacement between the frames.
+    A flat (untextured) object changes only at its leading and trailing edges; the closing
+    (``close_size`` px square) joins those strips as long as the object is narrower than
+    ``close_size`` plus the displacement.
     """
     mask = motion_mask(frame0, frame1, threshold, open_size).astype(np.uint8)
     if close_size > 1:

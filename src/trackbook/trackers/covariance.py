@@ -242,6 +242,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     -----------------------------------
     kalman : the :class:`~trackbook.filters.kalman.KalmanFilter` (``kalman.x``, ``kalman.P``)
     prediction : (x⁻, P⁻) of the last frame, before the update
+    ellipse : (cx, cy, hx, hy, angle°) the predicted position's ``gate``-σ uncertainty ellipse
     search_window, candidates, distances, best_rho, model : as for ``covariance``
     """
 
@@ -272,6 +273,17 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     @property
     def kalman(self):
         return self._kf
+
+    @property
+    def ellipse(self):
+        """(cx, cy, hx, hy, angle°): the ``gate``-σ ellipse of S = HP⁻Hᵀ + R at the prediction."""
+        x, P = self.prediction
+        S = self._kf.H @ P @ self._kf.H.T + self._kf.R
+        ev, V = np.linalg.eigh(S)
+        angle = float(np.degrees(np.arctan2(V[1, 1], V[0, 1])))
+        g = self.params.gate
+        return (float(x[0]), float(x[1]), g * float(np.sqrt(ev[1])), g * float(np.sqrt(ev[0])),
+                angle)
 
     def _update(self, frame):
         self._n_evaluated = 0
