@@ -88,4 +88,22 @@ def recorder(states: list):
     return record
 
 
-__all__ = ["draw_integral_image", "rho_map", "kalman_frames", "recorder"]
+__all__ = ["draw_integral_image", "rho_map", "kalman_frames", "recorder", "markdown_table"]
+
+
+def markdown_table(rows, columns, formats=None):
+    """Rows (dicts) as an IPython Markdown table; ``formats`` maps column -> format spec."""
+    from IPython.display import Markdown
+    formats = formats or {}
+
+    def cell(row, c):
+        v = row.get(c, "")
+        if v is None or v == "" or (isinstance(v, float) and np.isnan(v)):
+            return "–"
+        try:
+            return format(float(v), formats[c]) if c in formats else str(v)
+        except (TypeError, ValueError):
+            return str(v)
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines += ["| " + " | ".join(cell(r, c) for c in columns) + " |" for r in rows]
+    return Markdown("\n".join(lines))
