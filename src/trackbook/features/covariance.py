@@ -99,15 +99,16 @@ def region_covariance(F: np.ndarray) -> np.ndarray:
     return d.T @ d / f.shape[0]
 
 
-def _integral(a: np.ndarray) -> np.ndarray:
-    """Zero-padded summed-area table: S[y, x] = Σ a[:y, :x] (first axis rows), float64."""
-    a = np.ascontiguousarray(a, dtype=np.float64)
-    if a.ndim == 3 and a.shape[2] <= 512:   # OpenCV's channel limit
-        S = cv2.integral(a, sdepth=cv2.CV_64F)
-        return S.reshape(a.shape[0] + 1, a.shape[1] + 1, a.shape[2])
-    S = np.zeros((a.shape[0] + 1, a.shape[1] + 1) + a.shape[2:], dtype=np.float64)
-    np.cumsum(a, axis=0, out=S[1:, 1:])
-    np.cumsum(S[1:, 1:], axis=1, out=S[1:, 1:])
+def _integral_planes(planes) -> np.ndarray:
+    """Zero-padded summed-area tables of 2-D planes: S[c, y, x] = Σ planes[c][:y, :x], float64.
+
+    One ``cv2.integral`` per contiguous plane: about ten times faster than one call on the
+    interleaved multi-channel image, and exact in float64.
+    """
+    h, w = planes[0].shape
+    S = np.empty((len(planes), h + 1, w + 1))
+    for c, p in enumerate(planes):
+        S[c] = cv2.integral(np.ascontiguousarray(p, dtype=np.float64), sdepth=cv2.CV_64F)
     return S
 
 
@@ -121,8 +122,9 @@ class IntegralCovariance:
     """Covariances (eq. 4 of Lee 2015) of any rectangles of a feature image in O(d²) each.
 
     Following Tuzel, Porikli & Meer (2006) the constructor builds the integral images
-    P_i = Σ F_i and Q_ij = Σ F_i F_j (i ≤ j); a rectangle's covariance then needs four look-ups
-    per table: C = (Q − P Pᵀ / n) / n.
+    P_i = Σ F_i and Q_ij = Σ F_i F_j (i ≤ j) (attributes ``P``: k x (h+1) x (w+1), ``Q``:
+    k(k+1)/2 x (h+1) x (w+1)); a rectangle's covariance then needs four look-ups per table:
+    C = (Q − P Pᵀ / n) / n.
 
     Parameters
     ----------
@@ -147,20 +149,20 @@ class IntegralCovariance:
         self.shape = F.shape[:2]
         self.radial = bool(radial)
         k = F.shape[-1]
-        # Contiguous per-channel planes, interleaved once by cv2.merge: the fastest way to
-        # build the [F_i, F_i F_j] table that cv2.integral then sums in float64.
+        # Contiguous per-channel planes [F_i − offset_i, products]; one summed-area table each.
         self.offset = np.array([F[..., i].mean() for i in range(k)])
         planes = [F[..., i] - self.offset[i] for i in range(k)]
         self._iu = np.triu_indices(k)
         planes += [planes[i] * planes[j] for i, j in zip(*self._iu)]
-        S = _integral(cv2.merge(planes) if len(planes) <= 512 else np.stack(planes, -1))
-        self.P, self.Q = S[..., :k], S[..., k:]
+        S = _integral_planes(planes)
+        self.P, self.Q = S[:k], S[k:]
         self._G = F - self.offset if radial else None
         self._rcache: dict = {}
         self.d = k + (1 if radial else 0)
 
     def _rect_sums(self, S, x0, y0, x1, y1):
-        return S[y1, x1] - S[y0, x1] - S[y1, x0] + S[y0, x0]
+        """Sums of every plane of S over N rectangles: N x planes."""
+        return (S[:, y1, x1] - S[:, y0, x1] - S[:, y1, x0] + S[:, y0, x0]).T
 
     def _local(self, boxes):
         b = np.asarray(boxes)
