@@ -12,6 +12,10 @@ import cv2
 import numpy as np
 
 
+#: cv2.remap accepts maps with fewer than SHRT_MAX rows.
+_REMAP_MAX_ROWS = 32766
+
+
 def patch_grid(boxes, size) -> tuple[np.ndarray, np.ndarray]:
     """Sampling coordinates of every patch pixel.
 
@@ -56,7 +60,14 @@ def sample_patches(image: np.ndarray, boxes, size, interpolation=cv2.INTER_LINEA
     n, ph, pw = map_x.shape
     if n == 0:
         return np.zeros((0, ph, pw) + image.shape[2:], dtype=image.dtype)
-    # Stack the N patches vertically into one map so OpenCV does all of them in a single call.
-    out = cv2.remap(image, map_x.reshape(n * ph, pw), map_y.reshape(n * ph, pw),
-                    interpolation, borderMode=cv2.BORDER_REPLICATE)
-    return out.reshape((n, ph, pw) + image.shape[2:])
+    # Stack the patches vertically into one map so OpenCV does many of them in a single call.
+    # cv2.remap refuses maps of SHRT_MAX rows or more, so very large batches go in chunks.
+    per_call = max(1, _REMAP_MAX_ROWS // ph)
+    out = np.empty((n, ph, pw) + image.shape[2:], dtype=image.dtype)
+    for a in range(0, n, per_call):
+        b = min(n, a + per_call)
+        mx = map_x[a:b].reshape((b - a) * ph, pw)
+        my = map_y[a:b].reshape((b - a) * ph, pw)
+        out[a:b] = cv2.remap(image, mx, my, interpolation,
+                             borderMode=cv2.BORDER_REPLICATE).reshape((b - a, ph, pw) + image.shape[2:])
+    return out
