@@ -59,14 +59,15 @@ class ColorPFParams:
     """Knobs of ``color-pf`` (Perez et al. 2002 as the paper's baseline [20])."""
 
     n_particles: int = param(100, 10, 1000, 10, "N, number of particles (section V)")
-    sigma_color: float = param(0.4, 0.02, 1.0, 0.02, "sigma_color of eq. 10 (and 12)")
+    sigma_color: float = param(0.2, 0.02, 1.0, 0.02, "sigma_color of eq. 10 and 12 "
+                               "(paper: 0.4, too flat to lock on; see chapter 06)")
     size_noise: float = param(2.5, 0.0, 10.0, 0.5, "gamma_w, gamma_h ~ U(-a, a) of eq. 9 (px)")
     vx_noise: float = param(6.5, 0.0, 20.0, 0.5, "gamma_xdot ~ U(-a, a) of eq. 9 (px/frame)")
     vy_noise: float = param(2.5, 0.0, 20.0, 0.5, "gamma_ydot ~ U(-a, a) of eq. 9 (px/frame)")
     resampler: str = param("multinomial", doc="SIR selection (pseudocode: multinomial)",
                            choices=tuple(RESAMPLERS))
-    init: str = param("frame", doc="t = 0 particles: 'frame' uniform over the frame with the "
-                      "initial box size (pseudocode), 'box' around the initial box",
+    init: str = param("box", doc="t = 0 particles: 'box' around the initial box; 'frame' "
+                      "uniform over the frame with the initial box size (the paper's pseudocode)",
                       choices=("frame", "box"))
     min_size: float = param(4.0, 1.0, 50.0, 1.0, "smallest box side a particle may have (px)")
 
@@ -76,7 +77,7 @@ class ColorHogPFParams(ColorPFParams):
     """Knobs of ``color-hog-pf`` (Jin et al. 2010 as the paper's baseline [14])."""
 
     alpha: float = param(0.1, 0.0, 1.0, 0.05, "alpha of eq. 14: weight of colour vs HOG")
-    sigma_hog: float = param(0.4, 0.02, 1.0, 0.02, "sigma_hog of eq. 11 (and 13)")
+    sigma_hog: float = param(0.2, 0.02, 1.0, 0.02, "sigma_hog of eq. 11 and 13 (paper: 0.4)")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -89,6 +90,8 @@ class ColorHogIPCAParams(ColorHogPFParams):
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
                                    "(0 = every frame, as the paper)")
+    centre: bool = param(False, doc="learn mean-centred features (Ross et al.) instead of the "
+                         "raw z of eq. 12-13 (the paper)")
     feature_map: str = param("sqrt", doc="learned feature z: 'sqrt' = sqrt(histogram) "
                              "(unit norm), 'raw' = the histogram itself", choices=("sqrt", "raw"))
 
@@ -216,7 +219,7 @@ class ColorHogParticleFilter(ParticleFilterTracker):
                 self._subspaces = {}
                 for k in z:
                     A = np.column_stack([c[k] for c in self._collected])   # d x T
-                    self._subspaces[k] = IncrementalSVD(p.K, p.forgetting).fit(A)
+                    self._subspaces[k] = IncrementalSVD(p.K, p.forgetting, centre=p.centre).fit(A)
                 self._collected = []
         else:
             for k, v in z.items():
