@@ -130,3 +130,13 @@ def test_bin_edges_are_half_open():
     gx = np.round(np.cos(k * np.pi / 4), 12) * 3
     gy = np.round(np.sin(k * np.pi / 4), 12) * 3
     np.testing.assert_array_equal(orientation_bin(gx, gy), k)
+
+
+def test_many_boxes_beyond_remap_limit():
+    """More boxes than one cv2.remap call can take (N * 24 rows >= 32767) are chunked."""
+    rng = np.random.default_rng(2)
+    frame = rng.integers(0, 256, size=(40, 40, 3), dtype=np.uint8)
+    boxes = np.tile([[5.0, 5.0, 16.0, 24.0]], (1500, 1)) + rng.random((1500, 4))
+    d = hog_descriptors(frame, boxes)
+    assert d.shape == (1500, HOG_DIM)
+    np.testing.assert_allclose(d[1400], hog_descriptors(frame, boxes[1400:1401])[0])

@@ -49,6 +49,9 @@ HOG_BINS = 8
 #: Length of the descriptor of a 16 x 24 patch: (24/4) x (16/4) cells x 8 bins = 6 x 4 x 8.
 HOG_DIM = (HOG_PATCH_SIZE[1] // HOG_CELL) * (HOG_PATCH_SIZE[0] // HOG_CELL) * HOG_BINS
 
+#: OpenCV's limit on the rows of a remap map.
+SHRT_MAX = 32767
+
 #: The 5-tap Gaussian of step 1 (OpenCV's fixed kernel for ksize=5, sigma=0).
 GAUSS5 = np.array([1.0, 4.0, 6.0, 4.0, 1.0]) / 16.0
 
@@ -188,4 +191,10 @@ def hog_descriptors(frame: np.ndarray, boxes, size=HOG_PATCH_SIZE) -> np.ndarray
     """
     gray = to_gray(frame)
     boxes = np.asarray(boxes, dtype=float).reshape(-1, 4)
-    return hog_of_patches(sample_patches(gray, boxes, size))
+    # cv2.remap refuses maps of 32767 rows or more, and sample_patches stacks the patches
+    # vertically: cut large batches (dense scans) into chunks that stay under that limit.
+    chunk = max(1, (SHRT_MAX - 1) // size[1])
+    if boxes.shape[0] <= chunk:
+        return hog_of_patches(sample_patches(gray, boxes, size))
+    return np.concatenate([hog_of_patches(sample_patches(gray, boxes[i:i + chunk], size))
+                           for i in range(0, boxes.shape[0], chunk)])
