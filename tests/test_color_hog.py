@@ -44,7 +44,7 @@ def test_registered():
 def test_paper_defaults():
     p = trackers.create("color-hog-ipca").params
     assert (p.n_particles, p.alpha, p.T, p.K, p.forgetting, p.resampler) == \
-        (100, 0.1, 40, 16, 0.95, "multinomial")
+        (100, 0.1, 40, 2, 0.95, "multinomial")
     assert p.learn_threshold == 0.0
 
 
