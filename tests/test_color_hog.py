@@ -69,12 +69,14 @@ def test_follows_synthetic_target(name, clip):
 
 
 def test_learning_switches_on_after_T(clip):
+    """Frames 0..T-1 (T = 10 here, the initial box included) are collected; the SVD is taken
+    after frame T-1, so frame T is the first weighted by the reconstruction error."""
     t = trackers.create("color-hog-ipca", seed=0, T=10, K=4)
     t.init(clip.frames[0], clip.groundtruth[0])
-    for i in range(1, 10):
+    for i in range(1, 9):
         t.update(clip.frames[i])
-        assert t.basis is None
-    t.update(clip.frames[10])
+        assert t.basis is None and not t.learning
+    t.update(clip.frames[9])
     assert t.learning
     b = t.basis
     assert b["color"].shape == (256, 4) and b["hog"].shape == (192, 4)
