@@ -148,3 +148,14 @@ SAMPLE = "robot-corridor-day"
 def test_follows_sample_clip(name):
     r = evaluate(name, SAMPLE, seed=0)
     assert r.scores["auc"] > 0.3, r.scores
+
+
+def test_features_equal_the_public_feature_functions(clip):
+    """The tracker's one-remap feature path equals color_histograms and hog_descriptors."""
+    from trackbook.features.color import color_histograms
+    from trackbook.features.hog import hog_descriptors
+    t = trackers.create("color-hog-pf")
+    boxes = np.array([[10.3, 20.7, 30, 44], [200, 100, 25.5, 31]])
+    f = t._features(clip.frames[3], boxes)
+    np.testing.assert_allclose(f["color"], color_histograms(clip.frames[3], boxes))
+    np.testing.assert_allclose(f["hog"], hog_descriptors(clip.frames[3], boxes))

@@ -73,9 +73,12 @@ def test_batched_equals_per_box():
     boxes = np.array([[3, 4, 16, 24], [10.5, 7.25, 30, 41], [-5, -5, 20, 20], [70, 50, 20, 20]])
     d = hog_descriptors(frame, boxes)
     assert d.shape == (4, HOG_DIM)
-    gray = to_gray(frame)
+    gray = to_gray(frame)          # a grey frame is resampled directly
+    np.testing.assert_allclose(hog_descriptors(gray, boxes[:1])[0],
+                               slow_hog(sample_patches(gray, boxes[:1], (16, 24))[0]), rtol=1e-6)
     for i, b in enumerate(boxes):
-        patch = sample_patches(gray, b[None], (16, 24))[0]
+        bgr = sample_patches(frame, b[None], (16, 24))[0]
+        patch = cv2.cvtColor(bgr, cv2.COLOR_BGR2GRAY)        # resize first, then grey
         np.testing.assert_allclose(d[i], slow_hog(patch), rtol=1e-6, atol=1e-9)
 
 

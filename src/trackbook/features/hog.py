@@ -68,6 +68,20 @@ def to_gray(frame: np.ndarray) -> np.ndarray:
     return frame.astype(np.float32)
 
 
+def gray_patches(bgr_patches: np.ndarray) -> np.ndarray:
+    """(N, h, w, 3) BGR patches -> (N, h, w) float grey patches (OpenCV's BGR2GRAY weights).
+
+    Converting the small resampled patches is cheaper than converting the whole frame, and it
+    is the paper's order (resize the ROI, then compute its features).
+    """
+    p = np.ascontiguousarray(bgr_patches)
+    n, h, w = p.shape[:3]
+    if n == 0:
+        return np.zeros((0, h, w))
+    g = cv2.cvtColor(p.reshape(n * h, w, 3), cv2.COLOR_BGR2GRAY)
+    return g.reshape(n, h, w).astype(np.float64)
+
+
 def _blur(patches: np.ndarray) -> np.ndarray:
     """Step 1: separable 5 x 5 Gaussian of (N, h, w) patches with replicated borders.
 
@@ -175,9 +189,9 @@ def hog_of_patch(gray_patch: np.ndarray) -> np.ndarray:
 def hog_descriptors(frame: np.ndarray, boxes, size=HOG_PATCH_SIZE) -> np.ndarray:
     """HOG descriptors of every box of a frame, batched (section III.2 of Lee et al. 2012).
 
-    All boxes are resampled from the grey frame to ``size = (width, height)`` in one
-    ``cv2.remap`` call (:func:`~trackbook.features.patches.sample_patches`), then blurred,
-    differentiated and binned together (eq. 2-5).
+    All boxes are resampled to ``size = (width, height)`` in one ``cv2.remap`` call
+    (:func:`~trackbook.features.patches.sample_patches`), converted to grey (the paper's order:
+    resize the ROI first, Fig. 1), then blurred, differentiated and binned together (eq. 2-5).
 
     Parameters
     ----------
@@ -189,12 +203,20 @@ def hog_descriptors(frame: np.ndarray, boxes, size=HOG_PATCH_SIZE) -> np.ndarray
     -------
     (N, D) float array whose rows sum to 1; D = 192 for the default size.
     """
-    gray = to_gray(frame)
+    frame = np.asarray(frame)
+    if frame.ndim == 3 and frame.shape[2] == 3:
+        def patches_of(b):
+            return gray_patches(sample_patches(frame, b, size))
+    else:
+        gray = to_gray(frame)
+
+        def patches_of(b):
+            return sample_patches(gray, b, size)
     boxes = np.asarray(boxes, dtype=float).reshape(-1, 4)
     # cv2.remap refuses maps of 32767 rows or more, and sample_patches stacks the patches
     # vertically: cut large batches (dense scans) into chunks that stay under that limit.
     chunk = max(1, (SHRT_MAX - 1) // size[1])
     if boxes.shape[0] <= chunk:
-        return hog_of_patches(sample_patches(gray, boxes, size))
-    return np.concatenate([hog_of_patches(sample_patches(gray, boxes[i:i + chunk], size))
+        return hog_of_patches(patches_of(boxes))
+    return np.concatenate([hog_of_patches(patches_of(boxes[i:i + chunk]))
                            for i in range(0, boxes.shape[0], chunk)])

@@ -41,8 +41,10 @@ import dataclasses
 
 import numpy as np
 
-from ..features.color import HSV_BINS, bhattacharyya_coefficient, color_histograms
-from ..features.hog import hog_descriptors
+from ..features.color import (HSV_BINS, bhattacharyya_coefficient, hsv_bin_index,
+                              kernel_weights, weighted_histograms)
+from ..features.hog import gray_patches, hog_of_patches
+from ..features.patches import sample_patches
 from ..filters.motion import (VX, VY, W, H, box_to_state, clamp_states, fuse, gaussian_likelihood,
                               predict_eq9, similarity, states_to_boxes)
 from ..filters.particle import RESAMPLERS, ParticleFilterTracker, effective_sample_size
@@ -52,6 +54,8 @@ from .registry import register
 
 #: Patch every box is resized to before its features are taken (section II).
 PATCH_SIZE = (16, 24)
+_KERNEL = kernel_weights(PATCH_SIZE[1], PATCH_SIZE[0])     # k = 1 - r^2 of eq. 1
+_N_COLOR = int(np.prod(HSV_BINS))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -119,9 +123,13 @@ class ColorHogParticleFilter(ParticleFilterTracker):
 
     # -- model ---------------------------------------------------------------------------
     def _features(self, frame, boxes) -> dict:
-        feats = {"color": color_histograms(frame, boxes, PATCH_SIZE, HSV_BINS)}
+        """Colour histogram (eq. 1) and HOG (eq. 2-5) of every box, from ONE resampling of
+        the boxes to 16 x 24 px: the same as ``color_histograms`` and ``hog_descriptors``,
+        with a single ``cv2.remap`` for both."""
+        patches = sample_patches(frame, boxes, PATCH_SIZE)
+        feats = {"color": weighted_histograms(hsv_bin_index(patches, HSV_BINS), _KERNEL, _N_COLOR)}
         if self.use_hog:
-            feats["hog"] = hog_descriptors(frame, boxes, PATCH_SIZE)
+            feats["hog"] = hog_of_patches(gray_patches(patches))
         return feats
 
     def _z(self, h):
