@@ -14,8 +14,9 @@ Chapter 02 of the book. The recipe, on a grey patch resized to 16 wide x 24 high
 
 Decisions the paper leaves open (and the book states):
 
-- **Order of operations.** The paper resizes the ROI to 16 x 24 *first* (Fig. 1), so the blur
-  and the gradients are taken on the resampled patch, not on the frame.
+- **Order of operations.** The paper resizes the ROI to 16 x 24 *first* (Fig. 1): the BGR box
+  is resampled, converted to grey, and the blur and the gradients are taken on that patch,
+  not on the frame.
 - **Borders.** Both the blur and the differences repeat the patch's edge pixels
   (``BORDER_REPLICATE``): on the first column g_x = I(1, y) - I(0, y), a one-sided difference,
   so a border pixel still votes for the edge it sits on and nothing outside the box leaks in.
