@@ -18,6 +18,7 @@ from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
+from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
 from . import covariance  # noqa: F401,E402  seed 002: covariance, kalman-covariance
 
 
