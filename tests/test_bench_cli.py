@@ -37,8 +37,12 @@ def test_bench_writes_tables_and_resumes(tmp_path, tiny_folder, monkeypatch):
     out = tmp_path / "bench"
     rows = bench.run(["opencv-mil"], [str(tiny_folder)], out, progress=False)
     assert [r["tracker"] for r in rows] == ["opencv-mil"]
-    for f in ("results.csv", "results.json", "table.md", "success.png", "precision.png"):
+    for f in ("results.csv", "results.json", "curves.json", "table.md", "success.png",
+              "precision.png"):
         assert (out / f).is_file()
+    curves = bench.load_curves(out)["opencv-mil"]["tiny"]
+    assert len(curves["success"]) == 21 and len(curves["precision"]) == 51
+    assert abs(sum(curves["success"]) / 21 - rows[0]["auc"]) < 1e-12
     assert json.loads((out / "results.json").read_text())[0]["clip"] == "tiny"
     assert "| opencv-mil |" in (out / "table.md").read_text()
     # resume: a second run must not track again

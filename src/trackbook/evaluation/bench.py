@@ -3,8 +3,8 @@
 Each (tracker, clip) run is written to ``OUT/runs/<tracker>__<clip>.json`` atomically (write a
 temporary file, then rename) as soon as it finishes; a re-run with the same settings reads it
 back instead of tracking again, so an interrupted benchmark loses no finished result. The
-summary files (``results.csv``, ``results.json``, ``table.md``, ``success.png``,
-``precision.png``) are rebuilt from the runs at the end, also atomically.
+summary files (``results.csv``, ``results.json``, ``curves.json``, ``table.md``,
+``success.png``, ``precision.png``) are rebuilt from the runs at the end, also atomically.
 """
 
 from __future__ import annotations
@@ -153,6 +153,11 @@ def load(out) -> list[dict]:
     return json.loads((Path(out) / "results.json").read_text())
 
 
+def load_curves(out) -> dict:
+    """``{tracker: {clip: {"success": [21], "precision": [51]}}}`` from ``OUT/curves.json``."""
+    return json.loads((Path(out) / "curves.json").read_text())
+
+
 def summarize(rows) -> list[dict]:
     """Per-tracker means over clips: AUC, precision, tracking rate; median of ms/frame."""
     by = {}
@@ -203,6 +208,12 @@ def write_summary(records, out) -> None:
         w.writerow({k: ("" if r.get(k) is None else r.get(k)) for k in COLUMNS + extra_cols})
     write_atomic(out / "results.csv", buf.getvalue())
     write_atomic(out / "results.json", json.dumps(rows, indent=1))
+    curves = {}
+    for r in records:
+        if "success" in r:
+            curves.setdefault(r["row"]["tracker"], {})[r["row"]["clip"]] = {
+                "success": r["success"], "precision": r["precision"]}
+    write_atomic(out / "curves.json", json.dumps(curves))
     write_atomic(out / "table.md", markdown_table(rows))
     _plot(records, out)
 
