@@ -18,6 +18,7 @@ from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
+from . import condensation_mean_shift  # noqa: F401,E402  (seed 003)
 
 
 def available(reference: bool = False) -> list[str]:
