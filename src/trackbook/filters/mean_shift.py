@@ -19,6 +19,7 @@ sub-sampled pixel lattice (``stride`` > 1) so that the cost does not grow with t
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import numpy as np
 
@@ -95,6 +96,12 @@ def window_radius(img: BinImage, axes) -> np.ndarray:
     return np.ceil(axes.max(axis=0) / img.stride).astype(int) + 1
 
 
+@functools.lru_cache(maxsize=64)
+def _offsets(rx: int, ry: int):
+    di, dj = np.divmod(np.arange((2 * ry + 1) * (2 * rx + 1)), 2 * rx + 1)
+    return di - ry, dj - rx
+
+
 def ellipse_samples(img: BinImage, centres, axes, radius=None) -> EllipseSamples:
     """Gather the lattice pixels of N ellipses ``centres (N, 2)``, ``axes (N, 2) = (Hx, Hy)``.
 
@@ -109,12 +116,11 @@ def ellipse_samples(img: BinImage, centres, axes, radius=None) -> EllipseSamples
     pad = int(max(rx, ry))
     lab = img.padded(pad)
     hp, wp = lab.shape
-    dj = np.tile(np.arange(-rx, rx + 1), 2 * ry + 1)
-    di = np.repeat(np.arange(-ry, ry + 1), 2 * rx + 1)
+    di, dj = _offsets(int(rx), int(ry))
     base = np.rint((centres - img.origin) / s).astype(int)           # nearest lattice pixel
     # far-away ellipses look at the sentinel frame: their pixels are "outside the frame"
-    bj = np.clip(base[:, 0], rx - pad, wp - pad - rx - 1)
-    bi = np.clip(base[:, 1], ry - pad, hp - pad - ry - 1)
+    bj = np.minimum(np.maximum(base[:, 0], rx - pad), wp - pad - rx - 1)
+    bi = np.minimum(np.maximum(base[:, 1], ry - pad), hp - pad - ry - 1)
     labels = lab.ravel()[((bi + pad) * wp + bj + pad)[:, None] + (di * wp + dj)[None, :]]
     x = img.origin[0] + (bj[:, None] + dj[None, :]) * s
     y = img.origin[1] + (bi[:, None] + di[None, :]) * s
@@ -198,7 +204,7 @@ class MeanShiftResult:
 
 
 def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float = 0.5,
-               max_halvings: int = 10) -> MeanShiftResult:
+               max_halvings: int = 3) -> MeanShiftResult:
     """Comaniciu et al.'s mean-shift tracker, steps ①-⑥ of §3.3 of Cho & Kang 2005, for N starts.
 
     ① p(y0), rho0 at the start; ② weights w_i = sqrt(q_u / p_u(y0)); ③ y1 = weighted mean of

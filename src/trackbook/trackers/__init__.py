@@ -14,6 +14,7 @@ from __future__ import annotations
 from .._checks import clip_box
 from . import registry as _registry
 from .base import Tracker
+from .multi import MultiTracker
 from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
@@ -47,4 +48,4 @@ def create(name: str, seed: int | None = 0, **params) -> Tracker:
 
 register = _registry.register
 
-__all__ = ["Tracker", "available", "create", "get", "register", "clip_box"]
+__all__ = ["MultiTracker", "Tracker", "available", "create", "get", "register", "clip_box"]
