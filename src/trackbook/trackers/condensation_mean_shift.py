@@ -102,7 +102,8 @@ CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
                          "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
     noise_velocity=param(0.05, 0.0, 1.0, 0.01,
                          "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
-    noise_scale=param(0.02, 0.0, 0.3, 0.005, "std of w_a: the size changes by a = 1 + w_a"),
+    noise_scale=param(0.0, 0.0, 0.3, 0.005,
+                      "std of w_a: the size changes by a = 1 + w_a (tuned: 0, fixed size)"),
     resampler=param("multinomial", doc="factored sampling (step ①)",
                     choices=("multinomial", "systematic", "stratified", "residual")),
     max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)"),
@@ -111,7 +112,9 @@ CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
     flow_levels=param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
                                   "single solve)"),
     flow_iterations=param(3, 1, 20, 1, "re-warped solves per level (1 = the paper's)"),
-    **_common_params(),
+    **{**_common_params(),
+       "resolution": param(8, 4, 200, 1, "largest half-axis in lattice pixels: bigger targets "
+                           "use every k-th pixel (tuned: 8, for speed)")},
 ), "Tunables of ``condensation-mean-shift`` (Cho & Kang 2005).")
 
 
