@@ -19,6 +19,7 @@ from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
+from . import covariance  # noqa: F401,E402  seed 002: covariance, kalman-covariance
 from . import condensation_mean_shift  # noqa: F401,E402  (seed 003)
 
 
