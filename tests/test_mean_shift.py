@@ -10,8 +10,9 @@ from skimage import data
 import trackbook
 from trackbook import clips, trackers
 from trackbook.features.color import bhattacharyya_coefficient, hsv_bin_index
-from trackbook.filters.mean_shift import (bin_image, ellipse_histograms, ellipse_rho,
-                                          ellipse_samples, mean_shift, mean_shift_with_scale)
+from trackbook.filters.mean_shift import (bin_image, ellipse_histograms, ellipse_labels,
+                                          ellipse_rho, ellipse_window, lattice_pixel, mean_shift,
+                                          mean_shift_weights, mean_shift_with_scale)
 from trackbook.filters.optical_flow import motion_vector, solve_motion
 from trackbook.trackers.multi import MultiTracker, target_seed, track_clip
 
@@ -36,21 +37,52 @@ def blob():
     return img, p[0]
 
 
-def test_histogram_matches_a_slow_loop(blob):
-    # oracle: eq. 3 by a plain loop over the pixels of the frame
-    img, _ = blob
-    f = blob_frame()
-    labels = hsv_bin_index(f)
-    c, (hx, hy) = np.array([95.3, 77.9]), (20.0, 14.0)
-    hist = np.zeros(img.n_bins)
-    for i in range(H):
-        for j in range(W):
-            r2 = ((j + 0.5 - c[0]) / hx) ** 2 + ((i + 0.5 - c[1]) / hy) ** 2
+def _loop_histogram(frame, centre, axes, stride=1):
+    """Oracle: eq. 3 by a plain loop over every stride-th pixel of the frame."""
+    labels = hsv_bin_index(frame)
+    hist = np.zeros(256)
+    for i in range(0, frame.shape[0], stride):
+        for j in range(0, frame.shape[1], stride):
+            r2 = ((j + 0.5 - centre[0]) / axes[0]) ** 2 + ((i + 0.5 - centre[1]) / axes[1]) ** 2
             if r2 < 1:
                 hist[labels[i, j]] += 1 - r2
-    hist /= hist.sum()
-    got = ellipse_histograms(ellipse_samples(img, c[None], [[hx, hy]]), img.n_bins)[0]
-    np.testing.assert_allclose(got, hist, atol=1e-12)
+    return hist / hist.sum()
+
+
+@pytest.mark.parametrize("stride", [1, 3])
+def test_histogram_matches_a_slow_loop(stride):
+    # the ellipse is centred on the lattice pixel nearest to its centre (module docstring)
+    f = blob_frame()
+    img = bin_image(f, (0, 0, W, H), stride=stride)
+    c, axes = np.array([95.3, 77.9]), (20.0, 14.0)
+    snapped = img.origin + stride * lattice_pixel(img, c[None])[0]
+    assert np.all(np.abs(snapped - c) <= stride / 2)
+    got = ellipse_rho(img, np.zeros(img.n_bins), c[None], [axes])[1][0]
+    np.testing.assert_allclose(got, _loop_histogram(f, snapped, axes, stride), atol=1e-12)
+
+
+def test_histograms_of_different_sizes_in_one_batch(blob):
+    img, _ = blob
+    centres = np.array([[95.5, 77.5], [60.5, 50.5]])
+    axes = np.array([[20.0, 14.0], [9.0, 25.0]])
+    win = ellipse_window(img, axes)
+    hist = ellipse_histograms(ellipse_labels(img, lattice_pixel(img, centres), win), win.k,
+                              img.n_bins)
+    for k in range(2):
+        np.testing.assert_allclose(hist[k], _loop_histogram(blob_frame(), centres[k], axes[k]),
+                                   atol=1e-12)
+
+
+def test_weights_are_sqrt_q_over_p_and_zero_outside_the_frame(blob):
+    img, q = blob
+    c = np.array([[10.5, 10.5]])                 # partly outside the frame
+    rho, p, labels = ellipse_rho(img, q, c, [[20.0, 20.0]])
+    w = mean_shift_weights(labels, p, q)
+    m = img.n_bins
+    inside = labels < m
+    assert (~inside).any() and inside.any()
+    np.testing.assert_allclose(w[inside], np.sqrt(q[labels[inside]] / p[0, labels[inside]]))
+    assert np.all(w[~inside] == 0)
 
 
 def test_ellipse_outside_the_frame_has_rho_zero(blob):
@@ -90,6 +122,7 @@ def test_batched_mean_shift_equals_one_at_a_time(blob):
     for k in range(3):
         one = mean_shift(img, q, starts[k:k + 1], axes[k:k + 1])
         np.testing.assert_allclose(both.centres[k], one.centres[0])
+        np.testing.assert_allclose(both.rho[k], one.rho[0])
         assert both.iterations[k] == one.iterations[0]
 
 

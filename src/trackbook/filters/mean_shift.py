@@ -10,10 +10,18 @@ start ``y0``: every pixel gets the weight ``w_i = sqrt(q_u / p_u(y0))`` of its b
 because the Epanechnikov profile has a constant derivative (``g = -k' = 1``), the new centre is
 just the weighted mean of the pixel positions inside the ellipse.
 
-Everything here is batched over N ellipses ("candidates") at once: the bin-index image of the
-region that holds them is computed once (:func:`bin_image`), and each iteration gathers the
-labels under all N ellipses with one fancy-indexing call. Large targets are handled on a
-sub-sampled pixel lattice (``stride`` > 1) so that the cost does not grow with the target's size.
+How the sums of eq. 3 are taken, fast
+-------------------------------------
+``h(x)`` is read from a bin-index image of the region holding all candidates, computed ONCE per
+frame (:func:`bin_image`), on a lattice of every ``stride``-th pixel (stride 1 for the paper's
+small targets; larger targets are sub-sampled so that their shorter half-axis spans a fixed
+number of lattice pixels and the cost does not grow with their size). An ellipse is centred
+on the lattice pixel nearest to its centre ``y`` (a pixel grid does the same with stride 1), so
+its pixels are FIXED offsets from that centre and their kernel weights ``k(r_i)`` are computed
+once per call (:func:`ellipse_window`). Every histogram of every iteration of every
+candidate is then one gather and one ``np.bincount``. Because the histogram only depends on
+the lattice pixel under ``y``, a mean-shift step that stays on that pixel has reached a fixed
+point (step ⑥ stops there too).
 """
 
 from __future__ import annotations
@@ -23,7 +31,7 @@ import functools
 
 import numpy as np
 
-from ..features.color import HSV_BINS, bhattacharyya_coefficient, hsv_bin_index, weighted_histograms
+from ..features.color import HSV_BINS, hsv_bin_index
 
 
 @dataclasses.dataclass
@@ -65,118 +73,163 @@ def bin_image(frame: np.ndarray, region, stride: int = 1, bins=HSV_BINS) -> BinI
     x0, y0 = max(x0, 0), max(y0, 0)
     x1, y1 = min(x1, W), min(y1, H)
     if x1 <= x0 or y1 <= y0:
-        return BinImage(np.zeros((1, 1), dtype=np.int64), np.array([-1e9, -1e9]), stride,
+        return BinImage(np.zeros((1, 1), dtype=np.intp), np.array([-1e9, -1e9]), stride,
                         int(np.prod(bins)))
     labels = hsv_bin_index(frame[y0:y1:stride, x0:x1:stride], bins)
     return BinImage(labels, np.array([x0 + 0.5, y0 + 0.5]), stride, int(np.prod(bins)))
 
 
 @dataclasses.dataclass
-class EllipseSamples:
-    """The lattice pixels around N ellipses (one fixed-size window per ellipse, flattened).
+class EllipseWindow:
+    """The lattice pixels of N ellipses as fixed offsets from their centres' lattice pixels.
 
     Attributes
     ----------
-    x, y : (N, P) image coordinates of the pixel centres x_i
-    labels : (N, P) bin index h(x_i) (0 where the pixel is outside the frame)
-    k : (N, P) kernel weight k(r_i) = 1 - r_i^2 inside the ellipse and the frame, else 0 (eq. 2)
-    inside : (N, P) bool, r_i < 1 and the pixel lies in the lattice
+    dxy : (P, 2) image-coordinate offsets ``(dx, dy)`` of the window's lattice pixels
+    flat : (P,) the same offsets in the flattened padded label array (:meth:`BinImage.padded`)
+    k : (N, P) kernel weight ``k(r_i) = 1 - r_i^2`` of each pixel for each ellipse, 0 outside
+        it (eq. 2; ``r_i`` measured from the lattice pixel under the centre)
+    inside : (N, P) bool ``k > 0``, or None when every window pixel is inside every ellipse
+    pad : int, the sentinel frame of the padded label array
+    reach : (2,) int, how far (lattice pixels) a centre may lie outside the region before its
+        window is pure sentinel
     """
 
-    x: np.ndarray
-    y: np.ndarray
-    labels: np.ndarray
+    dxy: np.ndarray
+    flat: np.ndarray
     k: np.ndarray
-    inside: np.ndarray
+    inside: np.ndarray | None
+    pad: int
+    reach: np.ndarray
 
 
-def window_radius(img: BinImage, axes) -> np.ndarray:
-    """Half-size ``(rx, ry)`` in lattice pixels of a window that holds every ellipse of ``axes``."""
-    axes = np.atleast_2d(np.asarray(axes, dtype=float))
-    return np.ceil(axes.max(axis=0) / img.stride).astype(int) + 1
+@functools.lru_cache(maxsize=32)
+def _window_kernel(stride: int, axes: tuple):
+    axes = np.array(axes, dtype=float).reshape(-1, 2)
+    rx, ry = (np.floor(axes.max(axis=0) / stride).astype(int) + 1)
+    dj, di = np.meshgrid(np.arange(-rx, rx + 1), np.arange(-ry, ry + 1))
+    dj, di = dj.ravel(), di.ravel()
+    r2 = ((dj * stride)[None, :] / axes[:, :1]) ** 2 + ((di * stride)[None, :] / axes[:, 1:]) ** 2
+    k = np.clip(1.0 - r2, 0.0, None)
+    keep = (k > 0).any(axis=0)
+    dj, di, k = dj[keep], di[keep], np.ascontiguousarray(k[:, keep])
+    inside = None if (k > 0).all() else k > 0
+    for a in (dj, di, k, inside):
+        if a is not None:
+            a.flags.writeable = False
+    return dj, di, k, inside, int(rx), int(ry)
 
 
-@functools.lru_cache(maxsize=64)
-def _offsets(rx: int, ry: int):
-    di, dj = np.divmod(np.arange((2 * ry + 1) * (2 * rx + 1)), 2 * rx + 1)
-    return di - ry, dj - rx
+def ellipse_window(img: BinImage, axes) -> EllipseWindow:
+    """Offsets and kernel weights of the lattice pixels of N ellipses with half-axes ``axes``.
 
-
-def ellipse_samples(img: BinImage, centres, axes, radius=None) -> EllipseSamples:
-    """Gather the lattice pixels of N ellipses ``centres (N, 2)``, ``axes (N, 2) = (Hx, Hy)``.
-
-    The window is the same for all N (``radius``, default sized by the largest half-axes), so
-    the N ellipses are gathered with one ``take`` from the label image framed by a sentinel;
-    pixels outside an ellipse or outside the frame get k = 0.
+    The window covers the largest ellipse; window pixels outside every ellipse are dropped, so
+    for N ellipses of one size the window is exactly the ellipse's pixels. (The kernels are
+    cached by size: a tracker whose ellipses keep their size computes them once.)
     """
-    centres = np.atleast_2d(np.asarray(centres, dtype=float))
     axes = np.atleast_2d(np.asarray(axes, dtype=float))
+    dj, di, k, inside, rx, ry = _window_kernel(int(img.stride), tuple(axes.ravel().tolist()))
+    pad = 2 * max(rx, ry) + 2
+    wp = img.labels.shape[1] + 2 * pad
     s = img.stride
-    rx, ry = window_radius(img, axes) if radius is None else radius
-    pad = int(max(rx, ry))
-    lab = img.padded(pad)
-    hp, wp = lab.shape
-    di, dj = _offsets(int(rx), int(ry))
-    base = np.rint((centres - img.origin) / s).astype(int)           # nearest lattice pixel
-    # far-away ellipses look at the sentinel frame: their pixels are "outside the frame"
-    bj = np.minimum(np.maximum(base[:, 0], rx - pad), wp - pad - rx - 1)
-    bi = np.minimum(np.maximum(base[:, 1], ry - pad), hp - pad - ry - 1)
-    labels = lab.ravel()[((bi + pad) * wp + bj + pad)[:, None] + (di * wp + dj)[None, :]]
-    x = img.origin[0] + (bj[:, None] + dj[None, :]) * s
-    y = img.origin[1] + (bi[:, None] + di[None, :]) * s
-    r2 = ((x - centres[:, :1]) / axes[:, :1]) ** 2 + ((y - centres[:, 1:]) / axes[:, 1:]) ** 2
-    inside = (r2 < 1.0) & (labels < img.n_bins)
-    k = np.where(inside, 1.0 - r2, 0.0)
-    labels = np.where(inside, labels, 0)
-    return EllipseSamples(x, y, labels, k, inside)
+    return EllipseWindow(np.stack([dj * s, di * s], axis=1).astype(float), di * wp + dj, k,
+                         inside, pad, np.array([rx + 1, ry + 1]))
 
 
-def ellipse_histograms(samples: EllipseSamples, n_bins: int) -> np.ndarray:
+def lattice_pixel(img: BinImage, centres) -> np.ndarray:
+    """(N, 2) int ``(j, i)``: the lattice pixel nearest to each centre (may lie outside)."""
+    return np.rint((np.atleast_2d(centres) - img.origin) / img.stride).astype(np.intp)
+
+
+def ellipse_labels(img: BinImage, ji, win: EllipseWindow) -> np.ndarray:
+    """``h(x_i)`` of the window pixels of N ellipses centred on lattice pixels ``ji``: (N, P).
+
+    Pixels outside the region (or the frame) read the sentinel m. A centre farther out than
+    the window's reach is clamped to where its window is all sentinel.
+    """
+    h, w = img.labels.shape
+    j = np.minimum(np.maximum(ji[:, 0], -win.reach[0]), w - 1 + win.reach[0])
+    i = np.minimum(np.maximum(ji[:, 1], -win.reach[1]), h - 1 + win.reach[1])
+    base = (i + win.pad) * (w + 2 * win.pad) + (j + win.pad)
+    return img.padded(win.pad).ravel().take(base[:, None] + win.flat[None, :])
+
+
+def _histograms(labels, k, m: int) -> np.ndarray:
+    """(N, m + 1) kernel-weighted counts of ``labels`` (column m = the sentinel), one bincount."""
+    n = labels.shape[0]
+    idx = labels + (np.arange(n) * (m + 1))[:, None]
+    return np.bincount(idx.ravel(), weights=k.ravel(), minlength=n * (m + 1)).reshape(n, m + 1)
+
+
+def _normalise(counts, m: int) -> np.ndarray:
+    """Eq. 3's f: the in-frame bins sum to 1; an ellipse wholly outside gets all zeros.
+    The sentinel column is set to 1 so that step ② can divide by it (its q is 0)."""
+    mass = counts[:, :m].sum(axis=1, keepdims=True)
+    p = counts / np.where(mass > 0, mass, 1.0)
+    p[:, m] = 1.0
+    return p
+
+
+def ellipse_histograms(labels, k, n_bins: int) -> np.ndarray:
     """Colour distributions p_y of eq. 3 of Cho & Kang 2005 (eq. 2 of Comaniciu et al. 2003).
 
-    ``p_u = f * sum_i k(r_i) delta[h(x_i) - u]``, f making the bins sum to 1. An ellipse with no
-    pixel in the frame gets the all-zero histogram (rho = 0 against any model), not a uniform one.
+    ``p_u = f * sum_i k(r_i) delta[h(x_i) - u]``, f making the bins sum to 1, for N ellipses
+    whose pixels have the labels ``(N, P)`` (:func:`ellipse_labels`; the sentinel m marks a
+    pixel outside the frame and is not counted) and kernel weights ``k (N, P)``. An ellipse
+    with no pixel in the frame gets the all-zero histogram (rho = 0 against any model).
     """
-    hist = weighted_histograms(samples.labels[:, None, :], samples.k[:, None, :], n_bins)
-    empty = samples.k.sum(axis=1) <= 0
-    hist[empty] = 0.0
-    return hist
+    labels = np.atleast_2d(labels)
+    k = np.broadcast_to(np.asarray(k, dtype=float), labels.shape)
+    return _normalise(_histograms(labels, k, n_bins), n_bins)[:, :n_bins]
 
 
-def ellipse_rho(img: BinImage, q, centres, axes, radius=None):
-    """``(rho, p, samples)``: the Bhattacharyya coefficient rho[p(y), q] of N ellipses, their
-    colour distributions (eq. 3) and the gathered pixels."""
-    samples = ellipse_samples(img, centres, axes, radius)
-    p = ellipse_histograms(samples, img.n_bins)
-    return bhattacharyya_coefficient(p, q), p, samples
+def ellipse_rho(img: BinImage, q, centres, axes):
+    """``(rho, p, labels)``: the Bhattacharyya coefficient rho[p(y), q] of N ellipses, their
+    colour distributions (eq. 3, (N, m)) and their pixels' labels (:func:`ellipse_labels`)."""
+    c = np.atleast_2d(np.asarray(centres, dtype=float))
+    a = np.atleast_2d(np.asarray(axes, dtype=float))
+    if a.shape[0] == 1 and c.shape[0] > 1:
+        a = np.repeat(a, c.shape[0], axis=0)
+    win = ellipse_window(img, a)
+    labels = ellipse_labels(img, lattice_pixel(img, c), win)
+    p = ellipse_histograms(labels, win.k, img.n_bins)
+    return np.sqrt(p * np.asarray(q, dtype=float)).sum(axis=1), p, labels
 
 
-def mean_shift_weights(samples: EllipseSamples, p0, q) -> np.ndarray:
-    """Step ② (eq. 11 of Cho & Kang 2005): w_i = sqrt(q_u / p_u(y0)) for u = h(x_i), 0 outside.
+def mean_shift_weights(labels, p0, q) -> np.ndarray:
+    """Step ② (eq. 11 of Cho & Kang 2005): w_i = sqrt(q_u / p_u(y0)) for u = h(x_i).
 
-    ``p0`` is (N, m), ``q`` is (m,). A bin that no pixel of the ellipse falls in has p_u = 0 but
-    then no pixel needs its weight, so the division is guarded rather than regularised.
+    ``labels`` (N, P) may hold the sentinel m (pixel outside the frame: weight 0); ``p0`` is
+    (N, m) and ``q`` is (m,). A window pixel outside the ellipse (k = 0) may sit in a bin with
+    p_u = 0; its weight is 0 (step ③ gives it no say anyway, its g is 0).
     """
+    p0 = np.atleast_2d(p0)
     n, m = p0.shape
-    pu = p0.ravel()[samples.labels + (np.arange(n) * m)[:, None]]
-    qu = np.asarray(q)[samples.labels]
+    pe = np.concatenate([p0, np.ones((n, 1))], axis=1)
+    qe = np.append(np.asarray(q, dtype=float), 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        w = np.where(samples.inside & (pu > 0), np.sqrt(qu / np.where(pu > 0, pu, 1.0)), 0.0)
-    return w
+        w = _weights(labels, pe, qe)
+    return np.where(np.isfinite(w), w, 0.0)
 
 
-def mean_shift_step(samples: EllipseSamples, w, centres) -> np.ndarray:
+def _weights(labels, p_ext, q_ext) -> np.ndarray:
+    n, m1 = p_ext.shape
+    pu = p_ext.ravel().take(labels + (np.arange(n) * m1)[:, None])
+    return np.sqrt(q_ext.take(labels) / pu)
+
+
+def mean_shift_step(w, ji, img: BinImage, win: EllipseWindow) -> np.ndarray:
     """Step ③ (eq. 12 of Cho & Kang 2005): the new centre y1 = sum x_i w_i g / sum w_i g.
 
-    With the Epanechnikov profile g = -k' is constant on the ellipse, so y1 is the plain
-    weighted mean of the pixel positions inside it. An ellipse with zero total weight stays put.
+    With the Epanechnikov profile g = -k' is constant inside the ellipse and 0 outside, so y1
+    is the weighted mean of the positions x_i of the pixels inside it, i.e. the centre's
+    lattice pixel plus ``(w g) @ dxy / sum w g``. An ellipse with zero total weight (nothing of
+    the model's colours) stays on its lattice pixel.
     """
-    total = w.sum(axis=1)
-    mx = (w * samples.x).sum(axis=1)
-    my = (w * samples.y).sum(axis=1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        y1 = np.stack([mx / total, my / total], axis=1)
-    return np.where((total > 0)[:, None], y1, centres)
+    wg = w if win.inside is None else np.where(win.inside, w, 0.0)
+    total = wg.sum(axis=1, keepdims=True)
+    shift = (wg @ win.dxy) / np.where(total > 0, total, 1.0)
+    return img.origin + ji * img.stride + shift
 
 
 @dataclasses.dataclass
@@ -189,6 +242,8 @@ class MeanShiftResult:
     rho : (N,) rho[p(y), q] at the converged centres
     rho_start : (N,) rho at the starts (eq. 13 says rho >= rho_start)
     iterations : (N,) mean-shift iterations each start used
+    evaluations : int, histogram evaluations of the whole batch (one per iteration, one per
+        step-halving round, one at the starts): the cost of the frame
     trajectory : (T, N, 2) the centres after every iteration, the starts first (for drawings)
     rho_trajectory : (T, N) rho along the trajectory
     hist : (N, m) colour distributions at the converged centres
@@ -198,6 +253,7 @@ class MeanShiftResult:
     rho: np.ndarray
     rho_start: np.ndarray
     iterations: np.ndarray
+    evaluations: int
     trajectory: np.ndarray
     rho_trajectory: np.ndarray
     hist: np.ndarray
@@ -213,53 +269,85 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     the step is refused and the start stays put, so an accepted step never lowers rho);
     ⑥ stop when ||y1 - y0|| < eps (image pixels) or after ``max_iter`` iterations.
 
+    The histogram of an ellipse only depends on the lattice pixel under its centre (module
+    docstring), so a step (or a halved step) that lands on the same lattice pixel as y0 has
+    p(y1) = p(y0): rho cannot change, and the next step would land on the same point: it is a
+    fixed point, and ⑥ stops there without evaluating anything. The N starts move in
+    lock-step; the p(y1) of ④ is the p(y0) of the next ②, so an iteration costs ONE batched
+    histogram evaluation (plus one per round of halvings that is really needed).
+
     Parameters
     ----------
     img : the bin-index image of the region holding the ellipses (:func:`bin_image`)
     q : (m,) target model
-    centres : (N, 2) starts y0 (image coordinates); axes : (N, 2) half-axes (Hx, Hy), fixed
+    centres : (N, 2) starts y0 (image coordinates); axes : (N, 2) or (1, 2) half-axes, fixed
     """
+    m = img.n_bins
     q = np.asarray(q, dtype=float)
+    qe = np.append(q, 0.0)
+    sq = np.sqrt(q)
     y0 = np.array(np.atleast_2d(centres), dtype=float)
-    axes = np.atleast_2d(np.asarray(axes, dtype=float))
-    if axes.shape[0] == 1 and y0.shape[0] > 1:
-        axes = np.repeat(axes, y0.shape[0], axis=0)
     n = y0.shape[0]
-    radius = window_radius(img, axes)
-    rho0, p0, s0 = ellipse_rho(img, q, y0, axes, radius)
-    X, Y, L, K, IN = s0.x, s0.y, s0.labels, s0.k, s0.inside     # pixels at the current y0
+    axes = np.atleast_2d(np.asarray(axes, dtype=float))
+    if axes.shape[0] == 1 and n > 1:
+        axes = np.repeat(axes, n, axis=0)
+    win = ellipse_window(img, axes)
+    rows = (np.arange(n) * (m + 1))[:, None]
+    kflat = win.k.ravel()
+
+    def evaluate(ji):           # ① / ④: labels, p (with the sentinel column), rho
+        lab = ellipse_labels(img, ji, win)
+        counts = np.bincount((lab + rows).ravel(), kflat, n * (m + 1)).reshape(n, m + 1)
+        p = _normalise(counts, m)
+        return lab, p, np.sqrt(p[:, :m]) @ sq
+
+    ji0 = lattice_pixel(img, y0)
+    L0, p0, rho0 = evaluate(ji0)                                   # ①
+    evaluations = 1
     rho_start = rho0.copy()
     iterations = np.zeros(n, dtype=int)
     active = np.ones(n, dtype=bool)
     traj, rtraj = [y0.copy()], [rho0.copy()]
-    for _ in range(int(max_iter)):
-        a = np.flatnonzero(active)
-        if a.size == 0:
-            break
-        sa = EllipseSamples(X, Y, L, K, IN) if a.size == n else \
-            EllipseSamples(X[a], Y[a], L[a], K[a], IN[a])
-        w = mean_shift_weights(sa, p0[a], q)                       # ②
-        y1 = mean_shift_step(sa, w, y0[a])                         # ③
-        rho1, p1, s1 = ellipse_rho(img, q, y1, axes[a], radius)    # ④
-        for _h in range(int(max_halvings)):                        # ⑤ only where rho went down
-            bad = np.flatnonzero(rho1 < rho0[a])
-            if bad.size == 0:
+    eps2 = float(eps) ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for _ in range(int(max_iter)):
+            if not active.any():
                 break
-            y1[bad] = 0.5 * (y0[a[bad]] + y1[bad])
-            rho1[bad], p1[bad], sb = ellipse_rho(img, q, y1[bad], axes[a[bad]], radius)
-            for f in ("x", "y", "labels", "k", "inside"):
-                getattr(s1, f)[bad] = getattr(sb, f)
-        ok = rho1 >= rho0[a]          # a step that still lowers rho is refused: stay at y0
-        acc = a[ok]
-        step = np.linalg.norm(y1 - y0[a], axis=1)
-        iterations[a] += 1
-        y0[acc], rho0[acc], p0[acc] = y1[ok], rho1[ok], p1[ok]
-        X[acc], Y[acc], L[acc], K[acc], IN[acc] = s1.x[ok], s1.y[ok], s1.labels[ok], s1.k[ok], \
-            s1.inside[ok]
-        active[a[(step < eps) | ~ok]] = False                      # ⑥
-        traj.append(y0.copy())
-        rtraj.append(rho0.copy())
-    return MeanShiftResult(y0, rho0, rho_start, iterations, np.array(traj), np.array(rtraj), p0)
+            w = np.sqrt(qe.take(L0) / p0.ravel().take(L0 + rows))  # ② (eq. 11)
+            y1 = mean_shift_step(w, ji0, img, win)                 # ③ (eq. 12)
+            y1[~active] = y0[~active]
+            ji1 = lattice_pixel(img, y1)
+            fixed = (ji1 == ji0).all(axis=1)    # same lattice pixel: same p, a fixed point
+            todo = active & ~fixed
+            L1, p1, rho1 = L0, p0, rho0
+            if todo.any():
+                L1, p1, rho1 = evaluate(ji1)                       # ④
+                evaluations += 1
+            for _h in range(int(max_halvings)):                    # ⑤ only where rho went down
+                bad = todo & (rho1 < rho0)
+                if not bad.any():
+                    break
+                y1[bad] = 0.5 * (y0[bad] + y1[bad])
+                ji1 = lattice_pixel(img, y1)
+                back = bad & (ji1 == ji0).all(axis=1)   # halved onto y0's pixel: fixed point
+                fixed |= back
+                todo &= ~back
+                if (todo & bad).any():
+                    L1, p1, rho1 = evaluate(ji1)   # rows not halved keep their pixel and p
+                    evaluations += 1
+            acc = active & (fixed | (rho1 >= rho0))  # a step that still lowers rho: refused
+            d = y1 - y0
+            small = (d * d).sum(axis=1) < eps2
+            iterations[active] += 1
+            y0[acc] = y1[acc]
+            upd = acc & ~fixed
+            if upd.any():
+                ji0[upd], rho0[upd], p0[upd], L0[upd] = ji1[upd], rho1[upd], p1[upd], L1[upd]
+            active &= acc & ~small & ~fixed                        # ⑥
+            traj.append(y0.copy())
+            rtraj.append(rho0.copy())
+    return MeanShiftResult(y0, rho0, rho_start, iterations, evaluations, np.array(traj),
+                           np.array(rtraj), p0[:, :m])
 
 
 def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1),
@@ -279,8 +367,8 @@ def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1
     new_axes = gamma * trial_axes[best] + (1.0 - gamma) * axes
     pick = slice(best, best + 1)
     one = MeanShiftResult(res.centres[pick], res.rho[pick], res.rho_start[pick],
-                          res.iterations[pick], res.trajectory[:, pick], res.rho_trajectory[:, pick],
-                          res.hist[pick])
+                          res.iterations[pick], res.evaluations, res.trajectory[:, pick],
+                          res.rho_trajectory[:, pick], res.hist[pick])
     return one, new_axes
 
 

@@ -108,17 +108,28 @@ def motion_vector(prev, curr, box, levels: int = 1, iterations: int = 1,
             pq *= 2.0 if lev > 0 else 1.0
             continue
         T = P0[b0:b1, a0:a1]
-        Ix, Iy = _gradients(T)
-        size = (a1 - a0, b1 - b0)
+        # the 2x2 matrix of eq. 8 depends on the template only: built once per level, and the
+        # re-warped solves below only need the right-hand side (central differences, as
+        # np.gradient, on the template's interior pixels)
+        gx = ((T[1:-1, 2:] - T[1:-1, :-2]) * 0.5).ravel()
+        gy = ((T[2:, 1:-1] - T[:-2, 1:-1]) * 0.5).ravel()
+        gxx, gxy, gyy = float(gx @ gx), float(gx @ gy), float(gy @ gy)
+        lam_min = 0.5 * (gxx + gyy - np.hypot(gxx - gyy, 2 * gxy))
+        det = gxx * gyy - gxy * gxy
+        if not (np.isfinite(lam_min) and lam_min / gx.size >= min_eigenvalue and det > 0):
+            if lev > 0:
+                pq *= 2.0
+            continue
+        inner = T[1:-1, 1:-1].ravel()
+        size = (a1 - a0 - 2, b1 - b0 - 2)
         centre = ((a0 + a1 - 1) / 2.0, (b0 + b1 - 1) / 2.0)
         for _ in range(max(1, int(iterations))):
             # I(x + p, y + q, t + 1) sampled bilinearly (eq. 5's left-hand side)
             Wp = cv2.getRectSubPix(P1, size, (centre[0] + pq[0], centre[1] + pq[1]))
-            It = Wp - T
-            dp, dq, ok = solve_motion(Ix[1:-1, 1:-1], Iy[1:-1, 1:-1], It[1:-1, 1:-1],
-                                      min_eigenvalue)
-            if not ok:
-                break
+            It = Wp.ravel() - inner
+            bx, by = -float(gx @ It), -float(gy @ It)
+            dp = (gyy * bx - gxy * by) / det            # the 2x2 normal equations of eq. 8
+            dq = (gxx * by - gxy * bx) / det
             ok_any = True
             pq += (dp, dq)
             if dp * dp + dq * dq < 1e-4:
