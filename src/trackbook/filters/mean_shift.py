@@ -282,72 +282,106 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     q : (m,) target model
     centres : (N, 2) starts y0 (image coordinates); axes : (N, 2) or (1, 2) half-axes, fixed
     """
-    m = img.n_bins
-    q = np.asarray(q, dtype=float)
-    qe = np.append(q, 0.0)
-    sq = np.sqrt(q)
+    m, m1 = img.n_bins, img.n_bins + 1
     y0 = np.array(np.atleast_2d(centres), dtype=float)
     n = y0.shape[0]
     axes = np.atleast_2d(np.asarray(axes, dtype=float))
     if axes.shape[0] == 1 and n > 1:
         axes = np.repeat(axes, n, axis=0)
     win = ellipse_window(img, axes)
-    rows = (np.arange(n) * (m + 1))[:, None]
+    # Prepared once. Each candidate's labels live in its own block of m + 1 bins (the last is
+    # the sentinel "outside the frame", whose model value is 0). The state kept per candidate
+    # is sqrt(counts), the square root of its unnormalised eq. 3 sums: step ②'s weights
+    # sqrt(q_u / p_u) only change by one factor per candidate if p is not normalised, and
+    # step ③'s weighted mean does not see that factor; rho divides it out once.
+    sqrt_q = np.sqrt(np.append(np.asarray(q, dtype=float), 0.0))
+    sqrt_q_tiled = np.tile(sqrt_q, n)
+    rows = (np.arange(n) * m1)[:, None]
     kflat = win.k.ravel()
+    k_total = win.k.sum(axis=1)
+    dxy1 = np.concatenate([win.dxy, np.ones((win.dxy.shape[0], 1))], axis=1)  # (dx, dy, 1)
+    flat = img.padded(win.pad).ravel()
+    h, w_ = img.labels.shape
+    lo, hi = -win.reach, np.array([w_ - 1, h - 1]) + win.reach
+    to_flat = np.array([1, w_ + 2 * win.pad])
+    corner = win.pad * (to_flat[0] + to_flat[1])
+    origin, stride = img.origin, float(img.stride)
 
-    def evaluate(ji):           # ① / ④: labels, p (with the sentinel column), rho
-        lab = ellipse_labels(img, ji, win)
-        counts = np.bincount((lab + rows).ravel(), kflat, n * (m + 1)).reshape(n, m + 1)
-        p = _normalise(counts, m)
-        return lab, p, np.sqrt(p[:, :m]) @ sq
+    def pixel(y):               # the lattice pixel under each centre
+        return np.rint((y - origin) / stride).astype(np.intp)
 
-    ji0 = lattice_pixel(img, y0)
-    L0, p0, rho0 = evaluate(ji0)                                   # ①
+    def evaluate(ji):           # ① / ④: labels (+ block offsets), sqrt(counts), rho
+        base = np.minimum(np.maximum(ji, lo), hi) @ to_flat + corner
+        lab = flat.take(base[:, None] + win.flat) + rows
+        counts = np.bincount(lab.ravel(), kflat, n * m1).reshape(n, m1)
+        sc = np.sqrt(counts)
+        mass = np.maximum(k_total - counts[:, m], 1e-300)        # eq. 3's 1 / f
+        return lab, sc, (sc @ sqrt_q) / np.sqrt(mass)
+
+    ji0 = pixel(y0)
+    L0, sc0, rho0 = evaluate(ji0)                                  # ①
     evaluations = 1
-    rho_start = rho0.copy()
+    rho_start = rho0
     iterations = np.zeros(n, dtype=int)
     active = np.ones(n, dtype=bool)
-    traj, rtraj = [y0.copy()], [rho0.copy()]
+    traj, rtraj = [y0], [rho0]
     eps2 = float(eps) ** 2
     with np.errstate(divide="ignore", invalid="ignore"):
         for _ in range(int(max_iter)):
-            if not active.any():
-                break
-            w = np.sqrt(qe.take(L0) / p0.ravel().take(L0 + rows))  # ② (eq. 11)
-            y1 = mean_shift_step(w, ji0, img, win)                 # ③ (eq. 12)
-            y1[~active] = y0[~active]
-            ji1 = lattice_pixel(img, y1)
+            w = (sqrt_q_tiled / sc0.ravel()).take(L0)              # ② (eq. 11)
+            if win.inside is not None:
+                w = np.where(win.inside, w, 0.0)                   # g = 0 outside the ellipse
+            mom = w @ dxy1                                         # ③ (eq. 12): weighted mean
+            y1 = mom[:, :2] / mom[:, 2:]
+            y1 += ji0 * stride + origin
+            still = active & (mom[:, 2] > 0)    # no pixel of the model's colours: stay put
+            if not still.all():
+                y1 = np.where(still[:, None], y1, y0)
+            ji1 = pixel(y1)
             fixed = (ji1 == ji0).all(axis=1)    # same lattice pixel: same p, a fixed point
-            todo = active & ~fixed
-            L1, p1, rho1 = L0, p0, rho0
+            todo = still & ~fixed
+            L1, sc1, rho1 = L0, sc0, rho0
+            refused = todo & False
             if todo.any():
-                L1, p1, rho1 = evaluate(ji1)                       # ④
+                L1, sc1, rho1 = evaluate(ji1)                      # ④
                 evaluations += 1
-            for _h in range(int(max_halvings)):                    # ⑤ only where rho went down
-                bad = todo & (rho1 < rho0)
-                if not bad.any():
-                    break
-                y1[bad] = 0.5 * (y0[bad] + y1[bad])
-                ji1 = lattice_pixel(img, y1)
-                back = bad & (ji1 == ji0).all(axis=1)   # halved onto y0's pixel: fixed point
-                fixed |= back
-                todo &= ~back
-                if (todo & bad).any():
-                    L1, p1, rho1 = evaluate(ji1)   # rows not halved keep their pixel and p
-                    evaluations += 1
-            acc = active & (fixed | (rho1 >= rho0))  # a step that still lowers rho: refused
+                for _h in range(int(max_halvings)):                # ⑤ only where rho went down
+                    bad = todo & (rho1 < rho0)
+                    if not bad.any():
+                        break
+                    y1 = np.where(bad[:, None], 0.5 * (y0 + y1), y1)
+                    ji1 = pixel(y1)
+                    back = bad & (ji1 == ji0).all(axis=1)   # halved onto y0's pixel: fixed
+                    if back.any():                          # ... with y0's values
+                        L1 = np.where(back[:, None], L0, L1)
+                        sc1 = np.where(back[:, None], sc0, sc1)
+                        rho1 = np.where(back, rho0, rho1)
+                    fixed |= back
+                    todo &= ~back
+                    if (todo & bad).any():
+                        L1, sc1, rho1 = evaluate(ji1)  # rows not halved: same pixel, same p
+                        evaluations += 1
+                refused = todo & (rho1 < rho0)  # still lower after the halvings: stay at y0
             d = y1 - y0
             small = (d * d).sum(axis=1) < eps2
-            iterations[active] += 1
-            y0[acc] = y1[acc]
-            upd = acc & ~fixed
-            if upd.any():
-                ji0[upd], rho0[upd], p0[upd], L0[upd] = ji1[upd], rho1[upd], p1[upd], L1[upd]
-            active &= acc & ~small & ~fixed                        # ⑥
-            traj.append(y0.copy())
-            rtraj.append(rho0.copy())
+            iterations += active
+            if refused.any():
+                keep = refused[:, None]
+                y1, ji1 = np.where(keep, y0, y1), np.where(keep, ji0, ji1)
+                L1, sc1 = np.where(keep, L0, L1), np.where(keep, sc0, sc1)
+                rho1 = np.where(refused, rho0, rho1)
+            # rows that did not move (stopped, fixed, refused) have the same values in both
+            y0, ji0, L0, sc0, rho0 = y1, ji1, L1, sc1, rho1
+            active &= ~(small | fixed | refused)                   # ⑥
+            traj.append(y0)
+            rtraj.append(rho0)
+            if not active.any():
+                break
+    counts = sc0 * sc0
+    mass = k_total - counts[:, m]
+    hist = counts[:, :m] / np.where(mass > 0, mass, 1.0)[:, None]
     return MeanShiftResult(y0, rho0, rho_start, iterations, evaluations, np.array(traj),
-                           np.array(rtraj), p0[:, :m])
+                           np.array(rtraj), hist)
 
 
 def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1),

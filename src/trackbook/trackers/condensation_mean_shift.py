@@ -268,20 +268,23 @@ class CondensationMeanShift(Condensation):
         self._remember(frame)
 
     def _flow_window(self):
-        """Region (x0, y0, x1, y1) around the estimate for the motion vector, and its scale."""
+        """Region (x0, y0, x1, y1) around the estimate for the motion vector, and its scale f.
+
+        The region is reduced f times (the box becomes about 32 px), and its size is a multiple
+        of f so that the reduction is an exact f x f box average (OpenCV's fast path)."""
         cx, cy, hx, hy = self.ellipse
         H, W = self._shape[:2]
+        f = max(1, int(2 * max(hx, hy) // 32))
         x0, y0 = int(max(cx - 2 * hx, 0)), int(max(cy - 2 * hy, 0))
         x1, y1 = int(min(cx + 2 * hx + 1, W)), int(min(cy + 2 * hy + 1, H))
-        f = max(1, int(2 * max(hx, hy) // 32))      # the box is about 32 px in the flow image
+        x1, y1 = x0 + (x1 - x0) // f * f, y0 + (y1 - y0) // f * f
         return (x0, y0, x1, y1), f
 
     def _gray(self, frame, window, f):
         x0, y0, x1, y1 = window
-        g = cv2.cvtColor(np.ascontiguousarray(frame[y0:y1, x0:x1]), cv2.COLOR_BGR2GRAY)
-        if f > 1:
-            g = cv2.resize(g, (max((x1 - x0) // f, 1), max((y1 - y0) // f, 1)),
-                           interpolation=cv2.INTER_AREA)
+        g = cv2.cvtColor(frame[y0:y1, x0:x1], cv2.COLOR_BGR2GRAY)
+        if f > 1 and g.size:
+            g = cv2.resize(g, ((x1 - x0) // f, (y1 - y0) // f), interpolation=cv2.INTER_AREA)
         return g
 
     def _remember(self, frame):
