@@ -58,7 +58,10 @@ class BinImage:
     def padded(self, pad: int) -> np.ndarray:
         """``labels`` framed by ``pad`` pixels of the sentinel label m (= "not in the frame")."""
         if pad not in self._padded:
-            self._padded[pad] = np.pad(self.labels, pad, constant_values=self.n_bins)
+            h, w = self.labels.shape
+            out = np.full((h + 2 * pad, w + 2 * pad), self.n_bins, dtype=self.labels.dtype)
+            out[pad:pad + h, pad:pad + w] = self.labels
+            self._padded[pad] = out
         return self._padded[pad]
 
 

@@ -265,7 +265,8 @@ class CondensationMeanShift(Condensation):
         self._rho_before = np.ones(self.params.n_particles)
         self._predicted = self._particles.copy()
         self.mean_shift_result = None
-        self._remember(frame)
+        if self.params.use_motion:
+            self._remember(frame)
 
     def _flow_window(self):
         """Region (x0, y0, x1, y1) around the estimate for the motion vector, and its scale f.
@@ -287,27 +288,51 @@ class CondensationMeanShift(Condensation):
             g = cv2.resize(g, ((x1 - x0) // f, (y1 - y0) // f), interpolation=cv2.INTER_AREA)
         return g
 
-    def _remember(self, frame):
+    def _window_still_fits(self) -> bool:
+        """Whether the estimate's box, with half a half-axis to spare, is still inside the last
+        flow window (the frame's border counts as inside), at the same scale."""
+        win, f = self._flow_win, self._flow_f
+        new_win, new_f = self._flow_window()
+        if new_f != f:
+            return False
+        cx, cy, hx, hy = self.ellipse
+        H, W = self._shape[:2]
+        x0, y0 = max(cx - 1.5 * hx, 0), max(cy - 1.5 * hy, 0)
+        x1, y1 = min(cx + 1.5 * hx, W), min(cy + 1.5 * hy, H)
+        return win[0] <= x0 and win[1] <= y0 and x1 <= win[2] and y1 <= win[3]
+
+    def _remember(self, frame, curr=None):
+        """Keep frame t's grey levels for the next motion vector. The window follows the target
+        only when it nears the window's edge: until then this frame's grey window, already
+        computed for the motion vector, is reused (one grey conversion per frame)."""
+        if curr is not None and self._window_still_fits():
+            self._prev_gray = curr
+            return
         self._flow_win, self._flow_f = self._flow_window()
         self._prev_gray = self._gray(frame, self._flow_win, self._flow_f)
 
     def _motion(self, frame):
-        """Eq. 5-8: the least-squares motion (p, q) of the target region since the last frame."""
+        """Eq. 5-8: the least-squares motion (p, q) of the target region since the last frame.
+
+        Returns ``((p, q, ok), curr)``, ``curr`` being this frame's grey window."""
         p = self.params
         win, f = self._flow_win, self._flow_f
         curr = self._gray(frame, win, f)
         cx, cy, hx, hy = self.ellipse
         box = ((cx - hx - win[0]) / f, (cy - hy - win[1]) / f, 2 * hx / f, 2 * hy / f)
         if curr.shape != self._prev_gray.shape or min(curr.shape) < 4:
-            return 0.0, 0.0, False
+            return (0.0, 0.0, False), None
         dp, dq, ok = motion_vector(self._prev_gray, curr, box, levels=p.flow_levels,
                                    iterations=p.flow_iterations, max_motion=max(curr.shape) / 2)
-        return dp * f, dq * f, ok
+        return (dp * f, dq * f, ok), curr
 
     def _update(self, frame):
-        self.motion = self._motion(frame) if self.params.use_motion else (0.0, 0.0, False)
+        if not self.params.use_motion:
+            self.motion = (0.0, 0.0, False)
+            return super()._update(frame)
+        self.motion, curr = self._motion(frame)
         ok, box = super()._update(frame)
-        self._remember(frame)
+        self._remember(frame, curr)
         return ok, box
 
     def _predict(self, particles):
