@@ -52,6 +52,17 @@ def solve_motion(Ix, Iy, It, min_eigenvalue: float = 1.0) -> tuple[float, float,
     return float(p), float(q), True
 
 
+def pyramid(image, levels: int) -> list:
+    """``[I, pyrDown(I), ...]``: up to ``levels`` float32 grey levels of an image (BGR or grey),
+    stopping before a level would be smaller than 16 pixels."""
+    pyr = [to_gray(image)]
+    for _ in range(max(1, int(levels)) - 1):
+        if min(pyr[-1].shape) < 16:
+            break
+        pyr.append(cv2.pyrDown(pyr[-1]))
+    return pyr
+
+
 def _gradients(I):
     # central differences (Ix = dI/dx); np.gradient is the textbook choice and an oracle for cv2
     Iy, Ix = np.gradient(I)
@@ -69,7 +80,8 @@ def motion_vector(prev, curr, box, levels: int = 1, iterations: int = 1,
 
     Parameters
     ----------
-    prev, curr : BGR or grey images of the same size
+    prev, curr : BGR or grey images of the same size, or their :func:`pyramid` (a tracker
+        computes each frame's pyramid once and uses it as ``curr`` now and ``prev`` next frame)
     box : the region R in ``prev``
     min_eigenvalue : flat-region guard of :func:`solve_motion` (grey-level^2 per pixel)
     max_motion : optional bound on |p|, |q| in pixels; larger answers are taken as failures
@@ -79,8 +91,12 @@ def motion_vector(prev, curr, box, levels: int = 1, iterations: int = 1,
     (p, q, ok) : the displacement in pixels and whether it was determined; ``(0, 0, False)``
     for a flat region or a box outside the frame.
     """
-    I0, I1 = to_gray(prev), to_gray(curr)
-    if I0.shape != I1.shape:
+    levels = max(1, int(levels))
+    pyr0 = prev if isinstance(prev, list) else pyramid(prev, levels)
+    pyr1 = curr if isinstance(curr, list) else pyramid(curr, levels)
+    pyr0, pyr1 = pyr0[:levels], pyr1[:levels]
+    I0, I1 = pyr0[0], pyr1[0]
+    if I0.shape != I1.shape or len(pyr0) != len(pyr1):
         raise ValueError(f"prev and curr differ in size ({I0.shape} vs {I1.shape}); "
                          "pass two frames of the same clip.")
     x, y, w, h = (float(v) for v in box)
@@ -89,13 +105,6 @@ def motion_vector(prev, curr, box, levels: int = 1, iterations: int = 1,
     x1, y1 = min(int(np.ceil(x + w)), W), min(int(np.ceil(y + h)), H)
     if x1 - x0 < 3 or y1 - y0 < 3:
         return 0.0, 0.0, False
-    levels = max(1, int(levels))
-    pyr0, pyr1 = [I0], [I1]
-    for _ in range(levels - 1):
-        if min(pyr0[-1].shape) < 16:
-            break
-        pyr0.append(cv2.pyrDown(pyr0[-1]))
-        pyr1.append(cv2.pyrDown(pyr1[-1]))
     pq = np.zeros(2)
     ok_any = False
     for lev in range(len(pyr0) - 1, -1, -1):

@@ -33,7 +33,7 @@ import numpy as np
 
 from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift_with_scale,
                                   region_around)
-from ..filters.optical_flow import motion_vector
+from ..filters.optical_flow import motion_vector, pyramid
 from ..filters.particle import ParticleFilterTracker
 from ..params import param
 from .base import Tracker
@@ -112,7 +112,8 @@ CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
     use_motion=param(True, doc="seed the prediction with the motion vector (p, q) of eq. 8"),
     flow_levels=param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
                                   "single solve)"),
-    flow_iterations=param(3, 1, 20, 1, "re-warped solves per level (1 = the paper's)"),
+    flow_iterations=param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's single "
+                                       "solve; more re-warp and solve for the remainder)"),
     **_common_params(),
 ), "Tunables of ``condensation-mean-shift`` (Cho & Kang 2005).")
 
@@ -282,11 +283,12 @@ class CondensationMeanShift(Condensation):
         return (x0, y0, x1, y1), f
 
     def _gray(self, frame, window, f):
+        """The flow window of ``frame``, grey, reduced f times, as a pyramid (eq. 8's images)."""
         x0, y0, x1, y1 = window
         g = cv2.cvtColor(frame[y0:y1, x0:x1], cv2.COLOR_BGR2GRAY)
         if f > 1 and g.size:
             g = cv2.resize(g, ((x1 - x0) // f, (y1 - y0) // f), interpolation=cv2.INTER_AREA)
-        return g
+        return pyramid(g, self.params.flow_levels)
 
     def _window_still_fits(self) -> bool:
         """Whether the estimate's box, with half a half-axis to spare, is still inside the last
@@ -320,10 +322,11 @@ class CondensationMeanShift(Condensation):
         curr = self._gray(frame, win, f)
         cx, cy, hx, hy = self.ellipse
         box = ((cx - hx - win[0]) / f, (cy - hy - win[1]) / f, 2 * hx / f, 2 * hy / f)
-        if curr.shape != self._prev_gray.shape or min(curr.shape) < 4:
+        if curr[0].shape != self._prev_gray[0].shape or min(curr[0].shape) < 4:
             return (0.0, 0.0, False), None
         dp, dq, ok = motion_vector(self._prev_gray, curr, box, levels=p.flow_levels,
-                                   iterations=p.flow_iterations, max_motion=max(curr.shape) / 2)
+                                   iterations=p.flow_iterations,
+                                   max_motion=max(curr[0].shape) / 2)
         return (dp * f, dq * f, ok), curr
 
     def _update(self, frame):
