@@ -103,7 +103,8 @@ def track_clip(name: str, clip, seed: int | None = 0, max_frames: int | None = N
     Returns
     -------
     dict target -> (N, 4) float array of boxes; the per-frame milliseconds of the whole
-    multi-target update are under the key ``"_ms"`` (an (N,) array, frame 0 = init).
+    multi-target update are under the key ``"_ms"`` (an (N,) array, frame 0 = init) and each
+    target's ``ok`` flags under ``"_ok"`` (a dict target -> (N,) bool array).
     """
     from .. import clips as _clips
 
@@ -123,6 +124,7 @@ def track_clip(name: str, clip, seed: int | None = 0, max_frames: int | None = N
         starts.append(clip_box(b, first.shape))
     mt = MultiTracker(name, seed=seed, **params)
     out = {t: np.full((n, 4), np.nan) for t in names}
+    oks = {t: np.ones(n, dtype=bool) for t in names}
     ms = np.zeros(n)
     t0 = time.perf_counter()
     mt.init(first, starts)
@@ -135,9 +137,11 @@ def track_clip(name: str, clip, seed: int | None = 0, max_frames: int | None = N
         if i >= n:
             break
         t0 = time.perf_counter()
-        _, boxes = mt.update(frame)
+        flags, boxes = mt.update(frame)
         ms[i] = (time.perf_counter() - t0) * 1e3
-        for t, b in zip(names, boxes):
+        for t, b, ok in zip(names, boxes, flags):
             out[t][i] = b
+            oks[t][i] = ok
     out["_ms"] = ms
+    out["_ok"] = oks
     return out
