@@ -85,6 +85,15 @@ def test_weights_are_sqrt_q_over_p_and_zero_outside_the_frame(blob):
     assert np.all(w[~inside] == 0)
 
 
+@pytest.mark.parametrize("bins", [(8, 8, 4), (6, 5, 3), (16, 16, 16)])
+def test_fast_bin_image_equals_hsv_bin_index(bins):
+    from trackbook.filters.mean_shift import hsv_bin_image
+    img = cv2.resize(data.astronaut()[..., ::-1], (97, 61))        # BGR, odd sizes
+    np.testing.assert_array_equal(hsv_bin_image(img, bins), hsv_bin_index(img, bins))
+    strided = img[3:50:3, 5:90:2]                                   # a non-contiguous view
+    np.testing.assert_array_equal(hsv_bin_image(strided, bins), hsv_bin_index(strided, bins))
+
+
 def test_ellipse_outside_the_frame_has_rho_zero(blob):
     img, q = blob
     rho, p, _ = ellipse_rho(img, q, [[-500.0, -500.0]], [[10.0, 10.0]])

@@ -8,6 +8,11 @@ Regenerate the committed real-sequence table of chapter 07 with::
 (the sequences are the OTB/VOT folders of the development set; ``opencv-mil`` is added on
 MotorRolling as the speed reference). The sample-clip tables are computed live by the chapter
 with :func:`single_target_table` and :func:`two_target_table`.
+
+The speed check of the three trackers next to ``opencv-mil`` (median of 3 runs of
+``evaluate(...).scores["ms_median"]``, with the machine's load average) is::
+
+    python -m trackbook.evaluation.seed003 --speed MotorRolling
 """
 
 from __future__ import annotations
@@ -62,11 +67,39 @@ def two_target_table(clip_name="two-faces", trackers=TRACKERS, seed=0, max_frame
     return rows
 
 
+def speed_table(clip_name, trackers=TRACKERS + ("opencv-mil",), runs: int = 3, seed=0):
+    """ms per frame of each tracker on one clip: the median over ``runs`` runs of
+    ``evaluate(...).scores["ms_median"]``, with the 1-minute load average before and after
+    (timings on a shared machine mean little without it)."""
+    clip = _clips.load(clip_name)
+    rows = []
+    for t in trackers:
+        load0 = os.getloadavg()[0]
+        ms, r = [], None
+        for _ in range(runs):
+            r = evaluate(t, clip, seed=seed)
+            ms.append(r.scores["ms_median"])
+        rows.append({"tracker": t, "clip": clip.name, "ms_median": float(np.median(ms)),
+                     "ms_runs": " ".join(f"{v:.2f}" for v in ms), "auc": r.scores["auc"],
+                     "load_before": load0, "load_after": os.getloadavg()[0]})
+    return rows
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default="book/results/seed003_real.csv")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--speed", metavar="CLIP", help="only time the trackers on CLIP (a sample "
+                    "name, a sequence name or folder) next to opencv-mil and print the table")
     args = ap.parse_args(argv)
+    if args.speed:
+        rows = speed_table(args.speed, seed=args.seed)
+        cols = list(rows[0])
+        print("| " + " | ".join(cols) + " |\n|" + "---|" * len(cols))
+        for r in rows:
+            print("| " + " | ".join(f"{v:.3f}" if isinstance(v, float) else str(v)
+                                    for v in r.values()) + " |")
+        return 0
     seqs = _clips.find_sequences()
     if not seqs:
         raise SystemExit("no sequences found: set TRACKBOOK_SEQUENCES to the sequences folder")
@@ -74,6 +107,9 @@ def main(argv=None) -> int:
     if "MotorRolling" in seqs:
         rows += single_target_table([str(seqs["MotorRolling"])], trackers=("opencv-mil",),
                                     seed=args.seed)
+    load = os.getloadavg()[0]
+    for r in rows:
+        r["load_after"] = load     # the 1-minute load average when the table was written
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(".tmp")

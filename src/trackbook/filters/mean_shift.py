@@ -29,9 +29,10 @@ from __future__ import annotations
 import dataclasses
 import functools
 
+import cv2
 import numpy as np
 
-from ..features.color import HSV_BINS, hsv_bin_index
+from ..features.color import HSV_BINS
 
 
 @dataclasses.dataclass
@@ -65,6 +66,24 @@ class BinImage:
         return self._padded[pad]
 
 
+@functools.lru_cache(maxsize=8)
+def _bin_luts(bins):
+    """Per-channel lookup tables: HSV value -> its share of the bin index ``(h bs + s) bv + v``."""
+    bh, bs, bv = bins
+    v = np.arange(256)
+    lut_h = np.minimum(v * bh // 180, bh - 1) * (bs * bv)
+    return lut_h.astype(np.intp), (v * bs // 256 * bv).astype(np.intp), (v * bv // 256).astype(np.intp)
+
+
+def hsv_bin_image(bgr: np.ndarray, bins=HSV_BINS) -> np.ndarray:
+    """The bin index of :func:`trackbook.features.color.hsv_bin_index` for an H x W x 3 image,
+    converted to HSV as one 2-D image (OpenCV converts an N x 1 column, as that function
+    passes it, row by row, which is ~20x slower) and binned by three lookup tables."""
+    hsv = cv2.cvtColor(np.ascontiguousarray(bgr), cv2.COLOR_BGR2HSV)
+    lut_h, lut_s, lut_v = _bin_luts(tuple(int(b) for b in bins))
+    return lut_h.take(hsv[..., 0]) + lut_s.take(hsv[..., 1]) + lut_v.take(hsv[..., 2])
+
+
 def bin_image(frame: np.ndarray, region, stride: int = 1, bins=HSV_BINS) -> BinImage:
     """Bin-index image ``h(x_i)`` of ``region = (x0, y0, x1, y1)`` of a BGR frame, every
     ``stride``-th pixel (the ``delta[h(x_i) - u]`` of eq. 3). The region is clipped to the frame;
@@ -78,7 +97,7 @@ def bin_image(frame: np.ndarray, region, stride: int = 1, bins=HSV_BINS) -> BinI
     if x1 <= x0 or y1 <= y0:
         return BinImage(np.zeros((1, 1), dtype=np.intp), np.array([-1e9, -1e9]), stride,
                         int(np.prod(bins)))
-    labels = hsv_bin_index(frame[y0:y1:stride, x0:x1:stride], bins)
+    labels = hsv_bin_image(frame[y0:y1:stride, x0:x1:stride], bins)
     return BinImage(labels, np.array([x0 + 0.5, y0 + 0.5]), stride, int(np.prod(bins)))
 
 

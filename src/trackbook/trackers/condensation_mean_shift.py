@@ -90,7 +90,10 @@ CondensationParams = _dataclass("CondensationParams", dict(
                          "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
     noise_velocity=param(0.05, 0.0, 1.0, 0.01,
                          "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
-    noise_scale=param(0.02, 0.0, 0.3, 0.005, "std of w_a: the size changes by a = 1 + w_a"),
+    noise_scale=param(0.0, 0.0, 0.3, 0.005,
+                      "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
+                      "size, for all three trackers: the colour likelihood alone lets the "
+                      "size drift, mostly smaller; chapter 07)"),
     resampler=param("multinomial", doc="factored sampling (step ①)",
                     choices=("multinomial", "systematic", "stratified", "residual")),
     **_common_params(),
@@ -104,7 +107,9 @@ CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
     noise_velocity=param(0.05, 0.0, 1.0, 0.01,
                          "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
     noise_scale=param(0.0, 0.0, 0.3, 0.005,
-                      "std of w_a: the size changes by a = 1 + w_a (tuned: 0, fixed size)"),
+                      "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
+                      "size, for all three trackers: the colour likelihood alone lets the "
+                      "size drift, mostly smaller; chapter 07)"),
     resampler=param("multinomial", doc="factored sampling (step ①)",
                     choices=("multinomial", "systematic", "stratified", "residual")),
     max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)"),
