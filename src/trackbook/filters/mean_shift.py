@@ -332,13 +332,27 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     def pixel(y):               # the lattice pixel under each centre
         return np.rint((y - origin) / stride).astype(np.intp)
 
-    def evaluate(ji):           # ① / ④: labels (+ block offsets), sqrt(counts), rho
-        base = np.minimum(np.maximum(ji, lo), hi) @ to_flat + corner
-        lab = flat.take(base[:, None] + win.flat) + rows
-        counts = np.bincount(lab.ravel(), kflat, n * m1).reshape(n, m1)
+    def evaluate(ji, need=None, old=None):
+        """① / ④: labels (+ block offsets), sqrt(counts) and rho at the lattice pixels ji;
+        with ``need`` (bool mask), only those rows are computed, the others come from ``old``
+        (once most candidates have stopped, the few still moving cost only their own pixels)."""
+        if need is not None and need.all():
+            need = None
+        r = slice(None) if need is None else np.flatnonzero(need)
+        k = n if need is None else r.size
+        base = np.minimum(np.maximum(ji[r], lo), hi) @ to_flat + corner
+        lab = flat.take(base[:, None] + win.flat)
+        block = rows[:k]
+        kr = kflat if need is None else win.k[r].ravel()
+        counts = np.bincount((lab + block).ravel(), kr, k * m1).reshape(k, m1)
         sc = np.sqrt(counts)
-        mass = np.maximum(k_total - counts[:, m], 1e-300)        # eq. 3's 1 / f
-        return lab, sc, (sc @ sqrt_q) / np.sqrt(mass)
+        mass = np.maximum(k_total[r] - counts[:, m], 1e-300)     # eq. 3's 1 / f
+        rho = (sc @ sqrt_q) / np.sqrt(mass)
+        if need is None:
+            return lab + rows, sc, rho
+        L, S, R = (a.copy() for a in old)
+        L[r], S[r], R[r] = lab + rows[r], sc, rho
+        return L, S, R
 
     ji0 = pixel(y0)
     L0, sc0, rho0 = evaluate(ji0)                                  # ①
@@ -365,7 +379,7 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
             L1, sc1, rho1 = L0, sc0, rho0
             refused = todo & False
             if todo.any():
-                L1, sc1, rho1 = evaluate(ji1)                      # ④
+                L1, sc1, rho1 = evaluate(ji1, todo, (L0, sc0, rho0))   # ④
                 evaluations += 1
                 for _h in range(int(max_halvings)):                # ⑤ only where rho went down
                     bad = todo & (rho1 < rho0)
@@ -381,7 +395,7 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
                     fixed |= back
                     todo &= ~back
                     if (todo & bad).any():
-                        L1, sc1, rho1 = evaluate(ji1)  # rows not halved: same pixel, same p
+                        L1, sc1, rho1 = evaluate(ji1, todo & bad, (L1, sc1, rho1))
                         evaluations += 1
                 refused = todo & (rho1 < rho0)  # still lower after the halvings: stay at y0
             d = y1 - y0
