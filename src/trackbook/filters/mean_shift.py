@@ -85,14 +85,17 @@ def hsv_bin_image(bgr: np.ndarray, bins=HSV_BINS) -> np.ndarray:
 
 
 def bin_image(frame: np.ndarray, region, stride: int = 1, bins=HSV_BINS) -> BinImage:
-    """Bin-index image ``h(x_i)`` of ``region = (x0, y0, x1, y1)`` of a BGR frame, every
-    ``stride``-th pixel (the ``delta[h(x_i) - u]`` of eq. 3). The region is clipped to the frame;
+    """Bin-index image ``h(x_i)`` of ``region = (x0, y0, x1, y1)`` of a BGR frame, on the
+    lattice of every ``stride``-th pixel of the frame (the ``delta[h(x_i) - u]`` of eq. 3;
+    the region is widened to start on that lattice). The region is clipped to the frame;
     an empty region gives a 1x1 lattice far away that no ellipse can reach.
     """
     H, W = frame.shape[:2]
     stride = max(1, int(stride))
     x0, y0, x1, y1 = (int(np.floor(v)) for v in region)
-    x0, y0 = max(x0, 0), max(y0, 0)
+    # the lattice is every stride-th pixel of the FRAME (not of the region), so an ellipse
+    # snaps to the same lattice pixel whatever region a tracker happens to bin
+    x0, y0 = max(x0, 0) // stride * stride, max(y0, 0) // stride * stride
     x1, y1 = min(x1, W), min(y1, H)
     if x1 <= x0 or y1 <= y0:
         return BinImage(np.zeros((1, 1), dtype=np.intp), np.array([-1e9, -1e9]), stride,
