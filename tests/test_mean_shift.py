@@ -288,3 +288,20 @@ def test_two_faces_keep_their_identities_through_the_crossing():
         own = np.nanmean(iou(out[me][after], clip.targets[me][after]))
         swapped = np.nanmean(iou(out[me][after], clip.targets[other][after]))
         assert own > swapped
+
+
+def test_cost_counts_histograms_and_pixels(blob):
+    """The paper's cost: colour histograms computed (and pixels read) per frame."""
+    img, q = blob
+    starts = np.array([[90.0, 70.0], [100.5, 80.5], [115.0, 90.0]])
+    res = mean_shift(img, q, starts, [[24.0, 24.0]], max_iter=30, eps=0.1)
+    n = len(starts)
+    # every evaluation computes the candidates still moving: at least one, at most all
+    assert n + (res.evaluations - 1) <= res.histograms <= n * res.evaluations
+    pixels_per_ellipse = ellipse_window(img, [[24.0, 24.0]]).flat.size
+    assert res.pixels == res.histograms * pixels_per_ellipse
+    # the start at the mode stops at once: fewer histograms than lock-step would compute
+    assert res.iterations[1] < res.iterations.max() and res.histograms < n * res.evaluations
+    clip = moving_blob_clip(4)
+    r = trackbook.evaluate("condensation", clip, seed=0, n_particles=40)
+    np.testing.assert_array_equal(r.extras["histograms"][1:], 40)

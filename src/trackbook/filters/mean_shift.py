@@ -267,8 +267,11 @@ class MeanShiftResult:
     rho : (N,) rho[p(y), q] at the converged centres
     rho_start : (N,) rho at the starts (eq. 13 says rho >= rho_start)
     iterations : (N,) mean-shift iterations each start used
-    evaluations : int, histogram evaluations of the whole batch (one per iteration, one per
-        step-halving round, one at the starts): the cost of the frame
+    evaluations : int, batched histogram evaluations (one at the starts, one per iteration,
+        one per round of step halving that needed one)
+    histograms : int, colour histograms computed (candidates per evaluation, summed): the
+        cost the paper counts
+    pixels : int, pixels read for them (histograms x pixels per ellipse)
     trajectory : (T, N, 2) the centres after every iteration, the starts first (for drawings)
     rho_trajectory : (T, N) rho along the trajectory
     hist : (N, m) colour distributions at the converged centres
@@ -279,6 +282,8 @@ class MeanShiftResult:
     rho_start: np.ndarray
     iterations: np.ndarray
     evaluations: int
+    histograms: int
+    pixels: int
     trajectory: np.ndarray
     rho_trajectory: np.ndarray
     hist: np.ndarray
@@ -343,6 +348,7 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
             need = None
         r = slice(None) if need is None else np.flatnonzero(need)
         k = n if need is None else r.size
+        cost[0] += k
         base = np.minimum(np.maximum(ji[r], lo), hi) @ to_flat + corner
         lab = flat.take(base[:, None] + win.flat)
         block = rows[:k]
@@ -357,6 +363,7 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
         L[r], S[r], R[r] = lab + rows[r], sc, rho
         return L, S, R
 
+    cost = [0]                  # histograms computed
     ji0 = pixel(y0)
     L0, sc0, rho0 = evaluate(ji0)                                  # ①
     evaluations = 1
@@ -419,8 +426,8 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     counts = sc0 * sc0
     mass = k_total - counts[:, m]
     hist = counts[:, :m] / np.where(mass > 0, mass, 1.0)[:, None]
-    return MeanShiftResult(y0, rho0, rho_start, iterations, evaluations, np.array(traj),
-                           np.array(rtraj), hist)
+    return MeanShiftResult(y0, rho0, rho_start, iterations, evaluations, cost[0],
+                           cost[0] * win.flat.size, np.array(traj), np.array(rtraj), hist)
 
 
 def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1),
@@ -440,8 +447,8 @@ def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1
     new_axes = gamma * trial_axes[best] + (1.0 - gamma) * axes
     pick = slice(best, best + 1)
     one = MeanShiftResult(res.centres[pick], res.rho[pick], res.rho_start[pick],
-                          res.iterations[pick], res.evaluations, res.trajectory[:, pick],
-                          res.rho_trajectory[:, pick], res.hist[pick])
+                          res.iterations[pick], res.evaluations, res.histograms, res.pixels,
+                          res.trajectory[:, pick], res.rho_trajectory[:, pick], res.hist[pick])
     return one, new_axes
 
 

@@ -213,8 +213,10 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     def _likelihood(self, frame, particles):
         """Step ③: pi_i = p(z_t | x_t = s_t^i), the colour likelihood of every candidate."""
         img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=0.1)
-        rho, _, _ = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6])
-        return self._weigh(rho)
+        rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6])
+        lik = self._weigh(rho)
+        self._report.update(histograms=float(labels.shape[0]), pixels=float(labels.size))
+        return lik
 
     def _weigh(self, rho):
         self._rho = rho
@@ -233,7 +235,8 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     # -- for the book ------------------------------------------------------------------
     def frame_report(self) -> dict:
-        """``mean_likelihood`` of this frame's candidates (Cho & Kang 2005 Fig. 5), ``mean_rho``."""
+        """``mean_likelihood`` of this frame's candidates (Cho & Kang 2005 Fig. 5), ``mean_rho``,
+        and the cost the paper counts: colour ``histograms`` computed and ``pixels`` read."""
         return dict(self._report)
 
     @property
@@ -368,8 +371,11 @@ class CondensationMeanShift(Condensation):
     def _likelihood(self, frame, particles):
         # rho at the moved candidates is what mean-shift converged to: no second evaluation
         lik = self._weigh(self._rho_after)
-        self._report["mean_likelihood_before"] = float(
-            colour_likelihood(self._rho_before, self.params.sigma).mean())
+        res = self.mean_shift_result
+        self._report.update(
+            mean_likelihood_before=float(colour_likelihood(self._rho_before,
+                                                           self.params.sigma).mean()),
+            histograms=float(res.histograms), pixels=float(res.pixels))
         return lik
 
     @property
@@ -423,12 +429,14 @@ class MeanShift(_EllipseColourModel, Tracker):
         self._centre = np.clip(res.centres[0], [0, 0], [W, H])
         self._rho = res.rho.copy()
         lik = colour_likelihood(self._rho, p.sigma)
-        self._report = {"mean_likelihood": float(lik[0]), "mean_rho": float(self._rho[0])}
+        self._report = {"mean_likelihood": float(lik[0]), "mean_rho": float(self._rho[0]),
+                        "histograms": float(res.histograms), "pixels": float(res.pixels)}
         ok = bool(self._rho[0] >= p.min_rho)
         return ok, ellipse_to_box(*self._centre, *self._axes)
 
     def frame_report(self) -> dict:
-        """The likelihood of the single candidate (Cho & Kang 2005 Fig. 5) and its rho."""
+        """The likelihood of the single candidate (Cho & Kang 2005 Fig. 5), its rho, and the
+        colour ``histograms`` computed and ``pixels`` read by this frame's iterations."""
         return dict(self._report)
 
     @property
