@@ -118,6 +118,8 @@ class EllipseWindow:
     pad : int, the sentinel frame of the padded label array
     reach : (2,) int, how far (lattice pixels) a centre may lie outside the region before its
         window is pure sentinel
+    dxy1 : (P, 3) ``(dx, dy, 1)``: one matrix product gives step ③'s weighted sums and total
+    k_total : (N,) the kernel's sum over each ellipse
     """
 
     dxy: np.ndarray
@@ -126,6 +128,8 @@ class EllipseWindow:
     inside: np.ndarray | None
     pad: int
     reach: np.ndarray
+    dxy1: np.ndarray
+    k_total: np.ndarray
 
 
 @functools.lru_cache(maxsize=32)
@@ -139,10 +143,12 @@ def _window_kernel(stride: int, axes: tuple):
     keep = (k > 0).any(axis=0)
     dj, di, k = dj[keep], di[keep], np.ascontiguousarray(k[:, keep])
     inside = None if (k > 0).all() else k > 0
-    for a in (dj, di, k, inside):
+    dxy1 = np.stack([dj * stride, di * stride, np.ones(dj.size)], axis=1).astype(float)
+    k_total = k.sum(axis=1)
+    for a in (dj, di, k, inside, dxy1, k_total):
         if a is not None:
             a.flags.writeable = False
-    return dj, di, k, inside, int(rx), int(ry)
+    return dj, di, k, inside, int(rx), int(ry), dxy1, k_total
 
 
 def ellipse_window(img: BinImage, axes) -> EllipseWindow:
@@ -153,12 +159,12 @@ def ellipse_window(img: BinImage, axes) -> EllipseWindow:
     cached by size: a tracker whose ellipses keep their size computes them once.)
     """
     axes = np.atleast_2d(np.asarray(axes, dtype=float))
-    dj, di, k, inside, rx, ry = _window_kernel(int(img.stride), tuple(axes.ravel().tolist()))
+    dj, di, k, inside, rx, ry, dxy1, k_total = _window_kernel(int(img.stride),
+                                                              tuple(axes.ravel().tolist()))
     pad = 2 * max(rx, ry) + 2
     wp = img.labels.shape[1] + 2 * pad
-    s = img.stride
-    return EllipseWindow(np.stack([dj * s, di * s], axis=1).astype(float), di * wp + dj, k,
-                         inside, pad, np.array([rx + 1, ry + 1]))
+    return EllipseWindow(dxy1[:, :2], di * wp + dj, k, inside, pad, np.array([rx + 1, ry + 1]),
+                         dxy1, k_total)
 
 
 def lattice_pixel(img: BinImage, centres) -> np.ndarray:
@@ -328,8 +334,7 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     sqrt_q_tiled = np.tile(sqrt_q, n)
     rows = (np.arange(n) * m1)[:, None]
     kflat = win.k.ravel()
-    k_total = win.k.sum(axis=1)
-    dxy1 = np.concatenate([win.dxy, np.ones((win.dxy.shape[0], 1))], axis=1)  # (dx, dy, 1)
+    k_total, dxy1 = win.k_total, win.dxy1
     flat = img.padded(win.pad).ravel()
     h, w_ = img.labels.shape
     lo, hi = -win.reach, np.array([w_ - 1, h - 1]) + win.reach

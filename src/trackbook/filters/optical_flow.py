@@ -16,6 +16,8 @@ pyramid; ``levels=1, iterations=1`` is the paper's single solve.
 
 from __future__ import annotations
 
+import math
+
 import cv2
 import numpy as np
 
@@ -101,20 +103,21 @@ def motion_vector(prev, curr, box, levels: int = 1, iterations: int = 1,
                          "pass two frames of the same clip.")
     x, y, w, h = (float(v) for v in box)
     H, W = I0.shape
-    x0, y0 = max(int(np.floor(x)), 0), max(int(np.floor(y)), 0)
-    x1, y1 = min(int(np.ceil(x + w)), W), min(int(np.ceil(y + h)), H)
+    x0, y0 = max(math.floor(x), 0), max(math.floor(y), 0)
+    x1, y1 = min(math.ceil(x + w), W), min(math.ceil(y + h), H)
     if x1 - x0 < 3 or y1 - y0 < 3:
         return 0.0, 0.0, False
-    pq = np.zeros(2)
+    p = q = 0.0               # plain floats: this runs every frame, on small images
     ok_any = False
     for lev in range(len(pyr0) - 1, -1, -1):
         f = 2.0 ** lev
-        a0, b0 = int(np.floor(x0 / f)), int(np.floor(y0 / f))
-        a1, b1 = max(int(np.ceil(x1 / f)), a0 + 3), max(int(np.ceil(y1 / f)), b0 + 3)
+        a0, b0 = math.floor(x0 / f), math.floor(y0 / f)
+        a1, b1 = max(math.ceil(x1 / f), a0 + 3), max(math.ceil(y1 / f), b0 + 3)
         P0, P1 = pyr0[lev], pyr1[lev]
         a1, b1 = min(a1, P0.shape[1]), min(b1, P0.shape[0])
         if a1 - a0 < 3 or b1 - b0 < 3:
-            pq *= 2.0 if lev > 0 else 1.0
+            if lev > 0:
+                p, q = 2.0 * p, 2.0 * q
             continue
         T = P0[b0:b1, a0:a1]
         # the 2x2 matrix of eq. 8 depends on the template only: built once per level, and the
@@ -123,30 +126,30 @@ def motion_vector(prev, curr, box, levels: int = 1, iterations: int = 1,
         gx = ((T[1:-1, 2:] - T[1:-1, :-2]) * 0.5).ravel()
         gy = ((T[2:, 1:-1] - T[:-2, 1:-1]) * 0.5).ravel()
         gxx, gxy, gyy = float(gx @ gx), float(gx @ gy), float(gy @ gy)
-        lam_min = 0.5 * (gxx + gyy - np.hypot(gxx - gyy, 2 * gxy))
+        lam_min = 0.5 * (gxx + gyy - math.hypot(gxx - gyy, 2 * gxy))
         det = gxx * gyy - gxy * gxy
-        if not (np.isfinite(lam_min) and lam_min / gx.size >= min_eigenvalue and det > 0):
+        if not (math.isfinite(lam_min) and lam_min / gx.size >= min_eigenvalue and det > 0):
             if lev > 0:
-                pq *= 2.0
+                p, q = 2.0 * p, 2.0 * q
             continue
         inner = T[1:-1, 1:-1].ravel()
         size = (a1 - a0 - 2, b1 - b0 - 2)
-        centre = ((a0 + a1 - 1) / 2.0, (b0 + b1 - 1) / 2.0)
+        cx, cy = (a0 + a1 - 1) / 2.0, (b0 + b1 - 1) / 2.0
         for _ in range(max(1, int(iterations))):
             # I(x + p, y + q, t + 1) sampled bilinearly (eq. 5's left-hand side)
-            Wp = cv2.getRectSubPix(P1, size, (centre[0] + pq[0], centre[1] + pq[1]))
+            Wp = cv2.getRectSubPix(P1, size, (cx + p, cy + q))
             It = Wp.ravel() - inner
             bx, by = -float(gx @ It), -float(gy @ It)
             dp = (gyy * bx - gxy * by) / det            # the 2x2 normal equations of eq. 8
             dq = (gxx * by - gxy * bx) / det
             ok_any = True
-            pq += (dp, dq)
+            p, q = p + dp, q + dq
             if dp * dp + dq * dq < 1e-4:
                 break
         if lev > 0:
-            pq *= 2.0
-    if not ok_any or not np.all(np.isfinite(pq)):
+            p, q = 2.0 * p, 2.0 * q
+    if not ok_any or not (math.isfinite(p) and math.isfinite(q)):
         return 0.0, 0.0, False
-    if max_motion is not None and np.any(np.abs(pq) > max_motion):
+    if max_motion is not None and max(abs(p), abs(q)) > max_motion:
         return 0.0, 0.0, False
-    return float(pq[0]), float(pq[1]), True
+    return float(p), float(q), True
