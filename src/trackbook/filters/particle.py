@@ -89,15 +89,17 @@ def weighted_mean(states, weights) -> np.ndarray:
 class ParticleFilterTracker(Tracker):
     """Sequential importance resampling as in Lee et al. 2012's pseudocode, for subclasses.
 
-    Each ``update``: select (resample by the previous weights) -> predict -> weight ->
-    normalise -> estimate. Subclasses implement
+    Each ``update``: select (resample by the previous weights) -> predict -> [refine] ->
+    weight -> normalise -> estimate. Subclasses implement
 
     - ``_initial_particles(frame, box) -> (N, d) states`` and ``_model(frame, box)`` (reference),
     - ``_predict(particles) -> particles`` (the motion model, using ``self.rng``),
     - ``_likelihood(frame, particles) -> (N,)`` unnormalised, >= 0,
     - ``_state_to_box(state) -> (x, y, w, h)``,
 
-    and may override ``_on_lost()`` (e.g. widen the spread). The params dataclass must have
+    and may override ``_on_lost()`` (e.g. widen the spread) and ``_refine(frame, particles) ->
+    particles`` (move the predicted particles before weighting, e.g. uphill by mean-shift as
+    Cho & Kang 2005 do; the default leaves them where the motion model put them). The params dataclass must have
     ``n_particles`` and ``resampler``.
 
     Attributes
@@ -125,6 +127,7 @@ class ParticleFilterTracker(Tracker):
         resample = RESAMPLERS[self.params.resampler]
         idx = resample(self._weights, self.rng)
         particles = self._predict(self._particles[idx])
+        particles = np.asarray(self._refine(frame, particles), dtype=float)
         lik = np.asarray(self._likelihood(frame, particles), dtype=float)
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
@@ -163,6 +166,10 @@ class ParticleFilterTracker(Tracker):
 
     def _on_lost(self):
         """Hook: called on a frame where every particle scored zero."""
+
+    def _refine(self, frame, particles):
+        """Hook: move the predicted particles before they are weighted (default: don't)."""
+        return particles
 
     # subclass interface ----------------------------------------------------------------
     def _model(self, frame, box):  # pragma: no cover

@@ -14,12 +14,14 @@ from __future__ import annotations
 from .._checks import clip_box
 from . import registry as _registry
 from .base import Tracker
+from .multi import MultiTracker
 from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
 from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
 from . import covariance  # noqa: F401,E402  seed 002: covariance, kalman-covariance
+from . import condensation_mean_shift  # noqa: F401,E402  (seed 003)
 
 
 def available(reference: bool = False) -> list[str]:
@@ -48,4 +50,4 @@ def create(name: str, seed: int | None = 0, **params) -> Tracker:
 
 register = _registry.register
 
-__all__ = ["Tracker", "available", "create", "get", "register", "clip_box"]
+__all__ = ["MultiTracker", "Tracker", "available", "create", "get", "register", "clip_box"]

@@ -1,0 +1,469 @@
+"""Cho & Kang 2005: Condensation, mean-shift, and Condensation with candidates moved by mean-shift.
+
+Chapter 07 of the book (and its Condensation-cost page under chapter 06). Three registered
+trackers share one target model, an ellipse with a kernel-weighted colour distribution:
+
+- ``condensation`` (baseline, Nummiaro et al. 2002): factored sampling -> predict
+  ``s_t = A s_{t-1} + w`` -> weight every candidate by its Bhattacharyya likelihood; 100 candidates.
+- ``mean-shift`` (baseline, Comaniciu, Ramesh & Meer 2003): one ellipse moved uphill on
+  rho[p(y), q] from the last position (steps ①-⑥ of §3.3).
+- ``condensation-mean-shift`` (proposed): the target's least-squares motion vector (p, q)
+  (eq. 5-8) seeds the prediction of only 5 candidates (eq. 9), each candidate is moved uphill by
+  mean-shift (eq. 10-13), then weighted and averaged.
+
+State of a candidate (eq. 1): ``s = (x, y, x_dot, y_dot, Hx, Hy, a)``: the ellipse centre, its
+velocity in pixels per frame, its half-axes and ``a``, the size change of this frame.
+
+The dynamics ``s_t = A s_{t-1} + w_{t-1}`` (eq. 9) are, with all noise Gaussian and scaled by
+the candidate's own half-axes so that one setting fits small and large targets::
+
+    x_t  = x + x_dot + w_x          x_dot_t = x_dot + w_xdot       a_t = 1 + w_a
+    y_t  = y + y_dot + w_y          y_dot_t = y_dot + w_ydot       Hx_t = a_t Hx,  Hy_t = a_t Hy
+
+(the size is multiplied by ``a``, the one non-linear step; the paper leaves A unspecified).
+The likelihood of a candidate is Nummiaro's ``exp(-(1 - rho) / (2 sigma^2))``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import cv2
+import numpy as np
+
+from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift_with_scale,
+                                  region_around)
+from ..filters.optical_flow import motion_vector, pyramid
+from ..filters.particle import ParticleFilterTracker
+from ..params import param
+from .base import Tracker
+from .registry import register
+
+#: Names of the seven components of a candidate (eq. 1).
+STATE = ("x", "y", "x_dot", "y_dot", "Hx", "Hy", "a")
+
+
+def box_to_ellipse(box) -> np.ndarray:
+    """``(x, y, w, h)`` -> ``(cx, cy, Hx, Hy)``: the ellipse inscribed in the box."""
+    x, y, w, h = (float(v) for v in box)
+    return np.array([x + w / 2, y + h / 2, w / 2, h / 2])
+
+
+def ellipse_to_box(cx, cy, hx, hy) -> np.ndarray:
+    """``(cx, cy, Hx, Hy)`` -> ``(x, y, w, h)``: the box the ellipse is inscribed in."""
+    return np.array([cx - hx, cy - hy, 2 * hx, 2 * hy], dtype=float)
+
+
+def colour_likelihood(rho, sigma: float) -> np.ndarray:
+    """Nummiaro et al. 2002: pi = exp(-(1 - rho) / (2 sigma^2)), d^2 = 1 - rho the Bhattacharyya
+    distance squared (the constant 1 / (sqrt(2 pi) sigma) is dropped: weights are normalised)."""
+    return np.exp(-(1.0 - np.asarray(rho, dtype=float)) / (2.0 * sigma * sigma))
+
+
+def _common_params():
+    """Fields shared by the three trackers (a function so each dataclass gets its own copies)."""
+    return dict(
+        sigma=param(0.1, 0.01, 1.0, 0.01,
+                    "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro 2002: 0.1)"),
+        h_bins=param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)"),
+        s_bins=param(8, 1, 32, 1, "saturation bins (eq. 3)"),
+        v_bins=param(4, 1, 32, 1, "value bins (eq. 3)"),
+        resolution=param(8, 2, 64, 1,
+                         "lattice pixels across the shorter half-axis: larger targets are read "
+                         "every k-th pixel so the cost does not grow with their size (speed; "
+                         "the paper's small 320x240 targets are read at every pixel anyway)"),
+        min_rho=param(0.3, 0.0, 1.0, 0.05,
+                      "best rho below this: the frame is reported lost (ok=False)"),
+    )
+
+
+def _dataclass(name, fields: dict, doc: str):
+    ns = {"__annotations__": {k: type(v.default) for k, v in fields.items()}, "__doc__": doc}
+    ns.update(fields)
+    return dataclasses.dataclass(frozen=True)(type(name, (), ns))
+
+
+CondensationParams = _dataclass("CondensationParams", dict(
+    n_particles=param(100, 1, 2000, 1,
+                      "N, number of candidates (100 in Cho & Kang 2005 §5.1, after Nummiaro)"),
+    noise_position=param(0.15, 0.0, 2.0, 0.01,
+                         "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
+    noise_velocity=param(0.05, 0.0, 1.0, 0.01,
+                         "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
+    noise_scale=param(0.0, 0.0, 0.3, 0.005,
+                      "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
+                      "size, for all three trackers: the colour likelihood alone lets the "
+                      "size drift, mostly smaller; chapter 07)"),
+    resampler=param("multinomial", doc="factored sampling (step ①)",
+                    choices=("multinomial", "systematic", "stratified", "residual")),
+    **_common_params(),
+), "Tunables of ``condensation`` (Nummiaro et al. 2002 as used by Cho & Kang 2005).")
+
+
+CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
+    n_particles=param(5, 1, 500, 1, "N, number of candidates (5 in Cho & Kang 2005 §5.1)"),
+    noise_position=param(0.15, 0.0, 2.0, 0.01,
+                         "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
+    noise_velocity=param(0.05, 0.0, 1.0, 0.01,
+                         "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
+    noise_scale=param(0.0, 0.0, 0.3, 0.005,
+                      "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
+                      "size, for all three trackers: the colour likelihood alone lets the "
+                      "size drift, mostly smaller; chapter 07)"),
+    resampler=param("multinomial", doc="factored sampling (step ①)",
+                    choices=("multinomial", "systematic", "stratified", "residual")),
+    max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)"),
+    eps=param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps pixels"),
+    use_motion=param(True, doc="seed the prediction with the motion vector (p, q) of eq. 8"),
+    flow_levels=param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
+                                  "single solve)"),
+    flow_iterations=param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's single "
+                                       "solve; more re-warp and solve for the remainder)"),
+    **_common_params(),
+), "Tunables of ``condensation-mean-shift`` (Cho & Kang 2005).")
+
+
+MeanShiftParams = _dataclass("MeanShiftParams", dict(
+    max_iter=param(20, 1, 100, 1, "mean-shift iterations per frame at most (Comaniciu: 20)"),
+    eps=param(0.5, 0.01, 10.0, 0.05, "stop when the step is below eps pixels (step ⑥)"),
+    scale_adapt=param(False, doc="try ±10 % half-axes and keep the best rho (Comaniciu §5.2)"),
+    gamma=param(0.1, 0.0, 1.0, 0.05, "scale smoothing h = gamma h_opt + (1 - gamma) h_prev"),
+    **_common_params(),
+), "Tunables of ``mean-shift`` (Comaniciu, Ramesh & Meer 2003).")
+
+
+class _EllipseColourModel:
+    """The target model the three trackers share: an ellipse and its colour distribution q."""
+
+    def _bins(self):
+        p = self.params
+        return (int(p.h_bins), int(p.s_bins), int(p.v_bins))
+
+    def _stride(self, axes) -> int:
+        """Stride of the bin-image lattice: ``resolution`` lattice pixels per shorter half-axis."""
+        return max(1, int(float(np.min(axes)) / self.params.resolution))
+
+    def _set_model(self, frame, box):
+        e = box_to_ellipse(box)
+        self._axes0 = e[2:].copy()
+        H, W = frame.shape[:2]
+        self._max_axes = np.minimum(4 * self._axes0, [W / 2, H / 2])
+        self._min_axes = np.maximum(0.25 * self._axes0, 2.0)
+        # the model q_u is eq. 3 over every pixel of the initial ellipse (once, so no sampling)
+        img = bin_image(frame, region_around(e[None, :2], e[None, 2:], 0.1), 1, self._bins())
+        _, p, _ = ellipse_rho(img, np.zeros(img.n_bins), e[None, :2], e[None, 2:])
+        self.q = p[0]
+
+    def _bin_image(self, frame, centres, axes, margin=1.0):
+        return bin_image(frame, region_around(centres, axes, margin), self._stride(axes.mean(0)),
+                         self._bins())
+
+    def _clamp(self, states):
+        """Keep centres in the frame and half-axes within [1/4, 4] x the initial ones."""
+        H, W = self._shape[:2]
+        states[:, 0] = np.clip(states[:, 0], 0, W)
+        states[:, 1] = np.clip(states[:, 1], 0, H)
+        states[:, 4:6] = np.clip(states[:, 4:6], self._min_axes, self._max_axes)
+        return states
+
+
+@register
+class Condensation(_EllipseColourModel, ParticleFilterTracker):
+    """Condensation with a colour distribution (Nummiaro et al. 2002), the baseline of Cho & Kang.
+
+    Attributes (read-only, for drawings)
+    ------------------------------------
+    particles : (N, 7) candidates ``(x, y, x_dot, y_dot, Hx, Hy, a)`` after the last update
+    weights : (N,) their normalised weights; likelihoods : (N,) unnormalised
+    rho : (N,) their Bhattacharyya coefficients
+    ellipse : ``(cx, cy, Hx, Hy)`` of the estimate
+    """
+
+    name = "condensation"
+    Params = CondensationParams
+
+    # -- ParticleFilterTracker interface -------------------------------------------------
+    def _model(self, frame, box):
+        self._set_model(frame, box)
+        self._rho = np.ones(self.params.n_particles)
+        self._report = {}
+
+    def _initial_particles(self, frame, box):
+        return np.repeat(self._box_to_state(box)[None, :], self.params.n_particles, axis=0)
+
+    def _box_to_state(self, box):
+        cx, cy, hx, hy = box_to_ellipse(box)
+        return np.array([cx, cy, 0.0, 0.0, hx, hy, 1.0])
+
+    def _state_to_box(self, state):
+        return ellipse_to_box(state[0], state[1], state[4], state[5])
+
+    def _predict(self, particles):
+        """Eq. 9: s_t = A s_{t-1} + w_{t-1} (see the module docstring for A and w)."""
+        p, s = self.params, np.array(particles, dtype=float)
+        n = s.shape[0]
+        scale = s[:, 4:6]
+        z = self.rng.standard_normal((n, 5))
+        s[:, 2:4] += p.noise_velocity * scale * z[:, 2:4]
+        s[:, 0:2] += s[:, 2:4] + p.noise_position * scale * z[:, 0:2]
+        s[:, 6] = 1.0 + p.noise_scale * z[:, 4]
+        s[:, 4:6] *= s[:, 6:7]
+        return self._clamp(s)
+
+    def _likelihood(self, frame, particles):
+        """Step ③: pi_i = p(z_t | x_t = s_t^i), the colour likelihood of every candidate."""
+        img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=0.1)
+        rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6])
+        lik = self._weigh(rho)
+        self._report.update(histograms=float(labels.shape[0]), pixels=float(labels.size))
+        return lik
+
+    def _weigh(self, rho):
+        self._rho = rho
+        lik = colour_likelihood(rho, self.params.sigma)
+        self._report = {"mean_likelihood": float(lik.mean()), "mean_rho": float(rho.mean())}
+        if rho.max() < self.params.min_rho:
+            # nothing here looks like the target (occlusion): let the base keep the estimate
+            return np.zeros_like(lik)
+        return lik
+
+    def _update(self, frame):
+        ok, box = super()._update(frame)
+        if not self.lost:
+            self.estimate[6] = 1.0
+        return ok, box
+
+    # -- for the book ------------------------------------------------------------------
+    def frame_report(self) -> dict:
+        """``mean_likelihood`` of this frame's candidates (Cho & Kang 2005 Fig. 5), ``mean_rho``,
+        and the cost the paper counts: colour ``histograms`` computed and ``pixels`` read."""
+        return dict(self._report)
+
+    @property
+    def rho(self) -> np.ndarray:
+        r = self._rho.view()
+        r.flags.writeable = False
+        return r
+
+    @property
+    def ellipse(self) -> tuple:
+        e = self.estimate
+        return (float(e[0]), float(e[1]), float(e[4]), float(e[5]))
+
+
+@register
+class CondensationMeanShift(Condensation):
+    """Cho & Kang 2005's proposed tracker: 5 candidates seeded by the motion vector and moved
+    uphill by mean-shift before they are weighted.
+
+    Attributes (read-only, besides those of :class:`Condensation`)
+    ---------------------------------------------------------------
+    predicted : (N, 7) the candidates before mean-shift moved them (Fig. 2 (a))
+    rho_before : (N,) their rho before mean-shift (eq. 13: ``rho >= rho_before``)
+    motion : ``(p, q, ok)`` the motion vector of the last frame (eq. 8)
+    mean_shift_result : the :class:`~trackbook.filters.mean_shift.MeanShiftResult` of the last
+        frame (trajectories of every candidate, for Fig. 2 (b))
+    """
+
+    name = "condensation-mean-shift"
+    Params = CondensationMeanShiftParams
+
+    def _init(self, frame, box):
+        super()._init(frame, box)
+        self.motion = (0.0, 0.0, False)
+        self._rho_before = np.ones(self.params.n_particles)
+        self._predicted = self._particles.copy()
+        self.mean_shift_result = None
+        if self.params.use_motion:
+            self._remember(frame)
+
+    def _flow_window(self):
+        """Region (x0, y0, x1, y1) around the estimate for the motion vector, and its scale f.
+
+        The region is reduced f times (the box becomes about 32 px), and its size is a multiple
+        of f so that the reduction is an exact f x f box average (OpenCV's fast path)."""
+        cx, cy, hx, hy = self.ellipse
+        H, W = self._shape[:2]
+        f = max(1, int(2 * max(hx, hy) // 32))
+        x0, y0 = int(max(cx - 2 * hx, 0)), int(max(cy - 2 * hy, 0))
+        x1, y1 = int(min(cx + 2 * hx + 1, W)), int(min(cy + 2 * hy + 1, H))
+        x1, y1 = x0 + (x1 - x0) // f * f, y0 + (y1 - y0) // f * f
+        return (x0, y0, x1, y1), f
+
+    def _gray(self, frame, window, f):
+        """The flow window of ``frame``, grey, reduced f times, as a pyramid (eq. 8's images)."""
+        x0, y0, x1, y1 = window
+        g = cv2.cvtColor(frame[y0:y1, x0:x1], cv2.COLOR_BGR2GRAY)
+        if f > 1 and g.size:
+            g = cv2.resize(g, ((x1 - x0) // f, (y1 - y0) // f), interpolation=cv2.INTER_AREA)
+        return pyramid(g, self.params.flow_levels)
+
+    def _window_still_fits(self) -> bool:
+        """Whether the estimate's box, with half a half-axis to spare, is still inside the last
+        flow window (the frame's border counts as inside), at the same scale."""
+        win, f = self._flow_win, self._flow_f
+        new_win, new_f = self._flow_window()
+        if new_f != f:
+            return False
+        cx, cy, hx, hy = self.ellipse
+        H, W = self._shape[:2]
+        x0, y0 = max(cx - 1.5 * hx, 0), max(cy - 1.5 * hy, 0)
+        x1, y1 = min(cx + 1.5 * hx, W), min(cy + 1.5 * hy, H)
+        return win[0] <= x0 and win[1] <= y0 and x1 <= win[2] and y1 <= win[3]
+
+    def _remember(self, frame, curr=None):
+        """Keep frame t's grey levels for the next motion vector. The window follows the target
+        only when it nears the window's edge: until then this frame's grey window, already
+        computed for the motion vector, is reused (one grey conversion per frame)."""
+        if curr is not None and self._window_still_fits():
+            self._prev_gray = curr
+            return
+        self._flow_win, self._flow_f = self._flow_window()
+        self._prev_gray = self._gray(frame, self._flow_win, self._flow_f)
+
+    def _motion(self, frame):
+        """Eq. 5-8: the least-squares motion (p, q) of the target region since the last frame.
+
+        Returns ``((p, q, ok), curr)``, ``curr`` being this frame's grey window."""
+        p = self.params
+        win, f = self._flow_win, self._flow_f
+        curr = self._gray(frame, win, f)
+        cx, cy, hx, hy = self.ellipse
+        box = ((cx - hx - win[0]) / f, (cy - hy - win[1]) / f, 2 * hx / f, 2 * hy / f)
+        if curr[0].shape != self._prev_gray[0].shape or min(curr[0].shape) < 4:
+            return (0.0, 0.0, False), None
+        dp, dq, ok = motion_vector(self._prev_gray, curr, box, levels=p.flow_levels,
+                                   iterations=p.flow_iterations,
+                                   max_motion=max(curr[0].shape) / 2)
+        return (dp * f, dq * f, ok), curr
+
+    def _update(self, frame):
+        if not self.params.use_motion:
+            self.motion = (0.0, 0.0, False)
+            return super()._update(frame)
+        self.motion, curr = self._motion(frame)
+        ok, box = super()._update(frame)
+        self._remember(frame, curr)
+        return ok, box
+
+    def _predict(self, particles):
+        """Eq. 9 with the velocity of every sampled candidate set to the motion vector (p, q)."""
+        s = np.array(particles, dtype=float)
+        if self.motion[2]:
+            s[:, 2] = self.motion[0]
+            s[:, 3] = self.motion[1]
+        return super()._predict(s)
+
+    def _refine(self, frame, particles):
+        """Eq. 10-13: move every candidate uphill on rho[p(y), q] by mean-shift."""
+        p = self.params
+        self._predicted = particles.copy()
+        img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=1.0)
+        res = mean_shift(img, self.q, particles[:, :2], particles[:, 4:6],
+                         max_iter=p.max_iter, eps=p.eps)
+        self.mean_shift_result = res
+        self._rho_before = res.rho_start
+        moved = particles.copy()
+        moved[:, :2] = res.centres
+        self._rho_after = res.rho
+        return self._clamp(moved)
+
+    def _likelihood(self, frame, particles):
+        # rho at the moved candidates is what mean-shift converged to: no second evaluation
+        lik = self._weigh(self._rho_after)
+        res = self.mean_shift_result
+        self._report.update(
+            mean_likelihood_before=float(colour_likelihood(self._rho_before,
+                                                           self.params.sigma).mean()),
+            histograms=float(res.histograms), pixels=float(res.pixels))
+        return lik
+
+    @property
+    def predicted(self) -> np.ndarray:
+        v = self._predicted.view()
+        v.flags.writeable = False
+        return v
+
+    @property
+    def rho_before(self) -> np.ndarray:
+        v = self._rho_before.view()
+        v.flags.writeable = False
+        return v
+
+
+@register
+class MeanShift(_EllipseColourModel, Tracker):
+    """Comaniciu, Ramesh & Meer 2003's kernel tracker: one ellipse moved uphill every frame.
+
+    Attributes (read-only, for drawings)
+    ------------------------------------
+    ellipse : ``(cx, cy, Hx, Hy)`` of the estimate
+    particles : (1, 7) the single "candidate" as a Condensation state; weights : ``[1.0]``
+    rho : (1,) its Bhattacharyya coefficient
+    trajectory : (T, 2) the centres visited by the last frame's iterations (steps ①-⑥)
+    """
+
+    name = "mean-shift"
+    Params = MeanShiftParams
+
+    def _init(self, frame, box):
+        self._set_model(frame, box)
+        e = box_to_ellipse(box)
+        self._centre, self._axes = e[:2].copy(), e[2:].copy()
+        self._rho = np.ones(1)
+        self._trajectory = self._centre[None, :].copy()
+        self._report = {}
+
+    def _update(self, frame):
+        p = self.params
+        img = self._bin_image(frame, self._centre[None, :], self._axes[None, :] * 1.1, margin=1.0)
+        if p.scale_adapt:
+            res, axes = mean_shift_with_scale(img, self.q, self._centre, self._axes,
+                                              gamma=p.gamma, max_iter=p.max_iter, eps=p.eps)
+            self._axes = np.clip(axes, self._min_axes, self._max_axes)
+        else:
+            res = mean_shift(img, self.q, self._centre[None, :], self._axes[None, :],
+                             max_iter=p.max_iter, eps=p.eps)
+        self._trajectory = res.trajectory[:, 0, :]
+        H, W = self._shape[:2]
+        self._centre = np.clip(res.centres[0], [0, 0], [W, H])
+        self._rho = res.rho.copy()
+        lik = colour_likelihood(self._rho, p.sigma)
+        self._report = {"mean_likelihood": float(lik[0]), "mean_rho": float(self._rho[0]),
+                        "histograms": float(res.histograms), "pixels": float(res.pixels)}
+        ok = bool(self._rho[0] >= p.min_rho)
+        return ok, ellipse_to_box(*self._centre, *self._axes)
+
+    def frame_report(self) -> dict:
+        """The likelihood of the single candidate (Cho & Kang 2005 Fig. 5), its rho, and the
+        colour ``histograms`` computed and ``pixels`` read by this frame's iterations."""
+        return dict(self._report)
+
+    @property
+    def ellipse(self) -> tuple:
+        return (float(self._centre[0]), float(self._centre[1]),
+                float(self._axes[0]), float(self._axes[1]))
+
+    @property
+    def particles(self) -> np.ndarray:
+        s = np.array([[*self._centre, 0.0, 0.0, *self._axes, 1.0]])
+        s.flags.writeable = False
+        return s
+
+    @property
+    def weights(self) -> np.ndarray:
+        w = np.ones(1)
+        w.flags.writeable = False
+        return w
+
+    @property
+    def rho(self) -> np.ndarray:
+        r = self._rho.view()
+        r.flags.writeable = False
+        return r
+
+    @property
+    def trajectory(self) -> np.ndarray:
+        t = self._trajectory.view()
+        t.flags.writeable = False
+        return t
