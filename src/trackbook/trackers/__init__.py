@@ -18,6 +18,7 @@ from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
+from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
 
 
 def available(reference: bool = False) -> list[str]:
