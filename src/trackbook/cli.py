@@ -1,0 +1,189 @@
+"""The ``trackbook`` command (also ``python -m trackbook``).
+
+    trackbook clips                       list the sample clips (and sequences found)
+    trackbook clips export red-cube out/red-cube.mp4
+    trackbook track kalman-covariance red-cube --out out/
+    trackbook bench --trackers color-pf,kalman-covariance --clips samples --out bench-results/
+    trackbook notebooks --out notebooks/  export the book's chapters to .ipynb for class
+"""
+
+from __future__ import annotations
+
+import argparse
+import ast
+import sys
+from pathlib import Path
+
+import numpy as np
+
+
+def _parse_params(items) -> dict:
+    """``["n_particles=200", "window=(0.8,1.2)"]`` -> dict with Python literals where possible."""
+    out = {}
+    for item in items or []:
+        if "=" not in item:
+            raise SystemExit(f"--param {item!r}: write NAME=VALUE, e.g. --param n_particles=200")
+        k, v = item.split("=", 1)
+        try:
+            out[k.strip()] = ast.literal_eval(v)
+        except (ValueError, SyntaxError):
+            out[k.strip()] = v
+    return out
+
+
+def cmd_clips(args) -> int:
+    from . import clips
+
+    if args.action == "export":
+        if not args.name or not args.path:
+            raise SystemExit("usage: trackbook clips export NAME OUT.mp4")
+        video, gt = clips.export(args.name, args.path)
+        print(f"wrote {video} and {gt}")
+        return 0
+    for name in clips.available():
+        c = clips.load(name)
+        print(f"{name:22s} {len(c):4d} frames {c.size[0]}x{c.size[1]}  "
+              f"{clips.describe(name).split(': ', 1)[1][:90]}")
+    found = clips.find_sequences()
+    if found:
+        print(f"\nsequences found ({Path(next(iter(found.values()))).parent}):")
+        for name, p in found.items():
+            print(f"  {name}")
+    return 0
+
+
+def annotate(frame, boxes: dict, gt=None):
+    """Draw boxes on a copy of a BGR frame (OpenCV drawing, for videos)."""
+    import cv2
+
+    img = frame.copy()
+    colors = [(40, 39, 214), (180, 119, 31), (14, 127, 255), (189, 103, 148)]
+    if gt is not None and np.all(np.isfinite(gt)):
+        x, y, w, h = (int(round(v)) for v in gt)
+        cv2.rectangle(img, (x, y), (x + w, y + h), (44, 160, 44), 1, cv2.LINE_AA)
+    for i, (label, b) in enumerate(boxes.items()):
+        if b is None or not np.all(np.isfinite(b)):
+            continue
+        x, y, w, h = (int(round(v)) for v in b)
+        c = colors[i % len(colors)]
+        cv2.rectangle(img, (x, y), (x + w, y + h), c, 2, cv2.LINE_AA)
+        cv2.putText(img, label, (x, max(y - 4, 10)), cv2.FONT_HERSHEY_SIMPLEX, 0.4, c, 1,
+                    cv2.LINE_AA)
+    return img
+
+
+def cmd_track(args) -> int:
+    import csv
+
+    import cv2
+
+    from . import clips
+    from .evaluation.runner import evaluate
+
+    clip = clips.load(args.clip)
+    params = _parse_params(args.param)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    stem = f"{args.tracker}_{clip.name}"
+    r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames, **params)
+    with open(out / f"{stem}.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
+        for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms)):
+            w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"])
+    width, height = clip.size
+    writer = cv2.VideoWriter(str(out / f"{stem}.mp4"), cv2.VideoWriter_fourcc(*"mp4v"),
+                             clip.fps, (width, height))
+    for i, frame in enumerate(clip.frames):
+        if i >= len(r.boxes):
+            break
+        writer.write(annotate(frame, {args.tracker: r.boxes[i]}, clip.groundtruth[i]))
+    writer.release()
+    s = r.scores
+    print(f"{args.tracker} on {clip.name}: " + (
+        f"AUC {s['auc']:.3f}, precision@20 {s['precision20']:.3f}, tracking rate "
+        f"{s['tracking_rate']:.1%}, " if "auc" in s else "") + f"{s['ms_median']:.2f} ms/frame")
+    print(f"wrote {out / (stem + '.csv')} and {out / (stem + '.mp4')}")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from .evaluation import bench
+
+    params: dict[str, dict] = {}
+    for item in args.param or []:
+        if ":" not in item:
+            raise SystemExit(f"--param {item!r}: write TRACKER:NAME=VALUE")
+        t, kv = item.split(":", 1)
+        params.setdefault(t, {}).update(_parse_params([kv]))
+    rows = bench.run(args.trackers, args.clips, args.out, seed=args.seed,
+                     max_frames=args.max_frames, params=params, progress=not args.quiet,
+                     force=args.force)
+    print(bench.markdown_table(rows))
+    print(f"wrote {args.out}/results.csv, results.json, table.md, success.png, precision.png")
+    return 0
+
+
+def cmd_notebooks(args) -> int:
+    import jupytext
+
+    book = Path(args.book)
+    chapters = sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
+    if not chapters:
+        raise SystemExit(f"no chapters in {book}; run from the repository root or pass --book.")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    for md in chapters:
+        nb = jupytext.read(md)
+        jupytext.write(nb, out / (md.stem + ".ipynb"))
+        print(out / (md.stem + ".ipynb"))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="trackbook", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="command", required=True)
+
+    c = sub.add_parser("clips", help="list or export sample clips")
+    c.add_argument("action", nargs="?", choices=["list", "export"], default="list")
+    c.add_argument("name", nargs="?")
+    c.add_argument("path", nargs="?")
+    c.set_defaults(fn=cmd_clips)
+
+    t = sub.add_parser("track", help="run a tracker on a clip: annotated video + CSV of boxes")
+    t.add_argument("tracker")
+    t.add_argument("clip", help="sample name, OTB folder or video file")
+    t.add_argument("--out", default="track-output")
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--max-frames", type=int)
+    t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
+    t.set_defaults(fn=cmd_track)
+
+    b = sub.add_parser("bench", help="trackers x clips -> tables and plots (resumable)")
+    b.add_argument("--trackers", required=True, help="comma-separated names; opencv-mil is "
+                   "always added as the reference row")
+    b.add_argument("--clips", default="samples",
+                   help="comma-separated: names, paths, 'samples' (all), 'shared' (all sequences)")
+    b.add_argument("--out", default="bench-results")
+    b.add_argument("--seed", type=int, default=0)
+    b.add_argument("--max-frames", type=int)
+    b.add_argument("--param", action="append", help="TRACKER:NAME=VALUE, repeatable")
+    b.add_argument("--force", action="store_true", help="re-run finished runs")
+    b.add_argument("--quiet", action="store_true", help="no progress bar")
+    b.set_defaults(fn=cmd_bench)
+
+    n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")
+    n.add_argument("--book", default="book")
+    n.add_argument("--out", default="notebooks")
+    n.set_defaults(fn=cmd_notebooks)
+    return p
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.fn(args)
+    except (ValueError, FileNotFoundError) as e:
+        print(f"trackbook: error: {e}", file=sys.stderr)
+        return 2
