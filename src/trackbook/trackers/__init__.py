@@ -18,7 +18,9 @@ from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
+from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
 from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
+from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
 
 
 def available(reference: bool = False) -> list[str]:

@@ -1,0 +1,61 @@
+"""The book's table of contents and the notebook export for class use."""
+import re
+from pathlib import Path
+
+import pytest
+
+from trackbook import cli
+
+ROOT = Path(__file__).resolve().parents[1]
+FIXED_CHAPTERS = ["00_introduction", "01_kernel_histograms", "02_hog", "03_edge_rays",
+                  "04_region_covariance", "05_kalman", "06_condensation", "07_mean_shift",
+                  "08_incremental_svd", "09_trackers_compared"]
+
+
+def _toc_files():
+    return re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())
+
+
+def test_toc_lists_existing_chapters_only_and_every_chapter():
+    listed = _toc_files()
+    for f in listed:
+        assert (ROOT / f"{f}.md").is_file(), f"_toc.yml lists {f} but it does not exist"
+    pages = {f"book/{p.stem}" for p in (ROOT / "book").glob("*.md")}
+    assert pages == set(listed), f"pages not in the toc: {pages - set(listed)}"
+
+
+def test_chapter_names_are_the_fixed_ones():
+    for p in (ROOT / "book").glob("[0-9][0-9]_*.md"):
+        stem = p.stem
+        assert any(stem == c or stem.startswith(c + "_") for c in FIXED_CHAPTERS), stem
+
+
+def test_chapters_import_only_trackbook_and_commit_no_outputs():
+    for p in (ROOT / "book").glob("*.md"):
+        text = p.read_text()
+        assert "sys.path" not in text, f"{p.name} manipulates sys.path"
+        assert "outputs:" not in text
+    assert not list((ROOT / "book").glob("*.ipynb")), "executed notebooks must not be committed"
+
+
+def test_ci_runs_the_readme_commands():
+    readme = (ROOT / "README.md").read_text()
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert "<!-- ci:test -->" in readme and "<!-- ci:book -->" in readme
+    assert "readme_cmd test" in ci and "readme_cmd book" in ci
+
+
+@pytest.mark.slow
+def test_exported_introduction_runs(tmp_path):
+    jupytext = pytest.importorskip("jupytext")
+    nbclient = pytest.importorskip("nbclient")
+    out = tmp_path / "nb"
+    assert cli.main(["notebooks", "--book", str(ROOT / "book"), "--out", str(out)]) == 0
+    exported = sorted(p.stem for p in out.glob("*.ipynb"))
+    assert "00_introduction" in exported
+    nb = jupytext.read(out / "00_introduction.ipynb")
+    nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
+                            resources={"metadata": {"path": str(out)}}).execute()
+    errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
+              if o.get("output_type") == "error"]
+    assert not errors
