@@ -88,3 +88,21 @@ def plot_center_errors(results: dict, gt, ax=None, title=None):
     if title:
         ax.set_title(title, fontsize=9)
     return ax
+
+
+def md_table(rows, digits: int = 3):
+    """A list of dicts (or a dict of dicts: row name -> values) as a Markdown table for display."""
+    from IPython.display import Markdown
+    if isinstance(rows, dict):
+        rows = [{"": k, **v} if isinstance(v, dict) else {"": k, "value": v} for k, v in rows.items()]
+    cols = list(dict.fromkeys(c for r in rows for c in r))
+
+    def fmt(v):
+        if isinstance(v, (bool, np.bool_)):
+            return "yes" if v else "no"
+        if isinstance(v, (float, np.floating)):
+            return f"{v:.{digits}f}"
+        return str(v)
+    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    lines += ["| " + " | ".join(fmt(r.get(c, "")) for c in cols) + " |" for r in rows]
+    return Markdown("\n".join(lines))
