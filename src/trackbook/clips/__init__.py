@@ -15,7 +15,7 @@ import cv2
 import numpy as np
 
 from . import samples as _samples
-#SYNTH
+from . import synthetic as _synthetic  # noqa: F401  (registers the sample scenarios)
 from .clip import ArrayFrames, Clip, FrameSequence, ImageFiles, VideoFrames
 from .loaders import find_sequences, load_folder, load_path, load_video, read_groundtruth
 

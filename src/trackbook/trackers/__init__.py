@@ -21,6 +21,7 @@ from .reference import REFERENCE
 from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
 from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
 from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
+from . import covariance  # noqa: F401,E402  seed 002: covariance, kalman-covariance
 
 
 def available(reference: bool = False) -> list[str]:

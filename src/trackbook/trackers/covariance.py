@@ -1,0 +1,318 @@
+"""Seed 002 (Lee 2015): region-covariance tracking, with and without a Kalman search window.
+
+``covariance`` (the paper's baseline, Fig. 3)
+    compares the target's covariance (eq. 4) with every candidate window of the target's size
+    around the last position (Förstner distance, eq. 5–6); the smallest ρ wins. When even the
+    best ρ is above ``threshold`` the target is lost and the whole frame is searched.
+``kalman-covariance`` (proposed, Fig. 1)
+    predicts the target's centre with a constant-velocity Kalman filter (eq. 7–13), searches
+    only inside the predicted search window (the gate ``gate`` σ of the innovation covariance
+    S = H P⁻ Hᵀ + R, so the window grows when the filter is unsure), takes the best candidate's
+    centre as the measurement and updates the filter. Whole-frame search as above.
+
+Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
+``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
+the "averaging search rate" of Table 1 once averaged over the frames.
+
+>>> from trackbook import trackers, clips
+>>> clip = clips.load("red-cube")                                              # doctest: +SKIP
+>>> t = trackers.create("kalman-covariance")                                   # doctest: +SKIP
+>>> t.init(clip.frames[0], clip.groundtruth[0]); ok, box = t.update(clip.frames[1])  # doctest: +SKIP
+>>> t.search_window, t.kalman.x, t.frame_report()                              # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..features.covariance import FEATURE_SETS, IntegralCovariance, feature_image, forstner_distance
+from ..features.motion import find_moving_region
+from ..filters.kalman import constant_velocity
+from ..params import param
+from .base import Tracker
+from .registry import register
+
+
+@dataclasses.dataclass(frozen=True)
+class CovarianceParams:
+    features: str = param("xyI|Ix||Iy|", doc="feature vector f_k: eq. 2 (default), eq. 3 "
+                          "('rI|Ix||Iy|') or colour ('xyRGB|Ix||Iy|')", choices=FEATURE_SETS)
+    stride: int = param(1, 1, 8, 1, doc="pixels between neighbouring candidate windows")
+    search_radius: int = param(8, 1, 64, 1, doc="candidates' centres within ±radius px of the "
+                               "last position")
+    threshold: float = param(3.0, 0.1, 20.0, 0.1, doc="ρ (eq. 5) above which the target is "
+                             "lost and the whole frame is searched")
+    global_stride: int = param(4, 1, 16, 1, doc="stride of the coarse whole-frame search "
+                               "(refined at `stride` around its best window)")
+    eps: float = param(1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6")
+    model_update: float = param(0.0, 0.0, 1.0, 0.05, doc="α of C_model ← (1−α)C_model + "
+                                "αC_best (the paper keeps the model fixed: 0)")
+
+
+@dataclasses.dataclass(frozen=True)
+class KalmanCovarianceParams(CovarianceParams):
+    q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10); the paper prints Q = I")
+    r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11); the paper prints R = I")
+    p0: float = param(1.0, 0.01, 1000.0, 1.0, doc="P₀ = p0·I, the initial state covariance")
+    gate: float = param(3.0, 0.5, 10.0, 0.5, doc="search-window half-size in σ of "
+                        "S = HP⁻Hᵀ + R")
+    min_radius: int = param(4, 0, 64, 1, doc="smallest search-window half-size in px")
+
+
+def n_windows(frame_shape, size, stride: int) -> int:
+    """All windows of ``size = (w, h)`` at ``stride`` in a frame: the search-rate denominator."""
+    H, W = frame_shape[:2]
+    w, h = size
+    return ((W - w) // stride + 1) * ((H - h) // stride + 1)
+
+
+def grid_boxes(frame_shape, size, center, radius, stride: int) -> np.ndarray:
+    """Integer boxes of ``size`` whose centres lie within ±radius of ``center`` at ``stride``.
+
+    The grid is anchored at the window centred on ``center`` (clamped into the frame) and
+    keeps only windows wholly inside the frame; every box is distinct, so ``len`` is the exact
+    number of candidates.
+    """
+    H, W = frame_shape[:2]
+    w, h = size
+    rx, ry = radius
+    x0 = int(np.clip(round(center[0] - w / 2.0), 0, W - w))
+    y0 = int(np.clip(round(center[1] - h / 2.0), 0, H - h))
+    kx = int(rx // stride)
+    ky = int(ry // stride)
+    xs = x0 + stride * np.arange(-kx, kx + 1)
+    ys = y0 + stride * np.arange(-ky, ky + 1)
+    xs = xs[(xs >= 0) & (xs <= W - w)]
+    ys = ys[(ys >= 0) & (ys <= H - h)]
+    X, Y = np.meshgrid(xs, ys)
+    n = X.size
+    return np.column_stack([X.ravel(), Y.ravel(), np.full(n, w), np.full(n, h)]).astype(np.int64)
+
+
+class _CovarianceSearch(Tracker):
+    """What both seed-002 trackers share: the model, candidate scoring, whole-frame search.
+
+    Attributes (read-only, for drawing)
+    -----------------------------------
+    model : d x d covariance of the target (eq. 4)
+    candidates : (n, 4) boxes evaluated on the last frame
+    distances : (n,) their ρ (eq. 5)
+    search_window : (x, y, w, h) the area the last local search covered
+    best_rho : ρ of the chosen window on the last frame
+    """
+
+    Params = CovarianceParams
+
+    # -- scoring -------------------------------------------------------------------------
+    def _covariances(self, frame, boxes):
+        """C_R of integer ``boxes`` from integral images of the smallest crop holding them."""
+        H, W = frame.shape[:2]
+        x0, y0 = boxes[:, 0].min(), boxes[:, 1].min()
+        x1, y1 = (boxes[:, 0] + boxes[:, 2]).max(), (boxes[:, 1] + boxes[:, 3]).max()
+        # One pixel of context so the [-1 0 1] gradients at the crop's edge are the frame's.
+        cx0, cy0 = max(x0 - 1, 0), max(y0 - 1, 0)
+        cx1, cy1 = min(x1 + 1, W), min(y1 + 1, H)
+        F = feature_image(frame[cy0:cy1, cx0:cx1], self.params.features)
+        radial = self.params.features == "rI|Ix||Iy|"
+        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial)
+        return ic.covariances(boxes)
+
+    def _score(self, frame, boxes):
+        rho = forstner_distance(self._model, self._covariances(frame, boxes), self.params.eps)
+        self._n_evaluated += len(boxes)
+        return rho
+
+    def _search(self, frame, center, radius):
+        """Best window around ``center``; returns (box, ρ, boxes, ρs)."""
+        boxes = grid_boxes(frame.shape, self._size, center, radius, self.params.stride)
+        rho = self._score(frame, boxes)
+        i = int(np.argmin(rho))
+        return boxes[i].astype(float), float(rho[i]), boxes, rho
+
+    def _whole_frame_search(self, frame):
+        """Coarse search over the whole frame at ``global_stride``, refined at ``stride``."""
+        H, W = frame.shape[:2]
+        w, h = self._size
+        g = self.params.global_stride
+        centre = (W / 2.0, H / 2.0)
+        box, rho, _, _ = self._search_with_stride(frame, centre, (W, H), g)
+        if g > self.params.stride:
+            c = (box[0] + w / 2.0, box[1] + h / 2.0)
+            box2, rho2, _, _ = self._search(frame, c, (g - 1, g - 1))
+            if rho2 < rho:
+                box, rho = box2, rho2
+        return box, rho
+
+    def _search_with_stride(self, frame, center, radius, stride):
+        H, W = frame.shape[:2]
+        w, h = self._size
+        xs = np.arange(0, W - w + 1, stride)
+        ys = np.arange(0, H - h + 1, stride)
+        X, Y = np.meshgrid(xs, ys)
+        boxes = np.column_stack([X.ravel(), Y.ravel(), np.full(X.size, w), np.full(X.size, h)])
+        rho = self._score(frame, boxes)
+        i = int(np.argmin(rho))
+        return boxes[i].astype(float), float(rho[i]), boxes, rho
+
+    # -- shared bookkeeping ----------------------------------------------------------------
+    def _init_model(self, frame, box):
+        H, W = frame.shape[:2]
+        w = int(np.clip(round(box[2]), 2, W))
+        h = int(np.clip(round(box[3]), 2, H))
+        x = int(np.clip(round(box[0]), 0, W - w))
+        y = int(np.clip(round(box[1]), 0, H - h))
+        self._size = (w, h)
+        self._model = self._covariances(frame, np.array([[x, y, w, h]]))[0]
+        self._n_evaluated = 0
+        self._n_all = n_windows(frame.shape, self._size, self.params.stride)
+        self.candidates = np.zeros((0, 4))
+        self.distances = np.zeros(0)
+        self.search_window = (float(x), float(y), float(w), float(h))
+        self.best_rho = 0.0
+        return np.array([x, y, w, h], dtype=float)
+
+    def _accept(self, frame, box):
+        a = self.params.model_update
+        if a > 0:
+            C = self._covariances(frame, np.asarray(box, dtype=np.int64)[None])[0]
+            self._model = (1 - a) * self._model + a * C
+
+    def _window_of(self, center, radius):
+        w, h = self._size
+        return (center[0] - w / 2.0 - radius[0], center[1] - h / 2.0 - radius[1],
+                w + 2.0 * radius[0], h + 2.0 * radius[1])
+
+    def frame_report(self) -> dict:
+        """Per-frame numbers for Table 1: search rate, candidate count, best ρ."""
+        return {"search_rate": self._n_evaluated / self._n_all,
+                "candidates": self._n_evaluated, "rho": self.best_rho}
+
+    @property
+    def model(self):
+        return self._model
+
+
+@register
+class CovarianceTracker(_CovarianceSearch):
+    """Baseline of Lee 2015 (Fig. 3): covariance search around the last position.
+
+    Candidates are target-sized windows whose centres lie within ±``search_radius`` px of
+    the last box's centre (every ``stride`` px). If the best ρ exceeds ``threshold`` the
+    whole frame is searched; if that fails too, ``ok`` is False and the box stays put.
+    """
+
+    name = "covariance"
+    Params = CovarianceParams
+
+    def _init(self, frame, box):
+        b = self._init_model(frame, box)
+        self._center = (b[0] + b[2] / 2.0, b[1] + b[3] / 2.0)
+
+    def _update(self, frame):
+        self._n_evaluated = 0
+        r = self.params.search_radius
+        box, rho, boxes, rhos = self._search(frame, self._center, (r, r))
+        self.candidates, self.distances = boxes, rhos
+        self.search_window = self._window_of(self._center, (r, r))
+        if rho > self.params.threshold:
+            gbox, grho = self._whole_frame_search(frame)
+            if grho < rho:
+                box, rho = gbox, grho
+        self.best_rho = rho
+        if rho > self.params.threshold:
+            return False, np.asarray(self.bbox, dtype=float)
+        self._accept(frame, box)
+        self._center = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
+        return True, box
+
+
+@register
+class KalmanCovarianceTracker(_CovarianceSearch):
+    """Proposed tracker of Lee 2015 (Fig. 1): covariance search inside a Kalman window.
+
+    Per frame: predict (eq. 9–10); the search window is the predicted centre ±
+    max(``gate``·σ, ``min_radius``) with σ² the diagonal of S = H P⁻ Hᵀ + R; the best
+    candidate's centre is the measurement y_k (eq. 8) and updates the filter (eq. 11–13).
+    Best ρ above ``threshold`` → whole-frame search; still above → ``ok`` False, no update
+    (P keeps growing, so the next window is larger) and the box follows the prediction.
+
+    Attributes (read-only, for drawing)
+    -----------------------------------
+    kalman : the :class:`~trackbook.filters.kalman.KalmanFilter` (``kalman.x``, ``kalman.P``)
+    prediction : (x⁻, P⁻) of the last frame, before the update
+    ellipse : (cx, cy, hx, hy, angle°) the predicted position's ``gate``-σ uncertainty ellipse
+    search_window, candidates, distances, best_rho, model : as for ``covariance``
+    """
+
+    name = "kalman-covariance"
+    Params = KalmanCovarianceParams
+
+    def _init(self, frame, box):
+        b = self._init_model(frame, box)
+        p = self.params
+        self._kf = constant_velocity((b[0] + b[2] / 2.0, b[1] + b[3] / 2.0), q=p.q, r=p.r,
+                                     p0=p.p0)
+        self.prediction = (self._kf.x.copy(), self._kf.P.copy())
+
+    def init_from_motion(self, frame0, frame1, **kwargs):
+        """Initialise with no box: the moving region between two frames (Fig. 1 of Lee 2015).
+
+        ``kwargs`` go to :func:`~trackbook.features.motion.find_moving_region`. Returns the box
+        found (the tracker is then initialised on ``frame1``) or raises ``ValueError`` if
+        nothing moved.
+        """
+        box = find_moving_region(frame0, frame1, **kwargs)
+        if box is None:
+            raise ValueError("no moving region between the two frames; lower `threshold` or "
+                             "pass a box to init(frame, bbox).")
+        self.init(frame1, box)
+        return box
+
+    @property
+    def kalman(self):
+        return self._kf
+
+    @property
+    def ellipse(self):
+        """(cx, cy, hx, hy, angle°): the ``gate``-σ ellipse of S = HP⁻Hᵀ + R at the prediction."""
+        x, P = self.prediction
+        S = self._kf.H @ P @ self._kf.H.T + self._kf.R
+        ev, V = np.linalg.eigh(S)
+        angle = float(np.degrees(np.arctan2(V[1, 1], V[0, 1])))
+        g = self.params.gate
+        return (float(x[0]), float(x[1]), g * float(np.sqrt(ev[1])), g * float(np.sqrt(ev[0])),
+                angle)
+
+    def _update(self, frame):
+        self._n_evaluated = 0
+        H, W = frame.shape[:2]
+        kf, p = self._kf, self.params
+        kf.predict()
+        # A prediction that left the frame cannot be searched; stop it at the border.
+        cx, cy = float(np.clip(kf.x[0], 0, W - 1)), float(np.clip(kf.x[1], 0, H - 1))
+        if (cx, cy) != (kf.x[0], kf.x[1]):
+            kf.x[:2] = (cx, cy)
+            kf.x[2:] = 0.0
+        self.prediction = (kf.x.copy(), kf.P.copy())
+        sigma = np.sqrt(np.diag(kf.innovation_covariance()))
+        radius = (max(p.gate * sigma[0], p.min_radius), max(p.gate * sigma[1], p.min_radius))
+        box, rho, boxes, rhos = self._search(frame, (cx, cy), radius)
+        self.candidates, self.distances = boxes, rhos
+        self.search_window = self._window_of((cx, cy), radius)
+        if rho > p.threshold:
+            gbox, grho = self._whole_frame_search(frame)
+            if grho < rho:
+                box, rho = gbox, grho
+        self.best_rho = rho
+        w, h = self._size
+        if rho > p.threshold:
+            return False, np.array([cx - w / 2.0, cy - h / 2.0, w, h])
+        self._accept(frame, box)
+        kf.update((box[0] + w / 2.0, box[1] + h / 2.0))
+        return True, box
+
+
+__all__ = ["CovarianceTracker", "KalmanCovarianceTracker", "CovarianceParams",
+           "KalmanCovarianceParams", "n_windows", "grid_boxes", "find_moving_region"]
