@@ -130,17 +130,21 @@ def test_ratio_window_and_options_are_checked():
         assert oks[1:].all()
 
 
-def test_max_ray_crop_equals_whole_frame_maps():
-    # With max_ray the maps are computed on a crop around the particles only; the weights must
-    # equal those from whole-frame maps with the same cap.
+@pytest.mark.parametrize("max_ray", [0.0, 25.0])
+def test_particle_rays_equal_whole_frame_maps(max_ray):
+    # The tracker computes the rays along the particles' lines only; its pDis_j and weights
+    # must equal those read from the whole-frame maps (with the same cap).
     from trackbook.features import edge_rays as er
     frames, gt = scene(4)
-    t = trackers.create("edge-ray-pf", max_ray=25.0, seed=1)
+    t = trackers.create("edge-ray-pf", max_ray=max_ray, seed=1)
     t.init(frames[0], gt[0])
+    prev = t.particles.copy()
     t.update(frames[1])
-    full = er.ray_distance_maps(t.edges, 25.0)
+    full = er.ray_distance_maps(t.edges, max_ray or None)
     expect = er.rays_at(full, t.particles - 0.5)
     np.testing.assert_allclose(t.particle_rays, expect, rtol=1e-6)
+    np.testing.assert_allclose(t.likelihoods, er.edge_weight(expect, t.model_rays))
+    assert not np.array_equal(prev, t.particles)
 
 
 @pytest.mark.slow

@@ -48,6 +48,31 @@ def test_fast_maps_equal_slow_walk(edges, max_length):
     np.testing.assert_allclose(fast, slow_maps(edges, max_length), rtol=1e-6)
 
 
+@settings(max_examples=80, deadline=None)
+@given(edges=edge_maps, data=st.data(), max_length=st.one_of(st.none(), st.floats(1.0, 12.0)))
+def test_rays_along_particle_lines_equal_slow_walk_and_full_maps(edges, data, max_length):
+    # The fast path of the tracker (only the rows, columns and diagonals through the points)
+    # must give the slow walk's numbers and the whole-frame maps' numbers exactly, also for
+    # repeated points and points on the border.
+    H, W = edges.shape
+    pts = data.draw(st.lists(st.tuples(st.integers(0, W - 1), st.integers(0, H - 1)),
+                             min_size=1, max_size=25))
+    x, y = np.array(pts).T
+    steps = er.ray_steps_at(edges, x, y)
+    np.testing.assert_array_equal(steps, er.ray_steps(edges)[:, y, x].T)
+    got = er.rays_at_points(edges, np.column_stack([x, y]), max_length)
+    want = np.array([slow_rays(edges, xi, yi, max_length) for xi, yi in zip(x, y)])
+    np.testing.assert_allclose(got, want, rtol=1e-6)
+
+
+def test_rays_at_points_rounds_and_clips_like_the_maps():
+    rng = np.random.default_rng(5)
+    e = rng.random((40, 60)) < 0.08
+    xy = rng.uniform(-10, 70, size=(200, 2))   # continuous, some outside the frame
+    np.testing.assert_allclose(er.rays_at_points(e, xy, 20.0),
+                               er.rays_at(er.ray_distance_maps(e, 20.0), xy))
+
+
 def test_empty_frame_rays_reach_the_border():
     # No edge at all: every ray ends at the first step outside the frame.
     e = np.zeros((5, 7), bool)
@@ -111,3 +136,7 @@ def test_bad_window_and_shapes_raise():
         er.ray_steps(np.zeros((2, 3, 4), bool))
     with pytest.raises(ValueError, match="max_length"):
         er.ray_distance_maps(np.zeros((3, 3), bool), max_length=0.5)
+    with pytest.raises(ValueError, match="inside the"):
+        er.ray_steps_at(np.zeros((3, 3), bool), [3], [0])
+    with pytest.raises(ValueError, match="same length"):
+        er.ray_steps_at(np.zeros((3, 3), bool), [1, 2], [0])
