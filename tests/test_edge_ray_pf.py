@@ -70,6 +70,42 @@ def test_hsi_of_primaries_and_grey():
     assert hsi_bin_index(px[:, :1])[0, 0] == (0 * 8 + 7) * 4 + 1
 
 
+def hsi_oracle(b, g, r):
+    """Independent HSI of one pixel (0..255 ints): the hue as the angle of the chromaticity
+    vector, atan2(sqrt(3) (G - B), 2R - G - B) -- algebraically equal to the arccos form of
+    Gonzalez & Woods, numerically a different computation."""
+    R, G, B = r / 255.0, g / 255.0, b / 255.0
+    total = R + G + B
+    i = total / 3.0
+    s = 0.0 if total == 0 else 1.0 - 3.0 * min(R, G, B) / total
+    h = 0.0 if (R == G == B) else np.degrees(np.arctan2(np.sqrt(3.0) * (G - B), 2 * R - G - B)) % 360.0
+    return h, s, i
+
+
+def test_hsi_matches_an_independent_conversion_and_a_slow_histogram():
+    rng = np.random.default_rng(11)
+    px = rng.integers(0, 256, size=(500, 3)).astype(np.uint8)
+    px[:20] = px[:20, :1]            # some greys
+    hsi = bgr_to_hsi(px[None])[0]
+    want = np.array([hsi_oracle(*map(int, p)) for p in px])
+    dh = (hsi[:, 0] - want[:, 0] + 180.0) % 360.0 - 180.0   # hue is circular
+    np.testing.assert_allclose(dh, 0.0, atol=0.05)
+    np.testing.assert_allclose(hsi[:, 1:], want[:, 1:], atol=1e-5)
+    # a 16 x 24 box on integer pixels samples those pixels themselves: a slow histogram over
+    # them, with the kernel written out, must equal the batched one
+    frame = rng.integers(0, 256, size=(40, 50, 3)).astype(np.uint8)
+    x0, y0 = 7, 5
+    slow = np.zeros(256)
+    for yy in range(24):
+        for xx in range(16):
+            h, s_, i = hsi_oracle(*map(int, frame[y0 + yy, x0 + xx]))
+            k = (min(int(h * 8 / 360), 7) * 8 + min(int(s_ * 8), 7)) * 4 + min(int(i * 4), 3)
+            r2 = (xx + 0.5 - 8) ** 2 + (yy + 0.5 - 12) ** 2
+            slow[k] += 1.0 - r2 / (7.5 ** 2 + 11.5 ** 2)
+    slow /= slow.sum()
+    np.testing.assert_allclose(hsi_histograms(frame, [(x0, y0, 16, 24)])[0], slow, atol=1e-6)
+
+
 def test_hsi_histograms_batched_rows_sum_to_one():
     frames, gt = scene(2)
     boxes = np.vstack([gt[0], gt[0] + [40, 10, 0, 0], [-5, -5, 20, 20]])
