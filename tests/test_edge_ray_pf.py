@@ -188,5 +188,9 @@ def test_particle_rays_equal_whole_frame_maps(max_ray):
                     reason="the patterned-object sample clip is not available")
 def test_edge_ray_pf_on_patterned_object():
     import trackbook
-    r = trackbook.evaluate("edge-ray-pf", "patterned-object")
-    assert r.scores["auc"] > 0.3
+    # Measured (seed 0, defaults): AUC 0.49, tracking rate 0.49, mean centre error 18 px
+    # (seeds 1-2: AUC 0.39 and 0.51). A box that stays at the first frame's place scores
+    # AUC 0.07. The bound sits below the measured seed-0 value and far above "not following".
+    r = trackbook.evaluate("edge-ray-pf", "patterned-object", seed=0)
+    assert r.scores["auc"] > 0.4
+    assert r.scores["mean_center_error"] < 25
