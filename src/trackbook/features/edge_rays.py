@@ -256,9 +256,10 @@ def _steps_to_hits(lines: np.ndarray, r: np.ndarray, t: np.ndarray):
     """
     flat = np.flatnonzero(lines)
     q = r * lines.shape[1] + (t + 1)
-    forward = flat[np.searchsorted(flat, q, side="right")] - q
-    backward = q - flat[np.searchsorted(flat, q, side="left") - 1]
-    return forward, backward
+    i = np.searchsorted(flat, q, side="right")     # flat[i] is the first hit after q
+    before = flat[i - 1]                           # the last hit at or before q ...
+    before = np.where(before == q, flat[i - 2], before)  # ... unless it is q itself
+    return flat[i] - q, q - before
 
 
 def _line_index(key: np.ndarray, lo: int, n: int):
@@ -269,6 +270,10 @@ def _line_index(key: np.ndarray, lo: int, n: int):
     present[key - lo] = True
     inverse = (np.cumsum(present) - 1)[key - lo]
     return np.flatnonzero(present) + lo, inverse
+
+
+#: Reused (H + 2, W + 2) buffers of :func:`ray_steps_at`, border cells set once.
+_FRAMED: dict[tuple[int, int], np.ndarray] = {}
 
 
 def ray_steps_at(edges: np.ndarray, x, y) -> np.ndarray:
@@ -307,7 +312,11 @@ def ray_steps_at(edges: np.ndarray, x, y) -> np.ndarray:
     if x.min() < 0 or x.max() >= W or y.min() < 0 or y.max() >= H:
         raise ValueError(f"points must lie inside the {W}x{H} frame; clip them first.")
     # the edge map inside a one-pixel frame of "edges": the border that stops every ray
-    framed = np.ones((H + 2, W + 2), dtype=bool)
+    framed = _FRAMED.get((H, W))
+    if framed is None:
+        if len(_FRAMED) >= 4:
+            _FRAMED.pop(next(iter(_FRAMED)))
+        framed = _FRAMED[(H, W)] = np.ones((H + 2, W + 2), dtype=bool)
     framed[1:-1, 1:-1] = e
 
     rows, r = _line_index(y, 0, H)                         # E (forward in x), W
