@@ -22,7 +22,13 @@ Fast path
 ---------
 :func:`ray_distance_maps` computes, for every pixel at once, the distance along each of the 8
 directions: one reverse cumulative-minimum scan per direction (rows for E/W, columns for N/S,
-sheared diagonals for the rest). A particle then costs 8 look-ups (:func:`rays_at`).
+sheared diagonals for the rest). A particle then costs 8 look-ups (:func:`rays_at`). The book
+uses these maps for its pictures (:func:`weight_map`).
+
+The tracker uses :func:`rays_at_points` (:func:`ray_steps_at`): a ray never leaves its image
+line, so only the rows, columns and diagonals through the particles are gathered, and each
+particle finds the next and previous edge on its lines by a binary search. Same numbers, a cost
+that grows with the number of distinct lines instead of the frame area.
 """
 
 from __future__ import annotations
