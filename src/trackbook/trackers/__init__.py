@@ -20,8 +20,10 @@ from .reference import REFERENCE
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
 from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
-from . import covariance  # noqa: F401,E402  seed 002: covariance, kalman-covariance
-from . import condensation_mean_shift  # noqa: F401,E402  (seed 003)
+from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
+from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
+from . import covariance  # noqa: E402,F401  seed 002: covariance, kalman-covariance
+from . import condensation_mean_shift  # noqa: E402,F401  seed 003: condensation, mean-shift, condensation-mean-shift
 
 
 def available(reference: bool = False) -> list[str]:
