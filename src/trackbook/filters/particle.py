@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..trackers.base import Tracker
+from ..trackers.base import Tracker, readonly
 
 
 def normalize_weights(w) -> tuple[np.ndarray, bool]:
@@ -148,21 +148,15 @@ class ParticleFilterTracker(Tracker):
     # read-only views for the book's drawings -------------------------------------------
     @property
     def particles(self) -> np.ndarray:
-        p = self._particles.view()
-        p.flags.writeable = False
-        return p
+        return readonly(self._particles)
 
     @property
     def weights(self) -> np.ndarray:
-        w = self._weights.view()
-        w.flags.writeable = False
-        return w
+        return readonly(self._weights)
 
     @property
     def likelihoods(self) -> np.ndarray:
-        lk = self._likelihoods.view()
-        lk.flags.writeable = False
-        return lk
+        return readonly(self._likelihoods)
 
     def _on_lost(self):
         """Hook: called on a frame where every particle scored zero."""

@@ -17,6 +17,13 @@ from .._checks import check_box_in_frame, check_frame
 from ..params import make_params
 
 
+def readonly(a) -> np.ndarray:
+    """A read-only view of ``a``: trackers expose their state for drawings, never for editing."""
+    v = np.asarray(a).view()
+    v.flags.writeable = False
+    return v
+
+
 @dataclasses.dataclass(frozen=True)
 class NoParams:
     """A tracker without tunables."""

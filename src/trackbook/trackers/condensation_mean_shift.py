@@ -36,7 +36,7 @@ from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift
 from ..filters.optical_flow import motion_vector, pyramid
 from ..filters.particle import ParticleFilterTracker
 from ..params import param
-from .base import Tracker
+from .base import Tracker, readonly
 from .registry import register
 
 #: Names of the seven components of a candidate (eq. 1).
@@ -241,9 +241,7 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     @property
     def rho(self) -> np.ndarray:
-        r = self._rho.view()
-        r.flags.writeable = False
-        return r
+        return readonly(self._rho)
 
     @property
     def ellipse(self) -> tuple:
@@ -380,15 +378,11 @@ class CondensationMeanShift(Condensation):
 
     @property
     def predicted(self) -> np.ndarray:
-        v = self._predicted.view()
-        v.flags.writeable = False
-        return v
+        return readonly(self._predicted)
 
     @property
     def rho_before(self) -> np.ndarray:
-        v = self._rho_before.view()
-        v.flags.writeable = False
-        return v
+        return readonly(self._rho_before)
 
 
 @register
@@ -446,24 +440,16 @@ class MeanShift(_EllipseColourModel, Tracker):
 
     @property
     def particles(self) -> np.ndarray:
-        s = np.array([[*self._centre, 0.0, 0.0, *self._axes, 1.0]])
-        s.flags.writeable = False
-        return s
+        return readonly(np.array([[*self._centre, 0.0, 0.0, *self._axes, 1.0]]))
 
     @property
     def weights(self) -> np.ndarray:
-        w = np.ones(1)
-        w.flags.writeable = False
-        return w
+        return readonly(np.ones(1))
 
     @property
     def rho(self) -> np.ndarray:
-        r = self._rho.view()
-        r.flags.writeable = False
-        return r
+        return readonly(self._rho)
 
     @property
     def trajectory(self) -> np.ndarray:
-        t = self._trajectory.view()
-        t.flags.writeable = False
-        return t
+        return readonly(self._trajectory)
