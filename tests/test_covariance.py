@@ -50,6 +50,20 @@ def test_integral_covariance_of_a_crop_uses_frame_coordinates():
         IntegralCovariance(F[25:80, 35:100], origin=(35, 25)).covariances([[0, 0, 10, 10]])
 
 
+@pytest.mark.parametrize("features", FEATURE_SETS)
+def test_workspace_reuse_gives_the_same_covariances(features):
+    from trackbook.features.covariance import Workspace
+    ws = Workspace()
+    F = feature_image(FRAME, features)
+    radial = features == "rI|Ix||Iy|"
+    boxes = np.array([[5, 5, 20, 30], [40, 20, 25, 25]])
+    # A large table, then a smaller one in the same buffers, then the large one again.
+    for crop in (F, F[10:70, 0:90], F):
+        ic_ws = IntegralCovariance(crop, radial=radial, workspace=ws)
+        ic = IntegralCovariance(crop, radial=radial)
+        np.testing.assert_array_equal(ic_ws.covariances(boxes), ic.covariances(boxes))
+
+
 def test_region_covariance_is_population_form():
     f = np.arange(12.0).reshape(2, 2, 3)
     np.testing.assert_allclose(region_covariance(f), np.cov(f.reshape(-1, 3).T, bias=True))

@@ -31,7 +31,8 @@ import dataclasses
 
 import numpy as np
 
-from ..features.covariance import FEATURE_SETS, IntegralCovariance, feature_image, forstner_distance
+from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace, feature_image,
+                                   forstner_distance)
 from ..features.motion import find_moving_region
 from ..filters.kalman import constant_velocity
 from ..params import param
@@ -127,7 +128,9 @@ class _CovarianceSearch(Tracker):
         cx1, cy1 = min(x1 + 1, W), min(y1 + 1, H)
         F = feature_image(frame[cy0:cy1, cx0:cx1], self.params.features)
         radial = self.params.features == "rI|Ix||Iy|"
-        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial)
+        if not hasattr(self, "_workspace"):
+            self._workspace = Workspace()
+        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial, workspace=self._workspace)
         return ic.covariances(boxes)
 
     def _score(self, frame, boxes):
