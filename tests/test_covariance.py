@@ -51,6 +51,19 @@ def test_integral_covariance_of_a_crop_uses_frame_coordinates():
 
 
 @pytest.mark.parametrize("features", FEATURE_SETS)
+def test_feature_planes_are_the_feature_image_channels_first(features):
+    from trackbook.features.covariance import feature_planes
+    F = feature_image(FRAME, features)
+    G = feature_planes(FRAME, features)
+    np.testing.assert_array_equal(G, np.moveaxis(F, -1, 0))
+    boxes = np.array([[5, 5, 20, 30], [40, 20, 25, 25]])
+    radial = features == "rI|Ix||Iy|"
+    np.testing.assert_array_equal(
+        IntegralCovariance(G, radial=radial, channels_first=True).covariances(boxes),
+        IntegralCovariance(F, radial=radial).covariances(boxes))
+
+
+@pytest.mark.parametrize("features", FEATURE_SETS)
 def test_workspace_reuse_gives_the_same_covariances(features):
     from trackbook.features.covariance import Workspace
     ws = Workspace()

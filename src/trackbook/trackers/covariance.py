@@ -31,8 +31,8 @@ import dataclasses
 
 import numpy as np
 
-from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace, feature_image,
-                                   forstner_distance)
+from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
+                                   feature_dimension, feature_planes, forstner_distance)
 from ..features.motion import find_moving_region
 from ..filters.kalman import constant_velocity
 from ..params import param
@@ -126,11 +126,15 @@ class _CovarianceSearch(Tracker):
         # One pixel of context so the [-1 0 1] gradients at the crop's edge are the frame's.
         cx0, cy0 = max(x0 - 1, 0), max(y0 - 1, 0)
         cx1, cy1 = min(x1 + 1, W), min(y1 + 1, H)
-        F = feature_image(frame[cy0:cy1, cx0:cx1], self.params.features)
-        radial = self.params.features == "rI|Ix||Iy|"
         if not hasattr(self, "_workspace"):
             self._workspace = Workspace()
-        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial, workspace=self._workspace)
+        ws, features = self._workspace, self.params.features
+        radial = features == "rI|Ix||Iy|"
+        d = feature_dimension(features) - (1 if radial else 0)
+        F = feature_planes(frame[cy0:cy1, cx0:cx1], features,
+                           out=ws.get("features", (d, cy1 - cy0, cx1 - cx0)))
+        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial, workspace=ws,
+                                channels_first=True)
         return ic.covariances(boxes)
 
     def _score(self, frame, boxes):
