@@ -50,6 +50,33 @@ def test_integral_covariance_of_a_crop_uses_frame_coordinates():
         IntegralCovariance(F[25:80, 35:100], origin=(35, 25)).covariances([[0, 0, 10, 10]])
 
 
+@pytest.mark.parametrize("features", FEATURE_SETS)
+def test_feature_planes_are_the_feature_image_channels_first(features):
+    from trackbook.features.covariance import feature_planes
+    F = feature_image(FRAME, features)
+    G = feature_planes(FRAME, features)
+    np.testing.assert_array_equal(G, np.moveaxis(F, -1, 0))
+    boxes = np.array([[5, 5, 20, 30], [40, 20, 25, 25]])
+    radial = features == "rI|Ix||Iy|"
+    np.testing.assert_array_equal(
+        IntegralCovariance(G, radial=radial, channels_first=True).covariances(boxes),
+        IntegralCovariance(F, radial=radial).covariances(boxes))
+
+
+@pytest.mark.parametrize("features", FEATURE_SETS)
+def test_workspace_reuse_gives_the_same_covariances(features):
+    from trackbook.features.covariance import Workspace
+    ws = Workspace()
+    F = feature_image(FRAME, features)
+    radial = features == "rI|Ix||Iy|"
+    boxes = np.array([[5, 5, 20, 30], [40, 20, 25, 25]])
+    # A large table, then a smaller one in the same buffers, then the large one again.
+    for crop in (F, F[10:70, 0:90], F):
+        ic_ws = IntegralCovariance(crop, radial=radial, workspace=ws)
+        ic = IntegralCovariance(crop, radial=radial)
+        np.testing.assert_array_equal(ic_ws.covariances(boxes), ic.covariances(boxes))
+
+
 def test_region_covariance_is_population_form():
     f = np.arange(12.0).reshape(2, 2, 3)
     np.testing.assert_allclose(region_covariance(f), np.cov(f.reshape(-1, 3).T, bias=True))
@@ -257,11 +284,81 @@ def test_bad_params_are_rejected():
         trackers.create("kalman-covariance", stride=0)
 
 
+def _reversing_square_clip(n=20, turn=12, v=6):
+    """A textured square falling at ``v`` px/frame that bounces up at frame ``turn``."""
+    rng = np.random.default_rng(5)
+    bg = cv2.resize(rng.integers(60, 120, (12, 16, 3), dtype=np.uint8), (160, 160))
+    patch = cv2.resize(rng.integers(0, 256, (4, 4, 3), dtype=np.uint8), (24, 24),
+                       interpolation=cv2.INTER_NEAREST)
+    ys = [20 + v * k if k < turn else 20 + v * (2 * (turn - 1) - k) for k in range(n)]
+    frames, gt = [], []
+    for y in ys:
+        f = bg.copy()
+        f[y:y + 24, 60:84] = patch
+        frames.append(f)
+        gt.append((60, y, 24, 24))
+    return clips.Clip("bounce", clips.ArrayFrames(np.stack(frames)), np.array(gt, float))
+
+
+def test_manoeuvre_window_is_the_inflated_prediction():
+    # At the bounce the 3σ window of S (±7 px) misses the square (12 px off); the tracker must
+    # redo the prediction with σ_v² added to P⁺'s velocity block — checked against filterpy.
+    from filterpy.kalman import KalmanFilter as FP
+    clip = _reversing_square_clip()
+    t = trackers.create("kalman-covariance", manoeuvre_sigma=8.0)
+    t.init(clip.frames[0], clip.groundtruth[0])
+    for k in range(1, 13):
+        x_post, P_post = t.kalman.x.copy(), t.kalman.P.copy()
+        ok, box = t.update(clip.frames[k])
+    assert t.manoeuvre and ok
+    assert metrics.center_error(np.array([box]), clip.groundtruth[12:13])[0] < 1.0
+    ref = FP(dim_x=4, dim_z=2)
+    ref.x, ref.F, ref.H, ref.Q, ref.R = x_post, t.kalman.F, t.kalman.H, np.eye(4), np.eye(2)
+    ref.P = P_post + np.diag([0.0, 0.0, 64.0, 64.0])
+    ref.predict()
+    half_h = 3 * np.sqrt(ref.P[1, 1] + 1.0)
+    assert t.search_window[3] == pytest.approx(24 + 2 * half_h)
+    ref.update(np.array([box[0] + 12, box[1] + 12]))
+    np.testing.assert_allclose(t.kalman.x, ref.x.ravel(), atol=1e-9)
+    assert t.kalman.x[3] < -3.0                   # the velocity estimate turned upwards at once
+
+
+def test_manoeuvre_gate_zero_is_the_paper_tracker():
+    clip = _reversing_square_clip()
+    used = []
+    evaluate("kalman-covariance", clip, manoeuvre_gate=0,
+             on_frame=lambda i, t, f, b: used.append(t.manoeuvre))
+    assert not any(used)
+
+
 @pytest.mark.slow
 @pytest.mark.skipif("red-cube" not in clips.available(), reason="red-cube sample not available")
-@pytest.mark.parametrize("name", ["covariance", "kalman-covariance"])
-def test_trackers_follow_the_red_cube(name):
-    # Measured (book/04_region_covariance.md): both trackers keep IoU > 0.5 on well over
-    # 80 % of the 183 scored frames with the default threshold.
-    r = evaluate(name, "red-cube")
-    assert r.scores["tracking_rate"] > 0.8
+def test_red_cube_table1_claims():
+    # Measured on red-cube (book/05_kalman.md): both trackers 183/183 frames with IoU > 0.5
+    # (tracking rate 1.000); search rate covariance 0.448 %, kalman-covariance 0.348 %; at most
+    # 289 resp. 225 candidates per frame. The paper's detection rates are 87.1 % / 96.3 %: we
+    # assert at least the paper's proposed rate for both. Its search-rate claim (proposed
+    # evaluates fewer windows) holds; its explanation (fewer whole-frame searches) cannot
+    # show, because neither tracker searches the whole frame on this clip.
+    base, kal = evaluate("covariance", "red-cube"), evaluate("kalman-covariance", "red-cube")
+    for r in (base, kal):
+        assert r.scores["tracking_rate"] >= 0.963
+    assert np.nanmean(kal.extras["search_rate"][1:]) < np.nanmean(base.extras["search_rate"][1:])
+    assert np.nanmax(base.extras["candidates"][1:]) == 17 * 17
+    assert np.nanmax(kal.extras["candidates"][1:]) < 17 * 17
+
+
+@pytest.mark.slow
+@pytest.mark.skipif("yellow-ball" not in clips.available(), reason="yellow-ball not available")
+def test_yellow_ball_needs_the_manoeuvre_window():
+    # Measured (book/05_kalman.md): tracking rate covariance 0.916, kalman-covariance with the
+    # paper's settings (manoeuvre_gate=0) 0.496 — it loses the ball at the bounces — and with
+    # the book's manoeuvre re-search 0.992, at a lower search rate than the baseline
+    # (0.402 % vs 0.427 %).
+    base = evaluate("covariance", "yellow-ball")
+    paper = evaluate("kalman-covariance", "yellow-ball", manoeuvre_gate=0)
+    book = evaluate("kalman-covariance", "yellow-ball")
+    assert paper.scores["tracking_rate"] < base.scores["tracking_rate"]
+    assert book.scores["tracking_rate"] > base.scores["tracking_rate"]
+    assert book.scores["tracking_rate"] >= 0.95
+    assert np.nanmean(book.extras["search_rate"][1:]) < np.nanmean(base.extras["search_rate"][1:])

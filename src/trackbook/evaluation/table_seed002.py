@@ -8,11 +8,16 @@ evaluated candidate windows / all windows in the frame (the trackers' ``frame_re
 Regenerate the committed real-sequence table of chapter 04/05 with::
 
     PYTHONPATH=src python -m trackbook.evaluation.table_seed002 book/results/seed002_real.csv
+
+and try other settings of the seed-002 trackers with ``... OUT.csv manoeuvre_gate=0`` (the
+paper's behaviour) or any other ``param=value``.
 """
 
 from __future__ import annotations
 
+import ast
 import csv
+import dataclasses
 import os
 import sys
 
@@ -56,14 +61,47 @@ def table1_row(result, groundtruth) -> dict:
 def run(clip_names, trackers=("covariance", "kalman-covariance", "opencv-mil"), seed=0,
         max_frames=None, **params) -> list[dict]:
     """Table-1 rows for every tracker on every clip (params go to the seed-002 trackers)."""
+    from .. import trackers as _trackers
     rows = []
     for name in clip_names:
         clip = _clips.load(name)
         for t in trackers:
-            kw = params if t != "opencv-mil" else {}
+            # Each tracker gets the params it has (manoeuvre_* exist only for kalman-covariance).
+            fields = {f.name for f in dataclasses.fields(_trackers.get(t).Params)}
+            kw = {k: v for k, v in params.items() if k in fields}
             r = evaluate(t, clip, seed=seed, max_frames=max_frames, **kw)
             rows.append(table1_row(r, clip.groundtruth))
     return rows
+
+
+#: Where the committed real-sequence table lives, relative to the repository root.
+REAL_CSV = os.path.join("book", "results", "seed002_real.csv")
+
+
+def read_real_table(path=None) -> list[dict]:
+    """The committed real-sequence Table-1 rows (numbers as floats) for chapters 04/05.
+
+    Looked up as ``path`` if given, else ``results/seed002_real.csv`` next to the running
+    chapter (the book's build), else in the source tree this package was imported from (an
+    exported or copied notebook), so the book never needs the sequences themselves.
+    """
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = [path] if path is not None else [
+        os.path.join("results", "seed002_real.csv"),
+        os.path.join(here, os.pardir, os.pardir, os.pardir, REAL_CSV)]
+    for c in candidates:
+        if os.path.isfile(c):
+            with open(c, newline="") as f:
+                rows = list(csv.DictReader(f))
+            for r in rows:
+                r["frames"], r["misses"] = int(r["frames"]), int(r["misses"])
+                for k in COLUMNS[4:]:
+                    r[k] = float(r[k]) if r.get(k) not in (None, "") else float("nan")
+            return rows
+    raise FileNotFoundError(
+        f"seed002_real.csv not found (looked at {candidates}); run the chapter from book/ or "
+        "regenerate it: PYTHONPATH=src python -m trackbook.evaluation.table_seed002 "
+        f"{REAL_CSV}")
 
 
 def write_csv(rows, path) -> None:
@@ -79,16 +117,18 @@ def write_csv(rows, path) -> None:
 
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    if len(argv) != 1:
-        print("usage: python -m trackbook.evaluation.table_seed002 OUT.csv", file=sys.stderr)
+    if len(argv) < 1 or not all("=" in a for a in argv[1:]):
+        print("usage: python -m trackbook.evaluation.table_seed002 OUT.csv [param=value ...]",
+              file=sys.stderr)
         return 2
+    params = {k: ast.literal_eval(v) for k, v in (a.split("=", 1) for a in argv[1:])}
     seqs = _clips.find_sequences()
     if not seqs:
         print("no real sequences found (../shared/data/sequences)", file=sys.stderr)
         return 1
     rows = []
     for name in seqs:
-        rows += run([seqs[name]])
+        rows += run([seqs[name]], **params)
         for r in rows[-3:]:
             print(f"{r['clip']:14s} {r['tracker']:18s} auc={r['auc']:.3f} "
                   f"rate={r['detection_rate']:.3f} sr={r['search_rate']:.5f} "

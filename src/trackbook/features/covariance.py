@@ -89,6 +89,42 @@ def feature_image(frame: np.ndarray, features: str = "xyI|Ix||Iy|") -> np.ndarra
     return np.concatenate([x[..., None], y[..., None], rgb, ax[..., None], ay[..., None]], -1)
 
 
+def feature_planes(frame: np.ndarray, features: str = "xyI|Ix||Iy|", out=None) -> np.ndarray:
+    """The feature image of :func:`feature_image` channels first: d x H x W float64.
+
+    The same numbers, laid out as the contiguous planes :class:`IntegralCovariance` sums
+    (pass ``channels_first=True``), written into ``out`` if given — the trackers' fast path.
+    """
+    features = _check_feature_set(features)
+    frame = np.asarray(frame)
+    grey = _grey(frame)
+    H, W = grey.shape
+    colour = features == "xyRGB|Ix||Iy|"
+    if colour and frame.ndim != 3:
+        raise ValueError("the colour feature set 'xyRGB|Ix||Iy|' needs an H x W x 3 BGR frame.")
+    d = feature_dimension(features) - (1 if features == "rI|Ix||Iy|" else 0)
+    out = np.empty((d, H, W)) if out is None else out
+    c = 0
+    if features != "rI|Ix||Iy|":
+        out[0] = np.arange(W, dtype=np.float64)[None, :]
+        out[1] = np.arange(H, dtype=np.float64)[:, None]
+        c = 2
+    if colour:
+        for ch in (2, 1, 0):                                   # BGR frame -> R, G, B
+            out[c] = frame[..., ch]
+            c += 1
+    else:
+        out[c] = grey
+        c += 1
+    kx = np.array([[-1.0, 0.0, 1.0]])
+    for kernel in (kx, kx.T):
+        # Same [-1 0 1] filter and borders as _abs_gradients.
+        np.abs(cv2.filter2D(grey, cv2.CV_64F, kernel, borderType=cv2.BORDER_REPLICATE),
+               out=out[c])
+        c += 1
+    return out
+
+
 def region_covariance(F: np.ndarray) -> np.ndarray:
     """C_R = (1/MN) Σ (f_k − μ_R)(f_k − μ_R)ᵀ of one M x N x d feature patch (eq. 4).
 
@@ -99,16 +135,38 @@ def region_covariance(F: np.ndarray) -> np.ndarray:
     return d.T @ d / f.shape[0]
 
 
-def _integral_planes(planes) -> np.ndarray:
+class Workspace:
+    """Scratch arrays reused from one frame to the next.
+
+    A tracker builds integral tables of ~20 planes every frame. Freshly allocated arrays of a
+    few MB come from the operating system as new pages, and touching them for the first time
+    (page faults) cost more than the sums themselves; a tracker keeps one ``Workspace`` and
+    hands it to :class:`IntegralCovariance` so that memory is allocated once.
+    """
+
+    def __init__(self):
+        self._flat: dict[str, np.ndarray] = {}
+
+    def get(self, name: str, shape) -> np.ndarray:
+        """A C-contiguous float64 array of ``shape`` (contents undefined), reused by ``name``."""
+        n = int(np.prod(shape))
+        flat = self._flat.get(name)
+        if flat is None or flat.size < n:
+            flat = self._flat[name] = np.empty(n)
+        return flat[:n].reshape(shape)
+
+
+def _integral_planes(planes, out=None) -> np.ndarray:
     """Zero-padded summed-area tables of 2-D planes: S[c, y, x] = Σ planes[c][:y, :x], float64.
 
     One ``cv2.integral`` per contiguous plane: about ten times faster than one call on the
-    interleaved multi-channel image, and exact in float64.
+    interleaved multi-channel image, and exact in float64. ``out``: where to write S.
     """
     h, w = planes[0].shape
-    S = np.empty((len(planes), h + 1, w + 1))
+    S = np.empty((len(planes), h + 1, w + 1)) if out is None else out
     for c, p in enumerate(planes):
-        S[c] = cv2.integral(np.ascontiguousarray(p, dtype=np.float64), sdepth=cv2.CV_64F)
+        # Written straight into S[c] (contiguous, right shape and type): no copy per plane.
+        cv2.integral(np.ascontiguousarray(p, dtype=np.float64), S[c], sdepth=cv2.CV_64F)
     return S
 
 
@@ -134,6 +192,12 @@ class IntegralCovariance:
     radial : bool
         True for the eq. 3 feature set: F then holds [I, |Ix|, |Iy|] and the radius channel is
         added per window size with one correlation (``cv2.filter2D``) per feature.
+    channels_first : bool
+        True when F is d x h x w (from :func:`feature_planes`), the faster layout.
+    workspace : :class:`Workspace`, optional
+        Reuse its arrays for the planes and tables (a tracker passes the same one every
+        frame). The tables ``P``, ``Q`` then live in the workspace: valid until the next
+        ``IntegralCovariance`` built with it.
 
     Notes
     -----
@@ -141,22 +205,33 @@ class IntegralCovariance:
     so Q − P Pᵀ/n does not cancel away the digits of a 255² · 10⁵-sized sum.
     """
 
-    def __init__(self, F: np.ndarray, origin=(0, 0), radial: bool = False):
+    def __init__(self, F: np.ndarray, origin=(0, 0), radial: bool = False,
+                 workspace: Workspace | None = None, channels_first: bool = False):
         F = np.asarray(F, dtype=np.float64)
+        if F.ndim == 3 and channels_first:
+            F = np.moveaxis(F, 0, -1)                          # a view: h x w x d
         if F.ndim != 3 or F.shape[0] < 1 or F.shape[1] < 1:
             raise ValueError(f"F must be an h x w x d feature image, got shape {F.shape}.")
         self.origin = (int(origin[0]), int(origin[1]))
         self.shape = F.shape[:2]
         self.radial = bool(radial)
         k = F.shape[-1]
-        # Contiguous per-channel planes [F_i − offset_i, products]; one summed-area table each.
-        self.offset = np.array([F[..., i].mean() for i in range(k)])
-        planes = [F[..., i] - self.offset[i] for i in range(k)]
         self._iu = np.triu_indices(k)
-        planes += [planes[i] * planes[j] for i, j in zip(*self._iu)]
-        S = _integral_planes(planes)
+        # Contiguous per-channel planes [F_i − offset_i, products] in one array (one pass each,
+        # no strided reads of the interleaved image); one summed-area table per plane.
+        shape = (k + len(self._iu[0]),) + F.shape[:2]
+        planes = np.empty(shape) if workspace is None else workspace.get("planes", shape)
+        planes[:k] = np.moveaxis(F, -1, 0)       # a plain copy when F came channels first
+        self.offset = planes[:k].mean(axis=(1, 2))
+        planes[:k] -= self.offset[:, None, None]
+        for c, (i, j) in enumerate(zip(*self._iu), start=k):
+            np.multiply(planes[i], planes[j], out=planes[c])
+        out = None
+        if workspace is not None:
+            out = workspace.get("tables", (shape[0], shape[1] + 1, shape[2] + 1))
+        S = _integral_planes(planes, out)
         self.P, self.Q = S[:k], S[k:]
-        self._G = F - self.offset if radial else None
+        self._G = np.moveaxis(planes[:k], 0, -1).copy() if radial else None
         self._rcache: dict = {}
         self.d = k + (1 if radial else 0)
 
@@ -278,7 +353,7 @@ def forstner_distance(Ci, Cj, eps: float = 1e-6) -> np.ndarray:
 
 
 __all__ = [
-    "FEATURE_SETS", "feature_dimension", "feature_image", "region_covariance",
-    "IntegralCovariance", "covariance_of_box", "radial_template", "generalized_eigenvalues",
-    "forstner_distance",
+    "FEATURE_SETS", "feature_dimension", "feature_image", "feature_planes", "region_covariance",
+    "IntegralCovariance", "Workspace", "covariance_of_box", "radial_template",
+    "generalized_eigenvalues", "forstner_distance",
 ]

@@ -9,6 +9,9 @@
     only inside the predicted search window (the gate ``gate`` σ of the innovation covariance
     S = H P⁻ Hᵀ + R, so the window grows when the filter is unsure), takes the best candidate's
     centre as the measurement and updates the filter. Whole-frame search as above.
+    Not in the paper: when the best ρ is much worse than usual (``manoeuvre_gate``) the target
+    has probably changed velocity (a bounce); the window is searched again as if the
+    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 05, "The bounce").
 
 Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
 ``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
@@ -23,16 +26,21 @@ the "averaging search rate" of Table 1 once averaged over the frames.
 
 from __future__ import annotations
 
+import collections
 import dataclasses
 
 import numpy as np
 
-from ..features.covariance import FEATURE_SETS, IntegralCovariance, feature_image, forstner_distance
+from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
+                                   feature_dimension, feature_planes, forstner_distance)
 from ..features.motion import find_moving_region
 from ..filters.kalman import constant_velocity
 from ..params import param
 from .base import Tracker
 from .registry import register
+
+#: How many accepted frames the relative gate's median ρ looks back (one second at 25 fps).
+RHO_HISTORY = 25
 
 
 @dataclasses.dataclass(frozen=True)
@@ -59,6 +67,10 @@ class KalmanCovarianceParams(CovarianceParams):
     gate: float = param(3.0, 0.5, 10.0, 0.5, doc="search-window half-size in σ of "
                         "S = HP⁻Hᵀ + R")
     min_radius: int = param(4, 0, 64, 1, doc="smallest search-window half-size in px")
+    manoeuvre_gate: float = param(3.0, 0.0, 10.0, 0.5, doc="κ: a best ρ above κ·(median ρ of "
+                                  "the last accepted frames) signals a manoeuvre; 0 = never")
+    manoeuvre_sigma: float = param(8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity "
+                                   "change allowed on a manoeuvre: the second, larger window")
 
 
 def n_windows(frame_shape, size, stride: int) -> int:
@@ -114,9 +126,15 @@ class _CovarianceSearch(Tracker):
         # One pixel of context so the [-1 0 1] gradients at the crop's edge are the frame's.
         cx0, cy0 = max(x0 - 1, 0), max(y0 - 1, 0)
         cx1, cy1 = min(x1 + 1, W), min(y1 + 1, H)
-        F = feature_image(frame[cy0:cy1, cx0:cx1], self.params.features)
-        radial = self.params.features == "rI|Ix||Iy|"
-        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial)
+        if not hasattr(self, "_workspace"):
+            self._workspace = Workspace()
+        ws, features = self._workspace, self.params.features
+        radial = features == "rI|Ix||Iy|"
+        d = feature_dimension(features) - (1 if radial else 0)
+        F = feature_planes(frame[cy0:cy1, cx0:cx1], features,
+                           out=ws.get("features", (d, cy1 - cy0, cx1 - cx0)))
+        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial, workspace=ws,
+                                channels_first=True)
         return ic.covariances(boxes)
 
     def _score(self, frame, boxes):
@@ -171,9 +189,15 @@ class _CovarianceSearch(Tracker):
         self.distances = np.zeros(0)
         self.search_window = (float(x), float(y), float(w), float(h))
         self.best_rho = 0.0
+        self._recent_rho = collections.deque(maxlen=RHO_HISTORY)
         return np.array([x, y, w, h], dtype=float)
 
-    def _accept(self, frame, box):
+    def typical_rho(self) -> float:
+        """Median best ρ of the last accepted frames (NaN before the first one)."""
+        return float(np.median(self._recent_rho)) if self._recent_rho else float("nan")
+
+    def _accept(self, frame, box, rho):
+        self._recent_rho.append(rho)
         a = self.params.model_update
         if a > 0:
             C = self._covariances(frame, np.asarray(box, dtype=np.int64)[None])[0]
@@ -223,7 +247,7 @@ class CovarianceTracker(_CovarianceSearch):
         self.best_rho = rho
         if rho > self.params.threshold:
             return False, np.asarray(self.bbox, dtype=float)
-        self._accept(frame, box)
+        self._accept(frame, box, rho)
         self._center = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
         return True, box
 
@@ -238,10 +262,21 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     Best ρ above ``threshold`` → whole-frame search; still above → ``ok`` False, no update
     (P keeps growing, so the next window is larger) and the box follows the prediction.
 
+    Manoeuvre (the book's addition, off with ``manoeuvre_gate=0``): a constant-velocity model
+    with Q = I cannot follow a bounce (the velocity reverses in one frame), and the best
+    window inside the small Kalman window is then some background whose ρ can still be
+    below ``threshold``. So when the best ρ exceeds ``manoeuvre_gate`` times the median ρ of
+    the last accepted frames, the prediction is redone from the previous posterior with
+    σ_v² = ``manoeuvre_sigma``² added to the velocity variance (an impulsive process noise,
+    the "adjustable process noise" of manoeuvring-target tracking). Its S and window are
+    larger, and if its best window is better the update uses that P⁻, whose larger
+    velocity gain lets the velocity estimate jump with the target.
+
     Attributes (read-only, for drawing)
     -----------------------------------
     kalman : the :class:`~trackbook.filters.kalman.KalmanFilter` (``kalman.x``, ``kalman.P``)
-    prediction : (x⁻, P⁻) of the last frame, before the update
+    prediction : (x⁻, P⁻) of the last frame, before the update (the manoeuvre one if used)
+    manoeuvre : True when the last frame's measurement came from the manoeuvre window
     ellipse : (cx, cy, hx, hy, angle°) the predicted position's ``gate``-σ uncertainty ellipse
     search_window, candidates, distances, best_rho, model : as for ``covariance``
     """
@@ -255,6 +290,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         self._kf = constant_velocity((b[0] + b[2] / 2.0, b[1] + b[3] / 2.0), q=p.q, r=p.r,
                                      p0=p.p0)
         self.prediction = (self._kf.x.copy(), self._kf.P.copy())
+        self.manoeuvre = False
 
     def init_from_motion(self, frame0, frame1, **kwargs):
         """Initialise with no box: the moving region between two frames (Fig. 1 of Lee 2015).
@@ -285,9 +321,9 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         return (float(x[0]), float(x[1]), g * float(np.sqrt(ev[1])), g * float(np.sqrt(ev[0])),
                 angle)
 
-    def _update(self, frame):
-        self._n_evaluated = 0
-        H, W = frame.shape[:2]
+    def _predict_window(self, frame_shape):
+        """Predict (eq. 9–10) and return the search window's centre and half-size from S."""
+        H, W = frame_shape[:2]
         kf, p = self._kf, self.params
         kf.predict()
         # A prediction that left the frame cannot be searched; stop it at the border.
@@ -295,12 +331,35 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         if (cx, cy) != (kf.x[0], kf.x[1]):
             kf.x[:2] = (cx, cy)
             kf.x[2:] = 0.0
-        self.prediction = (kf.x.copy(), kf.P.copy())
         sigma = np.sqrt(np.diag(kf.innovation_covariance()))
         radius = (max(p.gate * sigma[0], p.min_radius), max(p.gate * sigma[1], p.min_radius))
-        box, rho, boxes, rhos = self._search(frame, (cx, cy), radius)
+        return (cx, cy), radius
+
+    def _update(self, frame):
+        self._n_evaluated = 0
+        kf, p = self._kf, self.params
+        posterior = (kf.x.copy(), kf.P.copy())
+        centre, radius = self._predict_window(frame.shape)
+        box, rho, boxes, rhos = self._search(frame, centre, radius)
+        self.manoeuvre = False
+        typical = self.typical_rho()
+        if p.manoeuvre_gate > 0 and p.manoeuvre_sigma > 0 and rho > p.manoeuvre_gate * typical:
+            # Much worse than usual: the target probably changed velocity (a bounce, a turn).
+            # Re-predict as if the velocity had been uncertain by σ_v — P⁺'s velocity block
+            # grows by σ_v² — so S, the window, and on update the velocity gain grow with it.
+            first = (kf.x.copy(), kf.P.copy(), centre, radius)
+            kf.x, kf.P = posterior[0].copy(), posterior[1].copy()
+            kf.P[2:, 2:] += p.manoeuvre_sigma ** 2 * np.eye(2)
+            centre2, radius2 = self._predict_window(frame.shape)
+            box2, rho2, boxes2, rhos2 = self._search(frame, centre2, radius2)
+            if rho2 < rho:
+                box, rho, boxes, rhos, centre, radius = box2, rho2, boxes2, rhos2, centre2, radius2
+                self.manoeuvre = True
+            else:
+                kf.x, kf.P = first[0], first[1]
+        self.prediction = (kf.x.copy(), kf.P.copy())
         self.candidates, self.distances = boxes, rhos
-        self.search_window = self._window_of((cx, cy), radius)
+        self.search_window = self._window_of(centre, radius)
         if rho > p.threshold:
             gbox, grho = self._whole_frame_search(frame)
             if grho < rho:
@@ -308,8 +367,8 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         self.best_rho = rho
         w, h = self._size
         if rho > p.threshold:
-            return False, np.array([cx - w / 2.0, cy - h / 2.0, w, h])
-        self._accept(frame, box)
+            return False, np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h])
+        self._accept(frame, box, rho)
         kf.update((box[0] + w / 2.0, box[1] + h / 2.0))
         return True, box
 

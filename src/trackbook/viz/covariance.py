@@ -84,6 +84,8 @@ def recorder(states: list):
             "ellipse": None if el is None else tuple(map(float, el)),
             "center": None if kf is None else (float(kf.x[0]), float(kf.x[1])),
             "candidates": int(tracker.frame_report()["candidates"]) if i else 0,
+            "manoeuvre": bool(getattr(tracker, "manoeuvre", False)),
+            "typical_rho": tracker.typical_rho() if hasattr(tracker, "typical_rho") else None,
         })
     return record
 
