@@ -108,7 +108,12 @@ def test_forstner_metric_properties(seed, d):
     assert forstner_distance(A, A, eps=0) == pytest.approx(0, abs=1e-6)
     assert forstner_distance(A, B, eps=0) == pytest.approx(forstner_distance(B, A, eps=0),
                                                            rel=1e-9)
-    M = rng.normal(size=(d, d)) + 3 * np.eye(d)  # invertible
+    # A random invertible M with condition number <= 4: congruence invariance is exact in
+    # exact arithmetic, and a well-conditioned M keeps floating point from hiding it
+    # (normal(d, d) + 3I can be nearly singular: seed 7529, d = 7 lost 5 digits).
+    Q1, _ = np.linalg.qr(rng.normal(size=(d, d)))
+    Q2, _ = np.linalg.qr(rng.normal(size=(d, d)))
+    M = Q1 @ np.diag(rng.uniform(0.5, 2.0, d)) @ Q2
     assert forstner_distance(M @ A @ M.T, M @ B @ M.T, eps=0) == pytest.approx(
         forstner_distance(A, B, eps=0), rel=1e-7)
     lam = generalized_eigenvalues(A, B, eps=0)
