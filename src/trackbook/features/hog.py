@@ -36,6 +36,8 @@ HOGDescriptor) computes this descriptor, hence this module.
 
 from __future__ import annotations
 
+import functools
+
 import cv2
 import numpy as np
 
@@ -49,9 +51,6 @@ HOG_CELL = 4
 HOG_BINS = 8
 #: Length of the descriptor of a 16 x 24 patch: (24/4) x (16/4) cells x 8 bins = 6 x 4 x 8.
 HOG_DIM = (HOG_PATCH_SIZE[1] // HOG_CELL) * (HOG_PATCH_SIZE[0] // HOG_CELL) * HOG_BINS
-
-#: OpenCV's limit on the rows of a remap map.
-SHRT_MAX = 32767
 
 #: The 5-tap Gaussian of step 1 (OpenCV's fixed kernel for ksize=5, sigma=0).
 GAUSS5 = np.array([1.0, 4.0, 6.0, 4.0, 1.0]) / 16.0
@@ -79,8 +78,22 @@ def gray_patches(bgr_patches: np.ndarray) -> np.ndarray:
     n, h, w = p.shape[:3]
     if n == 0:
         return np.zeros((0, h, w))
-    g = cv2.cvtColor(p.reshape(n * h, w, 3), cv2.COLOR_BGR2GRAY)
+    # one row per patch: OpenCV's per-row cost makes n * h short rows several times slower
+    g = cv2.cvtColor(p.reshape(n, h * w, 3), cv2.COLOR_BGR2GRAY)
     return g.reshape(n, h, w).astype(np.float64)
+
+
+def _pad_edges(patches: np.ndarray, k: int) -> np.ndarray:
+    """(N, h, w) patches padded by ``k`` pixels repeating each patch's own edge pixels
+    (``np.pad(mode="edge")``, written as five slice copies: about twice as fast)."""
+    n, h, w = patches.shape
+    out = np.empty((n, h + 2 * k, w + 2 * k), dtype=patches.dtype)
+    out[:, k:-k, k:-k] = patches
+    out[:, k:-k, :k] = patches[:, :, :1]
+    out[:, k:-k, -k:] = patches[:, :, -1:]
+    out[:, :k] = out[:, k:k + 1]
+    out[:, -k:] = out[:, -k - 1:-k]
+    return out
 
 
 def _blur(patches: np.ndarray) -> np.ndarray:
@@ -91,8 +104,7 @@ def _blur(patches: np.ndarray) -> np.ndarray:
     blur from ever reaching its neighbour in the stack.
     """
     n, h, w = patches.shape
-    padded = np.pad(patches, ((0, 0), (2, 2), (2, 2)), mode="edge")
-    tall = padded.reshape(n * (h + 4), w + 4)
+    tall = _pad_edges(np.asarray(patches, dtype=np.float64), 2).reshape(n * (h + 4), w + 4)
     out = cv2.sepFilter2D(tall, cv2.CV_64F, GAUSS5, GAUSS5, borderType=cv2.BORDER_REPLICATE)
     return out.reshape(n, h + 4, w + 4)[:, 2:-2, 2:-2]
 
@@ -107,12 +119,12 @@ def gradients(patches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     I = np.asarray(patches, dtype=np.float64)
     gx = np.empty_like(I)
     gy = np.empty_like(I)
-    gx[:, :, 1:-1] = I[:, :, 2:] - I[:, :, :-2]
-    gx[:, :, 0] = I[:, :, 1] - I[:, :, 0]        # replicated border: I(-1, y) = I(0, y)
-    gx[:, :, -1] = I[:, :, -1] - I[:, :, -2]
-    gy[:, 1:-1, :] = I[:, 2:, :] - I[:, :-2, :]
-    gy[:, 0, :] = I[:, 1, :] - I[:, 0, :]
-    gy[:, -1, :] = I[:, -1, :] - I[:, -2, :]
+    np.subtract(I[:, :, 2:], I[:, :, :-2], out=gx[:, :, 1:-1])
+    np.subtract(I[:, :, 1], I[:, :, 0], out=gx[:, :, 0])     # replicated border: I(-1, y) = I(0, y)
+    np.subtract(I[:, :, -1], I[:, :, -2], out=gx[:, :, -1])
+    np.subtract(I[:, 2:], I[:, :-2], out=gy[:, 1:-1])
+    np.subtract(I[:, 1], I[:, 0], out=gy[:, 0])
+    np.subtract(I[:, -1], I[:, -2], out=gy[:, -1])
     return gx, gy
 
 
@@ -124,14 +136,63 @@ def magnitude_angle(gx: np.ndarray, gy: np.ndarray) -> tuple[np.ndarray, np.ndar
     return m, theta
 
 
+def _octant_table() -> np.ndarray:
+    """Bin of every (sign g_x, sign g_y, sign(|g_y| - |g_x|)) for 8 bins of 45 degrees.
+
+    Built from the exact geometry of the half-open bins [k 45, (k+1) 45) degrees: the
+    quadrant (also half-open: g_x > 0, g_y >= 0 is quadrant 0, ...) gives bins 2q, 2q + 1,
+    and the diagonal |g_y| = |g_x| is where the upper bin starts.
+    """
+    table = np.zeros(27, dtype=np.intp)
+    for sx in (-1, 0, 1):
+        for sy in (-1, 0, 1):
+            for c in (-1, 0, 1):          # c = sign(|g_y| - |g_x|)
+                if sx > 0 and sy >= 0:
+                    b = 0 + (c >= 0)       # [0, 90): 45 deg and up when |g_y| >= |g_x|
+                elif sx <= 0 and sy > 0:
+                    b = 2 + (c <= 0)       # [90, 180): 135 deg and up when |g_x| >= |g_y|
+                elif sx < 0 and sy <= 0:
+                    b = 4 + (c >= 0)       # [180, 270)
+                elif sx >= 0 and sy < 0:
+                    b = 6 + (c <= 0)       # [270, 360)
+                else:
+                    b = 0                  # the zero gradient: atan2(0, 0) = 0, and it votes 0
+                table[(sx + 1) * 9 + (sy + 1) * 3 + (c + 1)] = b
+    return table
+
+
+_OCTANT = _octant_table()
+
+
 def orientation_bin(gx: np.ndarray, gy: np.ndarray, bins: int = HOG_BINS) -> np.ndarray:
     """Index u of the 45-degree bin [u 2pi/8, (u+1) 2pi/8) holding eq. 4's angle.
 
-    Computed as floor(atan2(g_y, g_x) * bins / 2pi) mod bins, which is the same bin as
-    eq. 4's theta + 2pi but never lets the rounding of "+ 2pi" push -0.0001 into bin 8.
+    Mathematically floor(theta * bins / 2pi) with eq. 4's theta in [0, 2pi). For the paper's
+    8 bins the bin follows from signs and one comparison alone (quadrant, then which side of
+    the diagonal): exact on the bin edges and about three times cheaper than ``arctan2``.
+    Other bin counts use floor(atan2(g_y, g_x) * bins / 2pi) mod bins (the mod, rather than
+    eq. 4's "+ 2pi", keeps -0.0001 rad out of bin ``bins``).
     """
+    gx = np.asarray(gx, dtype=np.float64)
+    gy = np.asarray(gy, dtype=np.float64)
+    if bins == 8:
+        code = np.sign(gx) * 9 + np.sign(gy) * 3 + np.sign(np.abs(gy) - np.abs(gx))
+        code += 13
+        return _OCTANT[code.astype(np.intp)]
     b = np.floor(np.arctan2(gy, gx) * (bins / (2 * np.pi))).astype(np.int64)
     return np.mod(b, bins)
+
+
+@functools.lru_cache(maxsize=16)
+def _vote_offsets(n: int, h: int, w: int, cell: int, bins: int) -> np.ndarray:
+    """Where pixel (y, x) of patch i votes: (i * cells + its cell) * bins, cached per shape
+    because a tracker asks for the same N x h x w every frame."""
+    cols = w // cell
+    cell_of_pixel = (np.arange(h)[:, None] // cell) * cols + np.arange(w)[None, :] // cell
+    dim = (h // cell) * cols * bins
+    out = cell_of_pixel[None] * bins + (np.arange(n) * dim)[:, None, None]
+    out.flags.writeable = False
+    return out
 
 
 def hog_of_patches(gray_patches: np.ndarray, cell: int = HOG_CELL,
@@ -164,8 +225,7 @@ def hog_of_patches(gray_patches: np.ndarray, cell: int = HOG_CELL,
     gx, gy = gradients(_blur(g))
     m = np.sqrt(gx * gx + gy * gy)                                     # eq. 3
     b = orientation_bin(gx, gy, bins)                                  # eq. 3-4
-    cell_of_pixel = (np.arange(h)[:, None] // cell) * cols + np.arange(w)[None, :] // cell
-    index = (cell_of_pixel[None] * bins + b) + (np.arange(n) * dim)[:, None, None]
+    index = b + _vote_offsets(n, h, w, cell, bins)
     hist = np.bincount(index.ravel(), weights=m.ravel(), minlength=n * dim).reshape(n, dim)
     total = hist.sum(axis=1, keepdims=True)
     # eq. 5's 1/f over the whole descriptor; a patch with no gradient has no shape: uniform.
@@ -206,18 +266,5 @@ def hog_descriptors(frame: np.ndarray, boxes, size=HOG_PATCH_SIZE) -> np.ndarray
     """
     frame = np.asarray(frame)
     if frame.ndim == 3 and frame.shape[2] == 3:
-        def patches_of(b):
-            return gray_patches(sample_patches(frame, b, size))
-    else:
-        gray = to_gray(frame)
-
-        def patches_of(b):
-            return sample_patches(gray, b, size)
-    boxes = np.asarray(boxes, dtype=float).reshape(-1, 4)
-    # cv2.remap refuses maps of 32767 rows or more, and sample_patches stacks the patches
-    # vertically: cut large batches (dense scans) into chunks that stay under that limit.
-    chunk = max(1, (SHRT_MAX - 1) // size[1])
-    if boxes.shape[0] <= chunk:
-        return hog_of_patches(patches_of(boxes))
-    return np.concatenate([hog_of_patches(patches_of(boxes[i:i + chunk]))
-                           for i in range(0, boxes.shape[0], chunk)])
+        return hog_of_patches(gray_patches(sample_patches(frame, boxes, size)))
+    return hog_of_patches(sample_patches(to_gray(frame), boxes, size))

@@ -41,7 +41,7 @@ import dataclasses
 
 import numpy as np
 
-from ..features.color import (HSV_BINS, bhattacharyya_coefficient, hsv_bin_index,
+from ..features.color import (HSV_BINS, bhattacharyya_coefficient, hsv_bin_index_u8,
                               kernel_weights, weighted_histograms)
 from ..features.hog import gray_patches, hog_of_patches
 from ..features.patches import sample_patches
@@ -127,7 +127,7 @@ class ColorHogParticleFilter(ParticleFilterTracker):
         the boxes to 16 x 24 px: the same as ``color_histograms`` and ``hog_descriptors``,
         with a single ``cv2.remap`` for both."""
         patches = sample_patches(frame, boxes, PATCH_SIZE)
-        feats = {"color": weighted_histograms(hsv_bin_index(patches, HSV_BINS), _KERNEL, _N_COLOR)}
+        feats = {"color": weighted_histograms(hsv_bin_index_u8(patches, HSV_BINS), _KERNEL, _N_COLOR)}
         if self.use_hog:
             feats["hog"] = hog_of_patches(gray_patches(patches))
         return feats
