@@ -156,7 +156,7 @@ class IncrementalSVD:
         if not self.fitted:
             raise ValueError("call fit(A) before reconstruction_error(Z).")
         Z = _as_matrix(Z, self.U.shape[0], name="Z")
-        Zc = Z - self.mean[:, None]
+        Zc = Z - self.mean[:, None] if self.centre else Z
         # ||z||^2 - ||U^T z||^2 would be cheaper but cancels catastrophically for z near span(U).
         r = Zc - self.U @ (self.U.T @ Zc)
         return np.sqrt(np.einsum("ij,ij->j", r, r))

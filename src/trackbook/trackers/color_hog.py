@@ -150,6 +150,8 @@ class ColorHogParticleFilter(ParticleFilterTracker):
 
     def _model(self, frame, box):
         self._reference = {k: v[0] for k, v in self._features(frame, box[None]).items()}
+        self._root_reference = {k: np.sqrt(v) for k, v in self._reference.items()}
+        self._learn_root = getattr(self.params, "feature_map", "sqrt") == "sqrt"
         self._subspaces = None
         self._collected = [] if self.learns else None
         self._n_learned = 0
@@ -189,13 +191,16 @@ class ColorHogParticleFilter(ParticleFilterTracker):
         beta = getattr(self.params, "anchor", 0.0)
         d2 = {}
         for k, h in feats.items():
+            root = np.sqrt(h)
             d2_ref = None
             if self._subspaces is None or beta > 0:
-                d2_ref = 1.0 - bhattacharyya_coefficient(h, self._reference[k])
+                # 1 - rho with rho = sum sqrt(h h_ref) = sqrt(h) . sqrt(h_ref)  (eq. 10-11)
+                d2_ref = np.clip(1.0 - root @ self._root_reference[k], 0.0, None)
             if self._subspaces is None:
                 d2[k] = d2_ref
                 continue
-            d2_sub = self._subspaces[k].reconstruction_error(self._z(h).T) ** 2
+            z = root if self._learn_root else h
+            d2_sub = self._subspaces[k].reconstruction_error(z.T) ** 2
             d2[k] = d2_sub if beta == 0 else beta * d2_ref + (1.0 - beta) * d2_sub
         return d2
 
@@ -239,7 +244,7 @@ class ColorHogParticleFilter(ParticleFilterTracker):
         the current model (``gate_on="model"``) or against the first frame (``"reference"``)."""
         if getattr(self.params, "gate_on", "model") == "reference":
             return self._fused_similarity({k: 1.0 - bhattacharyya_coefficient(v, self._reference[k])
-                                           for k, v in feats.items()})
+                                           for k, v in feats.items()})  # eq. 10-11
         return self._fused_similarity(self._distances2(feats))
 
     def _gate(self, feats) -> bool:
