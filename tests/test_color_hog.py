@@ -45,7 +45,8 @@ def test_paper_defaults():
     p = trackers.create("color-hog-ipca").params
     assert (p.n_particles, p.alpha, p.T, p.K, p.forgetting, p.resampler) == \
         (100, 0.1, 40, 2, 0.95, "multinomial")
-    assert p.learn_threshold == 0.0
+    assert p.learn_threshold == 0.0 and p.gate_k == 0.0 and p.learn_every == 1
+    assert p.anchor == 0.7          # beyond the paper (0); chosen on the dev sequences, ch. 08
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -93,6 +93,7 @@ def _write_csv(rows, columns, path) -> None:
         w.writeheader()
         for row in rows:
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+    os.chmod(tmp, 0o644)
     os.replace(tmp, path)
 
 
