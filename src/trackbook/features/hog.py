@@ -144,7 +144,7 @@ def orientation_bin(gx: np.ndarray, gy: np.ndarray, bins: int = HOG_BINS) -> np.
     (A sign-and-diagonal table avoids the arctangent but measured twice as slow in NumPy.)
     """
     b = np.floor(np.arctan2(gy, gx) * (bins / (2 * np.pi))).astype(np.intp)
-    return np.mod(b, bins, out=b)
+    return np.mod(b, bins)
 
 
 @functools.lru_cache(maxsize=16)
