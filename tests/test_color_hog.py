@@ -45,7 +45,8 @@ def test_paper_defaults():
     p = trackers.create("color-hog-ipca").params
     assert (p.n_particles, p.alpha, p.T, p.K, p.forgetting, p.resampler) == \
         (100, 0.1, 40, 2, 0.95, "multinomial")
-    assert p.learn_threshold == 0.0
+    assert p.learn_threshold == 0.0 and p.gate_k == 0.0 and p.learn_every == 1
+    assert p.anchor == 0.7          # beyond the paper (0); chosen on the dev sequences, ch. 08
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -59,8 +60,8 @@ def test_deterministic_under_seed(name, clip):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_follows_synthetic_target(name, clip):
-    """Measured (seed 0, default params): AUC 0.51 / 0.69 / 0.69 (color-pf / color-hog-pf /
-    color-hog-ipca), centre error 4-5 px.
+    """Measured (seed 0, default params): AUC 0.51 / 0.71 / 0.69 (color-pf / color-hog-pf /
+    color-hog-ipca), mean centre error 4.9 / 2.6 / 2.8 px.
     A tracker that stayed at the start box would score AUC < 0.1 (the target leaves it after
     ~8 frames), so 0.4 separates following from losing with margin."""
     r = evaluate(name, clip, seed=0)
@@ -146,8 +147,77 @@ SAMPLE = "robot-corridor-day"
 @pytest.mark.skipif(SAMPLE not in clips.available(), reason="sample clips not generated yet")
 @pytest.mark.parametrize("name", NAMES)
 def test_follows_sample_clip(name):
-    """Measured (seed 0, defaults) on robot-corridor-day: AUC 0.64 / 0.79 / 0.81 and tracking
+    """Measured (seed 0, defaults) on robot-corridor-day: AUC 0.64 / 0.79 / 0.80 and tracking
     rate 0.84 / 1.0 / 1.0 (color-pf / color-hog-pf / color-hog-ipca); 0.5 leaves margin for
     the colour-only baseline while a tracker that loses the walker scores well below it."""
     r = evaluate(name, SAMPLE, seed=0)
     assert r.scores["auc"] > 0.5, r.scores
+
+
+def test_anchor_one_is_the_fixed_reference_tracker(clip):
+    """anchor = 1 weighs only the first-frame Bhattacharyya term after T, so color-hog-ipca
+    must reproduce color-hog-pf box for box (learning draws no random numbers)."""
+    a = evaluate("color-hog-ipca", clip, seed=2, max_frames=25, T=5, anchor=1.0)
+    b = evaluate("color-hog-pf", clip, seed=2, max_frames=25)
+    np.testing.assert_array_equal(a.boxes, b.boxes)
+    assert a.extras["learning"][-1] == 1.0
+
+
+def test_anchor_mixes_the_two_distances(clip):
+    from trackbook.features.color import bhattacharyya_coefficient
+    t = trackers.create("color-hog-ipca", seed=0, T=5, K=2, anchor=0.3)
+    t.init(clip.frames[0], clip.groundtruth[0])
+    for i in range(1, 8):
+        t.update(clip.frames[i])
+    assert t.learning
+    feats = t._features(clip.frames[8], clip.groundtruth[7:10])
+    d2 = t._distances2(feats)
+    for k, h in feats.items():
+        sub = t._subspaces[k].reconstruction_error(np.sqrt(h).T) ** 2
+        ref = 1 - bhattacharyya_coefficient(h, t.reference[k])
+        np.testing.assert_allclose(d2[k], 0.3 * ref + 0.7 * sub)
+
+
+def test_learn_every_k_frames(clip):
+    t = trackers.create("color-hog-ipca", seed=0, T=50, learn_every=3)
+    t.init(clip.frames[0], clip.groundtruth[0])
+    for i in range(1, 16):
+        t.update(clip.frames[i])
+    assert t.n_learned == 1 + 15 // 3
+
+
+def test_relative_gate_refuses_an_occlusion(clip):
+    """After 20 frames of the target, frames where a grey square hides it fall far below the
+    recent similarities: the relative gate refuses them, the ungated tracker learns them."""
+    frames = [f.copy() for f in clip.frames[:30]]
+    for i in range(20, 30):
+        x, y, w, h = clip.groundtruth[i].astype(int)
+        frames[i][max(0, y - 20):y + h + 20, max(0, x - 20):x + w + 20] = 128
+    counts = {}
+    for k in (0.0, 2.0):
+        t = trackers.create("color-hog-ipca", seed=0, T=10, gate_k=k)
+        t.init(frames[0], clip.groundtruth[0])
+        for i in range(1, 20):
+            t.update(frames[i])
+        before = t.n_learned
+        for i in range(20, 30):
+            t.update(frames[i])
+        counts[k] = (t.n_learned - before, t.n_rejected)
+    assert counts[0.0] == (10, 0)
+    assert counts[2.0][0] <= 2 and counts[2.0][1] >= 8
+
+
+def test_relative_gate_rule_by_hand(monkeypatch):
+    """e = -log s against median + k * 1.4826 * MAD of the accepted energies. History of
+    energies 1, 2, 3, 4, 5: median 3, MAD 1, so with k = 2 the bound is 3 + 2.9652 = 5.9652."""
+    t = trackers.create("color-hog-ipca", seed=0, gate_k=2.0)
+    t._gate_history, t._n_rejected = [], 0
+    for e in (1.0, 2.0, 3.0, 4.0, 5.0):                 # the first five always pass
+        monkeypatch.setattr(t, "_estimate_similarity", lambda f, e=e: np.exp(-e))
+        assert t._gate(None)
+    for e, accepted in ((5.96, True), (6.0, False), (50.0, False)):
+        hist = list(t._gate_history)
+        monkeypatch.setattr(t, "_estimate_similarity", lambda f, e=e: np.exp(-e))
+        assert t._gate(None) == accepted, e
+        t._gate_history = hist                          # judge each against the same history
+    assert t.n_rejected == 2

@@ -143,3 +143,15 @@ def test_many_boxes_beyond_remap_limit():
     d = hog_descriptors(frame, boxes)
     assert d.shape == (1500, HOG_DIM)
     np.testing.assert_allclose(d[1400], hog_descriptors(frame, boxes[1400:1401])[0])
+
+
+
+def test_bins_on_axes_and_diagonals():
+    """Half-open bins [k 45, (k+1) 45): an angle on an axis or a diagonal starts its bin."""
+    from trackbook.features.hog import orientation_bin
+    for a in (1e-3, 1.0, 37.5):
+        gx = np.array([a, -a, -a, a, a, 0.0, -a, 0.0, 0.0])
+        gy = np.array([a, a, -a, -a, 0.0, a, 0.0, -a, 0.0])
+        np.testing.assert_array_equal(orientation_bin(gx, gy), [1, 3, 5, 7, 0, 2, 4, 6, 0])
+    assert orientation_bin(np.array(0.0), np.array(-1.0)) == 6      # 0-d input (chapter 02)
+

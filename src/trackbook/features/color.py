@@ -115,3 +115,39 @@ def bhattacharyya_coefficient(p, q) -> np.ndarray:
 def bhattacharyya_distance(p, q) -> np.ndarray:
     """D = sqrt(1 - rho), the distance in eq. 10-11 of Lee et al. 2012 (0 = identical)."""
     return np.sqrt(np.clip(1.0 - bhattacharyya_coefficient(p, q), 0.0, None))
+
+
+def _channel_tables(bins) -> np.ndarray:
+    """Per-channel look-up tables whose sum is the bin index of :func:`hsv_bin_index`."""
+    bh, bs, bv = bins
+    v = np.arange(256)
+    t = np.stack([np.minimum(v * bh // 180, bh - 1) * bs * bv,   # H in 0..179
+                  (v * bs // 256) * bv,
+                  v * bv // 256], axis=-1)
+    return t.astype(np.uint8).reshape(1, 256, 3)
+
+
+_TABLES = {}
+
+
+def hsv_bin_index_u8(bgr: np.ndarray, bins=HSV_BINS) -> np.ndarray:
+    """:func:`hsv_bin_index` as a ``uint8`` image, for histograms of at most 256 bins.
+
+    The same bins, computed without leaving OpenCV: ``cv2.LUT`` maps each HSV channel to its
+    share of the index (h * bs * bv, s * bv, v) and ``cv2.transform`` adds the three shares.
+    About three times faster than the integer arithmetic of :func:`hsv_bin_index` on the
+    100 patches of a particle filter.
+    """
+    if int(np.prod(bins)) > 256:
+        raise ValueError(f"bins = {bins} has more than 256 cells; use hsv_bin_index instead.")
+    key = tuple(int(b) for b in bins)
+    if key not in _TABLES:
+        _TABLES[key] = _channel_tables(key)
+    bgr = np.ascontiguousarray(bgr)
+    shape = bgr.shape[:-1]
+    # One long row: OpenCV pays per row, so the N x 1 column image of hsv_bin_index is ~10x
+    # slower than the same pixels laid out as a single row.
+    hsv = cv2.cvtColor(bgr.reshape(1, -1, 3), cv2.COLOR_BGR2HSV)
+    shares = cv2.LUT(hsv, _TABLES[key])
+    idx = cv2.transform(shares, np.ones((1, 3)))
+    return idx.reshape(shape)

@@ -122,7 +122,13 @@ class IncrementalSVD:
         U, S = self.U, self.S * f
         proj = U.T @ B_hat                                   # U^T B
         resid = B_hat - U @ proj
-        B_tilde, resid_coords = np.linalg.qr(resid)          # B~ and B~^T B
+        if resid.shape[1] == 1:
+            # m = 1 (one frame): B~ is the normalised residual and B~^T B its norm; no QR call.
+            r = float(np.sqrt(resid[:, 0] @ resid[:, 0]))
+            B_tilde = resid / r if r > 0 else np.zeros_like(resid)
+            resid_coords = np.array([[r]])
+        else:
+            B_tilde, resid_coords = np.linalg.qr(resid)      # B~ and B~^T B
         k, p = S.size, B_tilde.shape[1]
         R = np.zeros((k + p, k + B_hat.shape[1]))           # the middle matrix of eq. 6
         R[:k, :k] = np.diag(S)
@@ -150,7 +156,7 @@ class IncrementalSVD:
         if not self.fitted:
             raise ValueError("call fit(A) before reconstruction_error(Z).")
         Z = _as_matrix(Z, self.U.shape[0], name="Z")
-        Zc = Z - self.mean[:, None]
+        Zc = Z - self.mean[:, None] if self.centre else Z
         # ||z||^2 - ||U^T z||^2 would be cheaper but cancels catastrophically for z near span(U).
         r = Zc - self.U @ (self.U.T @ Zc)
         return np.sqrt(np.einsum("ij,ij->j", r, r))

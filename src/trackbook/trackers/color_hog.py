@@ -29,10 +29,19 @@ Decisions where the paper is silent or wrong (chapters 06 and 08 discuss them):
   exp(-D^2 / 0.32) ~ 1 for every particle: the weights would carry no information.
   ``feature_map="raw"`` keeps the raw histograms for comparison.
 - Sizes are kept in [min_size, frame size] and centres inside the frame (eq. 9 has no floor).
-- Gated learning (beyond the paper, whose conclusion blames unchecked accumulation): with
-  ``learn_threshold > 0`` a frame joins the subspace only if the similarity
-  alpha s_color + (1 - alpha) s_hog of its estimate, s = exp(-D^2 / 2 sigma^2) in [0, 1],
-  clears the threshold. The default 0 is the paper's behaviour (learn every frame).
+- Checked learning (beyond the paper, whose conclusion blames unchecked accumulation):
+
+  * **anchor** (default beta = 0.7): after T the squared distance of a feature is
+    beta (1 - rho(h, h_ref)) + (1 - beta) ||z - U U^T z||^2, so the first frame -- the one box
+    known to be the target -- keeps pulling the particles back when the subspace has learned
+    a drifted estimate (Matthews, Ishikawa & Baker 2004's drift correction, in a subspace
+    tracker). ``anchor=0`` is the paper's eq. 12-13.
+  * **relative gate** (``gate_k > 0``): a frame joins the subspace only if the energy
+    -log(alpha s_color + (1 - alpha) s_hog) of its estimate, s = exp(-D^2 / 2 sigma^2), is
+    within median + k MAD of the recently learned frames; ``learn_threshold`` is the older
+    absolute version (s >= threshold); ``learn_every`` learns every k-th frame only.
+
+  Chapter 08 lists every configuration tried and its AUC (``evaluation.table_seed000``).
 """
 
 from __future__ import annotations
@@ -41,7 +50,7 @@ import dataclasses
 
 import numpy as np
 
-from ..features.color import (HSV_BINS, bhattacharyya_coefficient, hsv_bin_index,
+from ..features.color import (HSV_BINS, bhattacharyya_coefficient, hsv_bin_index_u8,
                               kernel_weights, weighted_histograms)
 from ..features.hog import gray_patches, hog_of_patches
 from ..features.patches import sample_patches
@@ -95,6 +104,18 @@ class ColorHogIPCAParams(ColorHogPFParams):
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
                                    "(0 = every frame, as the paper)")
+    anchor: float = param(0.7, 0.0, 1.0, 0.05,
+                          "beta: after T the distance is beta D^2(h, h_ref) + (1 - beta) D^2_subspace, "
+                          "keeping the first frame as an anchor (0 = subspace only, as the paper; "
+                          "0.7 chosen on the development sequences, see chapter 08)")
+    gate_k: float = param(0.0, 0.0, 10.0, 0.5,
+                          "relative gate: learn a frame only if its energy -log(similarity) is "
+                          "<= median + k * MAD of the last accepted frames (0 = off, as the paper)")
+    gate_on: str = param("model", doc="what the relative gate measures: 'model' = the fused "
+                         "similarity under the current likelihood, 'reference' = the fused "
+                         "Bhattacharyya similarity to the first frame", choices=("model", "reference"))
+    gate_window: int = param(20, 3, 200, 1, "accepted frames the relative gate remembers")
+    learn_every: int = param(1, 1, 20, 1, "learn every k-th frame only (1 = every frame)")
     centre: bool = param(False, doc="learn mean-centred features (Ross et al.) instead of the "
                          "raw z of eq. 12-13 (the paper)")
     feature_map: str = param("sqrt", doc="learned feature z: 'sqrt' = sqrt(histogram) "
@@ -116,6 +137,7 @@ class ColorHogParticleFilter(ParticleFilterTracker):
     basis : dict of learned bases ("color": (256, k), "hog": (192, k)) or None before T.
     learning : bool, whether the likelihood uses the learned subspaces.
     n_learned : number of frames added to the subspaces (or collected before T).
+    n_rejected : number of frames the relative gate refused.
     """
 
     use_hog: bool = False
@@ -127,7 +149,7 @@ class ColorHogParticleFilter(ParticleFilterTracker):
         the boxes to 16 x 24 px: the same as ``color_histograms`` and ``hog_descriptors``,
         with a single ``cv2.remap`` for both."""
         patches = sample_patches(frame, boxes, PATCH_SIZE)
-        feats = {"color": weighted_histograms(hsv_bin_index(patches, HSV_BINS), _KERNEL, _N_COLOR)}
+        feats = {"color": weighted_histograms(hsv_bin_index_u8(patches, HSV_BINS), _KERNEL, _N_COLOR)}
         if self.use_hog:
             feats["hog"] = hog_of_patches(gray_patches(patches))
         return feats
@@ -138,10 +160,15 @@ class ColorHogParticleFilter(ParticleFilterTracker):
 
     def _model(self, frame, box):
         self._reference = {k: v[0] for k, v in self._features(frame, box[None]).items()}
+        self._root_reference = {k: np.sqrt(v) for k, v in self._reference.items()}
+        self._learn_root = getattr(self.params, "feature_map", "sqrt") == "sqrt"
         self._subspaces = None
         self._collected = [] if self.learns else None
         self._n_learned = 0
         self._similarities = {}
+        self._gate_history = []
+        self._n_rejected = 0
+        self._n_frames_seen = 0
         if self.learns:
             self._collected.append({k: self._z(v) for k, v in self._reference.items()})
             self._n_learned = 1
@@ -170,13 +197,21 @@ class ColorHogParticleFilter(ParticleFilterTracker):
 
     def _distances2(self, feats) -> dict:
         """D^2 per feature: Bhattacharyya (eq. 10-11) before learning, reconstruction error
-        (eq. 12-13) after."""
+        (eq. 12-13) after, mixed with the first-frame Bhattacharyya term when ``anchor > 0``."""
+        beta = getattr(self.params, "anchor", 0.0)
         d2 = {}
         for k, h in feats.items():
-            if self._subspaces is not None:
-                d2[k] = self._subspaces[k].reconstruction_error(self._z(h).T) ** 2
-            else:
-                d2[k] = 1.0 - bhattacharyya_coefficient(h, self._reference[k])
+            root = np.sqrt(h)
+            d2_ref = None
+            if self._subspaces is None or beta > 0:
+                # 1 - rho with rho = sum sqrt(h h_ref) = sqrt(h) . sqrt(h_ref)  (eq. 10-11)
+                d2_ref = np.clip(1.0 - root @ self._root_reference[k], 0.0, None)
+            if self._subspaces is None:
+                d2[k] = d2_ref
+                continue
+            z = root if self._learn_root else h
+            d2_sub = self._subspaces[k].reconstruction_error(z.T) ** 2
+            d2[k] = d2_sub if beta == 0 else beta * d2_ref + (1.0 - beta) * d2_sub
         return d2
 
     def _likelihood(self, frame, particles):
@@ -208,18 +243,60 @@ class ColorHogParticleFilter(ParticleFilterTracker):
             self._learn(frame, box)
         return ok, box
 
-    def _estimate_similarity(self, feats) -> float:
+    def _fused_similarity(self, d2) -> float:
         p = self.params
-        d2 = self._distances2(feats)
         s_c = float(similarity(d2["color"], p.sigma_color)[0])
         s_h = float(similarity(d2["hog"], p.sigma_hog)[0])
         return p.alpha * s_c + (1 - p.alpha) * s_h
 
+    def _estimate_similarity(self, feats) -> float:
+        """alpha s_color + (1 - alpha) s_hog of the estimate, s = exp(-D^2 / 2 sigma^2), under
+        the current model (``gate_on="model"``) or against the first frame (``"reference"``)."""
+        if getattr(self.params, "gate_on", "model") == "reference":
+            return self._fused_similarity({k: 1.0 - bhattacharyya_coefficient(v, self._reference[k])
+                                           for k, v in feats.items()})  # eq. 10-11
+        return self._fused_similarity(self._distances2(feats))
+
+    def _gate(self, feats) -> bool:
+        """Whether the estimate's features may join the model (beyond the paper).
+
+        Absolute gate: similarity s >= ``learn_threshold``. Relative gate (``gate_k > 0``): the
+        frame's energy e = -log s (about D^2 / 2 sigma^2) must lie within the typical range of
+        the frames learned recently, e <= median + k * 1.4826 * MAD (the MAD scaled to a
+        Gaussian's sigma); a frame far above it is an occlusion, a look-alike or drift, and
+        learning it would teach the model its own mistake. The range is taken on e, not on s:
+        s is squeezed against 0 for every poor frame, e keeps them apart. The first five
+        frames always pass (there is no range yet).
+        """
+        p = self.params
+        if p.learn_threshold <= 0 and p.gate_k <= 0:
+            return True
+        s = self._estimate_similarity(feats)
+        if p.learn_threshold > 0 and s < p.learn_threshold:
+            return False
+        if p.gate_k <= 0:
+            return True
+        e = -np.log(max(s, 1e-300))
+        hist = self._gate_history
+        if len(hist) >= 5:
+            v = np.asarray(hist)
+            med = float(np.median(v))
+            mad = 1.4826 * float(np.median(np.abs(v - med)))
+            if e > med + p.gate_k * mad:
+                self._n_rejected += 1
+                return False
+        hist.append(e)
+        del hist[:-p.gate_window]
+        return True
+
     def _learn(self, frame, box):
         """Collect the features at the estimated state; SVD at T, incremental updates after."""
         p = self.params
+        self._n_frames_seen += 1
+        if self._n_frames_seen % p.learn_every:
+            return                                   # not a learning frame: no features needed
         feats = self._features(frame, np.asarray(box)[None])
-        if p.learn_threshold > 0 and self._estimate_similarity(feats) < p.learn_threshold:
+        if not self._gate(feats):
             return
         z = {k: self._z(v[0]) for k, v in feats.items()}
         if self._subspaces is None:
@@ -230,6 +307,8 @@ class ColorHogParticleFilter(ParticleFilterTracker):
                     A = np.column_stack([c[k] for c in self._collected])   # d x T
                     self._subspaces[k] = IncrementalSVD(p.K, p.forgetting, centre=p.centre).fit(A)
                 self._collected = []
+                if p.gate_on == "model":
+                    self._gate_history = []       # the similarity changes meaning at T
         else:
             for k, v in z.items():
                 self._subspaces[k].partial_fit(v)                          # m = 1 (eq. 6-7)
@@ -263,6 +342,11 @@ class ColorHogParticleFilter(ParticleFilterTracker):
     @property
     def n_learned(self) -> int:
         return self._n_learned
+
+    @property
+    def n_rejected(self) -> int:
+        """Frames the relative gate (``gate_k > 0``) refused to learn."""
+        return self._n_rejected
 
     def frame_report(self) -> dict:
         """Per-frame numbers collected by ``trackbook.evaluate``: the mean likelihood of the
