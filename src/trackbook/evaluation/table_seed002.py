@@ -81,27 +81,18 @@ REAL_CSV = os.path.join("book", "results", "seed002_real.csv")
 def read_real_table(path=None) -> list[dict]:
     """The committed real-sequence Table-1 rows (numbers as floats) for chapters 04/05.
 
-    Looked up as ``path`` if given, else ``results/seed002_real.csv`` next to the running
-    chapter (the book's build), else in the source tree this package was imported from (an
-    exported or copied notebook), so the book never needs the sequences themselves.
+    Looked up as ``path`` if given, else by :func:`trackbook.evaluation.results.path`, so the
+    book never needs the sequences themselves.
     """
-    here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [path] if path is not None else [
-        os.path.join("results", "seed002_real.csv"),
-        os.path.join(here, os.pardir, os.pardir, os.pardir, REAL_CSV)]
-    for c in candidates:
-        if os.path.isfile(c):
-            with open(c, newline="") as f:
-                rows = list(csv.DictReader(f))
-            for r in rows:
-                r["frames"], r["misses"] = int(r["frames"]), int(r["misses"])
-                for k in COLUMNS[4:]:
-                    r[k] = float(r[k]) if r.get(k) not in (None, "") else float("nan")
-            return rows
-    raise FileNotFoundError(
-        f"seed002_real.csv not found (looked at {candidates}); run the chapter from book/ or "
-        "regenerate it: PYTHONPATH=src python -m trackbook.evaluation.table_seed002 "
-        f"{REAL_CSV}")
+    from . import results
+
+    with open(path if path is not None else results.path("seed002_real.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        r["frames"], r["misses"] = int(r["frames"]), int(r["misses"])
+        for k in COLUMNS[4:]:
+            r[k] = float(r[k]) if r.get(k) not in (None, "") else float("nan")
+    return rows
 
 
 def write_csv(rows, path) -> None:

@@ -1,0 +1,72 @@
+"""The exercises appendix runs, every solution passes its check, and every starter waits."""
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+APPENDIX = ROOT / "book" / "appendix_exercises.md"
+VERDICT = re.compile(r"^(\d+\.\d+): (PASS|FAIL|not answered yet)", re.M)
+
+
+def _text(cell) -> str:
+    return "".join(o.get("text", "") for o in cell.get("outputs", [])
+                   if o.get("output_type") == "stream")
+
+
+def _tags(cell) -> list:
+    return cell.get("metadata", {}).get("tags", [])
+
+
+def test_every_exercise_has_a_starter_and_a_hidden_solution():
+    jupytext = pytest.importorskip("jupytext")
+    nb = jupytext.read(APPENDIX)
+    code = [c for c in nb.cells if c.cell_type == "code"]
+    starters = [c for c in code if re.search(r"^answer_\d+_\d+ = None", c.source, re.M)]
+    solutions = [c for c in code if "hide-cell" in _tags(c)]
+    assert len(starters) >= 18
+    assert len(solutions) == len(starters)
+    for cell in starters + solutions:
+        assert re.search(r"^check_\d+_\d+\(answer_\d+_\d+\)", cell.source, re.M), cell.source
+
+
+@pytest.mark.slow
+def test_appendix_executes_and_every_solution_passes():
+    jupytext = pytest.importorskip("jupytext")
+    nbclient = pytest.importorskip("nbclient")
+    nb = jupytext.read(APPENDIX)
+    nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
+                            resources={"metadata": {"path": str(APPENDIX.parent)}}).execute()
+    code = [c for c in nb.cells if c.cell_type == "code"]
+    errors = [o for c in code for o in c.get("outputs", []) if o.get("output_type") == "error"]
+    assert not errors, errors[0]
+    starter_verdicts, solution_verdicts = {}, {}
+    for cell in code:
+        found = dict(VERDICT.findall(_text(cell)))
+        (solution_verdicts if "hide-cell" in _tags(cell) else starter_verdicts).update(found)
+    assert solution_verdicts, "no check ran in the solution cells"
+    assert set(solution_verdicts) == set(starter_verdicts)
+    failed = {k: v for k, v in solution_verdicts.items() if v != "PASS"}
+    assert not failed, f"solutions that do not pass their check: {failed}"
+    assert set(starter_verdicts.values()) == {"not answered yet"}
+
+
+def test_check_helper_fails_wrong_answers(capsys):
+    jupytext = pytest.importorskip("jupytext")
+    helper = next(c for c in jupytext.read(APPENDIX).cells if c.cell_type == "code")
+    ns = {}
+    exec(helper.source, ns)
+    check = ns["check"]
+    assert check("a", None, 1.0) is None
+    assert check("b", (0.7071, 1.0), (2 ** -0.5, 1.0)) is True      # rounded to 4 decimals
+    assert check("c", (0.70, 1.0), (2 ** -0.5, 1.0)) is False
+    assert check("d", (1, 2), (1, 2, 3)) is False                    # wrong shape
+    assert check("e", {20: 0.5}, {20: 0.5, 100: 0.6}) is False       # missing key
+    assert check("f", " IV", "iv") is True
+    assert check("g", "OCC", "IV") is False
+    assert check("h", 6, lambda: 6, atol=0) is True                  # lazy reference
+    assert check("i", lambda x: x, test=lambda f: f(2) == 3) is False
+    assert check("j", "not a function", test=lambda f: f(2) == 2) is False  # error -> FAIL
+    out = capsys.readouterr().out
+    assert "a: not answered yet" in out and "b: PASS" in out and "c: FAIL" in out
+    assert "j: FAIL (TypeError" in out
