@@ -60,6 +60,16 @@ def test_bench_writes_tables_and_resumes(tmp_path, tiny_folder, monkeypatch):
     assert len(calls) == 1
 
 
+def test_bench_leaves_the_matplotlib_backend_alone(tmp_path, tiny_folder):
+    import matplotlib
+    matplotlib.use("svg")                 # stands in for a notebook's inline backend
+    try:
+        bench.run(["opencv-mil"], [str(tiny_folder)], tmp_path, progress=False)
+        assert matplotlib.get_backend() == "svg"   # a notebook keeps its inline figures
+    finally:
+        matplotlib.use("Agg")
+
+
 def test_bench_interrupted_loses_nothing_finished(tmp_path, tiny_folder, monkeypatch):
     out = tmp_path / "bench"
     real = bench.evaluate

@@ -219,9 +219,9 @@ def write_summary(records, out) -> None:
 
 
 def _plot(records, out):
-    import matplotlib
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
+    # A bare Figure (no pyplot): drawing the plots must not touch the global backend, or a
+    # benchmark run inside a notebook would switch the kernel away from inline figures.
+    from matplotlib.figure import Figure
 
     from ..viz.core import CYCLE
 
@@ -231,7 +231,8 @@ def _plot(records, out):
             by.setdefault(r["row"]["tracker"], []).append(r)
     for kind, xs, xlabel in (("success", metrics.SUCCESS_THRESHOLDS, "overlap threshold"),
                              ("precision", metrics.PRECISION_THRESHOLDS, "centre error (px)")):
-        fig, ax = plt.subplots(figsize=(5, 3.6))
+        fig = Figure(figsize=(5, 3.6))
+        ax = fig.subplots()
         for i, (t, rs) in enumerate(by.items()):
             curve = np.mean([r[kind] for r in rs], axis=0)
             score = curve.mean() if kind == "success" else curve[20]
@@ -243,5 +244,4 @@ def _plot(records, out):
         fig.tight_layout()
         buf = io.BytesIO()
         fig.savefig(buf, format="png", dpi=110)
-        plt.close(fig)
         write_atomic(out / f"{kind}.png", buf.getvalue())
