@@ -45,17 +45,31 @@ def test_ci_runs_the_readme_commands():
     assert "readme_cmd test" in ci and "readme_cmd book" in ci
 
 
+def _pages():
+    return [f.split("/")[-1] for f in _toc_files()]
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory):
+    """All chapters exported with the documented command, as a teacher would."""
+    out = tmp_path_factory.mktemp("nb") / "notebooks"
+    assert cli.main(["notebooks", "--book", str(ROOT / "book"), "--out", str(out)]) == 0
+    return out
+
+
+def test_export_writes_every_page(exported):
+    assert sorted(p.stem for p in exported.glob("*.ipynb")) == sorted(_pages())
+
+
 @pytest.mark.slow
-def test_exported_introduction_runs(tmp_path):
+@pytest.mark.parametrize("page", _pages())
+def test_exported_notebook_runs(exported, page):
+    """Each exported notebook runs end to end in a plain kernel from its own folder."""
     jupytext = pytest.importorskip("jupytext")
     nbclient = pytest.importorskip("nbclient")
-    out = tmp_path / "nb"
-    assert cli.main(["notebooks", "--book", str(ROOT / "book"), "--out", str(out)]) == 0
-    exported = sorted(p.stem for p in out.glob("*.ipynb"))
-    assert "00_introduction" in exported
-    nb = jupytext.read(out / "00_introduction.ipynb")
-    nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
-                            resources={"metadata": {"path": str(out)}}).execute()
+    nb = jupytext.read(exported / f"{page}.ipynb")
+    nbclient.NotebookClient(nb, timeout=900, kernel_name="python3",
+                            resources={"metadata": {"path": str(exported)}}).execute()
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
               if o.get("output_type") == "error"]
     assert not errors

@@ -129,7 +129,10 @@ def test_evaluate_with_foreign_opencv_tracker_and_names(textured_frame):
     assert r.boxes.shape == (8, 4) and r.ms.shape == (8,)
     assert r.scores["auc"] > 0.5          # a textured shift is easy for MIL
     r2 = trackbook.evaluate("opencv-mil", clip)
-    np.testing.assert_allclose(r2.boxes, r.boxes)
+    # MIL is not repeatable within one process (see trackers.reference.OpenCVMIL), so the
+    # wrapper is checked for what it does promise, not for equal boxes
+    assert r2.tracker == "opencv-mil" and r2.scores["auc"] > 0.5
+    np.testing.assert_array_equal(r2.boxes[0], r.boxes[0])
     with pytest.raises(ValueError, match="not a tracker"):
         trackbook.evaluate(object(), clip)
     with pytest.raises(ValueError, match="params can only be given"):
