@@ -77,6 +77,23 @@ def _common_params():
     )
 
 
+def _candidate_params(n: int, n_max: int, n_doc: str):
+    """The candidates of eq. 9, s_t = A s_(t-1) + w: how many, and the noise w of A."""
+    return dict(
+        n_particles=param(n, 1, n_max, 1, n_doc),
+        noise_position=param(0.15, 0.0, 2.0, 0.01,
+                             "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
+        noise_velocity=param(0.05, 0.0, 1.0, 0.01,
+                             "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
+        noise_scale=param(0.0, 0.0, 0.3, 0.005,
+                          "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
+                          "size, for all three trackers: the colour likelihood alone lets the "
+                          "size drift, mostly smaller; chapter 07)"),
+        resampler=param("multinomial", doc="factored sampling (step ①)",
+                        choices=("multinomial", "systematic", "stratified", "residual")),
+    )
+
+
 def _dataclass(name, fields: dict, doc: str):
     ns = {"__annotations__": {k: type(v.default) for k, v in fields.items()}, "__doc__": doc}
     ns.update(fields)
@@ -84,34 +101,14 @@ def _dataclass(name, fields: dict, doc: str):
 
 
 CondensationParams = _dataclass("CondensationParams", dict(
-    n_particles=param(100, 1, 2000, 1,
-                      "N, number of candidates (100 in Cho & Kang 2005 §5.1, after Nummiaro)"),
-    noise_position=param(0.15, 0.0, 2.0, 0.01,
-                         "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
-    noise_velocity=param(0.05, 0.0, 1.0, 0.01,
-                         "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
-    noise_scale=param(0.0, 0.0, 0.3, 0.005,
-                      "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
-                      "size, for all three trackers: the colour likelihood alone lets the "
-                      "size drift, mostly smaller; chapter 07)"),
-    resampler=param("multinomial", doc="factored sampling (step ①)",
-                    choices=("multinomial", "systematic", "stratified", "residual")),
+    **_candidate_params(100, 2000, "N, number of candidates (100 in Cho & Kang 2005 §5.1, "
+                                   "after Nummiaro)"),
     **_common_params(),
 ), "Tunables of ``condensation`` (Nummiaro et al. 2002 as used by Cho & Kang 2005).")
 
 
 CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
-    n_particles=param(5, 1, 500, 1, "N, number of candidates (5 in Cho & Kang 2005 §5.1)"),
-    noise_position=param(0.15, 0.0, 2.0, 0.01,
-                         "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
-    noise_velocity=param(0.05, 0.0, 1.0, 0.01,
-                         "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
-    noise_scale=param(0.0, 0.0, 0.3, 0.005,
-                      "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
-                      "size, for all three trackers: the colour likelihood alone lets the "
-                      "size drift, mostly smaller; chapter 07)"),
-    resampler=param("multinomial", doc="factored sampling (step ①)",
-                    choices=("multinomial", "systematic", "stratified", "residual")),
+    **_candidate_params(5, 500, "N, number of candidates (5 in Cho & Kang 2005 §5.1)"),
     max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)"),
     eps=param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps pixels"),
     use_motion=param(True, doc="seed the prediction with the motion vector (p, q) of eq. 8"),
