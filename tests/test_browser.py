@@ -70,6 +70,8 @@ class _Page(HTMLParser):
         self.nav = []              # hrefs of the left navigation, in order
         self.cells = []            # per code cell: (has_widget, has_image)
         self.tracebacks = 0
+        self.raw_tables = 0        # markdown table rows shown as text (outside code)
+        self._code = 0
         self._in_nav = 0
         self._cell_depth = None
         self._depth = 0
@@ -79,6 +81,8 @@ class _Page(HTMLParser):
         a = dict(attrs)
         cls = a.get("class", "") or ""
         self._depth += 1
+        if tag in ("pre", "code", "script"):
+            self._code += 1
         if tag == "span" and re.search(r"\bMathJax\b", cls):
             self.mathjax += 1
         if tag == "img":
@@ -100,6 +104,8 @@ class _Page(HTMLParser):
             self.tracebacks += 1
 
     def handle_endtag(self, tag):
+        if tag in ("pre", "code", "script") and self._code:
+            self._code -= 1
         if self._in_nav and self._depth == self._in_nav:
             self._in_nav = 0
         if self._cell is not None and self._depth == self._cell_depth:
@@ -109,6 +115,9 @@ class _Page(HTMLParser):
     def handle_data(self, data):
         if "Traceback (most recent call last)" in data:
             self.tracebacks += 1
+        # a separator row |---| (smartquotes turn "---" into an em dash in rendered text)
+        if not self._code and re.search(r"\|\s*(?:-{3,}|[\u2014\u2013]+)\s*\|", data):
+            self.raw_tables += 1
 
 
 def _render(server, page):
@@ -123,6 +132,7 @@ def test_page_renders(server, page):
     p, dom = _render(server, page)
     assert "</html>" in dom, f"{page} did not load"
     assert p.tracebacks == 0, f"{page} shows a traceback"
+    assert p.raw_tables == 0, f"{page} shows a markdown table as raw text"
     src = (ROOT / f"{page}.md").read_text()
     if re.search(r"\$[^$\n]+\$|\$\$", src):
         assert p.mathjax > 0, f"{page} has maths that MathJax did not typeset"
