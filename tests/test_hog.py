@@ -155,3 +155,16 @@ def test_bins_on_axes_and_diagonals():
         np.testing.assert_array_equal(orientation_bin(gx, gy), [1, 3, 5, 7, 0, 2, 4, 6, 0])
     assert orientation_bin(np.array(0.0), np.array(-1.0)) == 6      # 0-d input (chapter 02)
 
+
+
+def test_orientation_bin_other_bin_counts_and_tiny_negative_angles():
+    """The cast-and-mask floor equals floor(theta * bins / 2 pi) mod bins for any bin count,
+    and an angle just below 0 is in the last bin, never a bin ``bins``."""
+    from trackbook.features.hog import orientation_bin
+    rng = np.random.default_rng(5)
+    gx, gy = rng.normal(size=(2, 5000))
+    theta = np.mod(np.arctan2(gy, gx), 2 * np.pi)
+    for bins in (6, 8, 9):
+        expected = np.minimum(np.floor(theta * bins / (2 * np.pi)).astype(int), bins - 1)
+        np.testing.assert_array_equal(orientation_bin(gx, gy, bins), expected)
+    assert orientation_bin(np.array([1.0]), np.array([-1e-9]))[0] == 7

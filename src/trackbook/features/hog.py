@@ -104,7 +104,12 @@ def _blur(patches: np.ndarray) -> np.ndarray:
     blur from ever reaching its neighbour in the stack.
     """
     n, h, w = patches.shape
-    tall = _pad_edges(np.asarray(patches, dtype=np.float64), 2).reshape(n * (h + 4), w + 4)
+    patches = np.asarray(patches)
+    if patches.dtype not in (np.uint8, np.float32, np.float64):
+        patches = patches.astype(np.float64)
+    # pad before converting: copying uint8 is cheaper, and OpenCV widens to float64 itself
+    # (exactly: the kernel's weights k / 16 are binary fractions)
+    tall = _pad_edges(patches, 2).reshape(n * (h + 4), w + 4)
     out = cv2.sepFilter2D(tall, cv2.CV_64F, GAUSS5, GAUSS5, borderType=cv2.BORDER_REPLICATE)
     return out.reshape(n, h + 4, w + 4)[:, 2:-2, 2:-2]
 
@@ -139,14 +144,24 @@ def magnitude_angle(gx: np.ndarray, gy: np.ndarray) -> tuple[np.ndarray, np.ndar
 def orientation_bin(gx: np.ndarray, gy: np.ndarray, bins: int = HOG_BINS) -> np.ndarray:
     """Index u of the 45-degree bin [u 2pi/8, (u+1) 2pi/8) holding eq. 4's angle.
 
-    Computed as floor(atan2(g_y, g_x) * bins / 2pi) mod bins, which is the same bin as
-    eq. 4's theta + 2pi but never lets the rounding of "+ 2pi" push -0.0001 into bin 8.
-    (A sign-and-diagonal table avoids the arctangent but measured twice as slow in NumPy.)
+    Computed as floor(atan2(g_y, g_x) * bins / 2pi + bins) mod bins, the same bin as eq. 4's
+    theta + 2pi. The shift by ``bins`` (not 2pi) makes every value positive, so the floor is a
+    plain integer cast, and an angle just below 0 lands in bin 7 and never in a bin 8.
+    Only an angle within ~1e-15 of a bin edge can be rounded onto the edge (and so into the
+    upper bin); the blurred uint8 patches of the trackers have integer-over-256 gradients,
+    whose angles are never that close to an edge without being on it.
+    (A sign-and-diagonal table avoids the arctangent but measured twice as slow in NumPy;
+    ``np.floor`` + ``np.mod`` measured five times slower than this cast and mask.)
     """
     t = np.arctan2(gy, gx)
     t *= bins / (2 * np.pi)
-    b = np.floor(t).astype(np.intp)
-    return np.mod(b, bins)
+    t += bins                                   # (-pi, pi] -> (bins / 2, 3 bins / 2]
+    b = t.astype(np.intp)                       # floor, as t > 0
+    if bins & (bins - 1) == 0:
+        b &= bins - 1                           # mod for a power of two, ~15x cheaper
+    else:
+        np.mod(b, bins, out=b)
+    return b
 
 
 @functools.lru_cache(maxsize=16)
@@ -175,7 +190,7 @@ def hog_of_patches(gray_patches: np.ndarray, cell: int = HOG_CELL,
     -------
     (N, (h / cell) * (w / cell) * bins) float array, rows sum to 1 (uniform for a flat patch).
     """
-    g = np.asarray(gray_patches, dtype=np.float64)
+    g = np.asarray(gray_patches)
     if g.ndim != 3:
         raise ValueError(f"gray_patches must be an (N, h, w) array, got shape {g.shape}.")
     n, h, w = g.shape
@@ -188,7 +203,7 @@ def hog_of_patches(gray_patches: np.ndarray, cell: int = HOG_CELL,
     dim = rows * cols * bins
     if n == 0:
         return np.zeros((0, dim))
-    gx, gy = gradients(_blur(g))
+    gx, gy = gradients(_blur(g))                                       # eq. 2
     # in-place arithmetic: 100 patches make ~300 kB per temporary, and fewer temporaries
     # stay in cache
     index = orientation_bin(gx, gy, bins)                              # eq. 3-4

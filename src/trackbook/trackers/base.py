@@ -14,6 +14,7 @@ from typing import ClassVar
 import numpy as np
 
 from .._checks import check_box_in_frame, check_frame
+from .._memory import keep_freed_memory
 from ..params import make_params
 
 
@@ -61,6 +62,7 @@ class Tracker:
             raise ValueError(f"seed must be an int or None, got {seed!r}.")
         self.seed = seed
         self._params = make_params(self.Params, params)
+        keep_freed_memory()     # per-frame temporaries reuse memory instead of page-faulting
         self.rng = np.random.default_rng(seed)
         self._shape = None
         self.bbox = None
