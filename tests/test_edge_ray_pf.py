@@ -194,3 +194,16 @@ def test_edge_ray_pf_on_patterned_object():
     r = trackbook.evaluate("edge-ray-pf", "patterned-object", seed=0)
     assert r.scores["auc"] > 0.4
     assert r.scores["mean_center_error"] < 25
+
+
+@pytest.mark.parametrize("name", ["edge-ray-pf", "hsi-color-pf", "hog-pf"])
+def test_velocity_gain_scales_the_motion_added_to_the_prediction(name):
+    """v = g (C_t - C_{t-1}): g = 1 is the paper, 0 a pure random walk, 0.5 half the motion."""
+    frames, boxes = scene(n=4)
+    for g in (1.0, 0.5, 0.0):
+        t = trackers.create(name, seed=3, velocity_gain=g)
+        t.init(frames[0], boxes[0])
+        before = np.array(t.estimate, dtype=float)
+        t.update(frames[1])
+        assert not t.lost
+        np.testing.assert_allclose(t.velocity, g * (np.asarray(t.estimate) - before), atol=1e-12)

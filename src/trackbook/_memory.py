@@ -6,7 +6,7 @@ a dozen of them. glibc's ``malloc`` serves blocks over 128 kB with ``mmap`` and 
 back to the kernel on ``free`` (and trims the heap once more than twice that is free at its
 top), so every frame the same memory is mapped again and touched page by page: in a virtual
 machine those page faults measured as half of ``hsi-color-pf``'s time and a third of
-``color-hog-ipca``'s (``trackbook bench`` on MotorRolling, same frames, same boxes).
+``hog-pf``'s (``trackbook bench`` on MotorRolling, same frames, same boxes).
 
 :func:`keep_freed_memory` raises the two thresholds with ``mallopt`` so that arrays under
 16 MB come from the heap and up to 64 MB of freed heap stays mapped for the next frame. The

@@ -20,10 +20,12 @@ class CentreParticleFilter(ParticleFilterTracker):
 
     Params used (the subclass's ``Params`` must define them): ``n_particles``, ``sigma`` (the
     random-walk standard deviation in pixels), ``lost_growth`` (the spread is multiplied by
-    this on every consecutive lost frame), ``resampler``.
+    this on every consecutive lost frame), ``resampler``, ``velocity_gain``.
 
-    Motion model: ``x_t = x_{t-1} + v + N(0, sigma^2)``, with ``v`` the last change of the
-    estimate (0 right after ``init`` and after a lost frame). After a frame in which all
+    Motion model: ``x_t = x_{t-1} + v + N(0, sigma^2)``, with ``v = g (C_t - C_{t-1})`` the
+    last change of the estimate times the gain ``g = velocity_gain`` (1 in the paper and
+    SPEC 5.2; 0 right after ``init`` and after a lost frame). A gain below 1 damps a velocity
+    measured from two noisy estimates (chapter 03 measures it). After a frame in which all
     particles weighed zero, the particles are drawn afresh around the last estimate with the
     widened spread ``sigma * lost_growth^k`` (k lost frames in a row, capped at a quarter of
     the frame), so the filter searches a growing area until the target returns.
@@ -70,7 +72,8 @@ class CentreParticleFilter(ParticleFilterTracker):
         if ok:
             self._lost_run = 0
             # right after a lost spell the jump back is a relocation, not a motion
-            self.velocity = np.zeros(2) if was_lost else self.estimate - previous
+            g = float(self.params.velocity_gain)
+            self.velocity = np.zeros(2) if was_lost else g * (self.estimate - previous)
         return ok, box
 
     def _on_lost(self):

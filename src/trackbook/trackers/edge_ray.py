@@ -43,6 +43,8 @@ class EdgeRayParams:
     adapt_scale: bool = param(False, doc="box size follows the weighted median Ratio (not in paper)")
     model_rate: float = param(0.0, 0.0, 0.5, 0.01,
                               "rate of blending M towards the estimate's rays (0 = paper)")
+    velocity_gain: float = param(1.0, 0.0, 1.0, 0.05, "fraction g of the last motion of the "
+                                 "estimate added in the prediction (1 = the paper)")
     lost_growth: float = param(1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame")
     resampler: str = param("multinomial", doc="resampling scheme",
                            choices=("multinomial", "systematic", "stratified", "residual"))

@@ -33,6 +33,8 @@ class AppearanceParams:
     sigma: float = param(4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction, pixels")
     obs_sigma: float = param(0.2, 0.01, 1.0, 0.01,
                              "sigma of the likelihood exp(-D^2 / 2 sigma^2)")
+    velocity_gain: float = param(1.0, 0.0, 1.0, 0.05, "fraction g of the last motion of the "
+                                 "estimate added in the prediction (1 = the paper)")
     lost_growth: float = param(1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame")
     resampler: str = param("multinomial", doc="resampling scheme",
                            choices=("multinomial", "systematic", "stratified", "residual"))
