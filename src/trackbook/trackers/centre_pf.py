@@ -10,17 +10,33 @@ a particle is weighted (``_likelihood``).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
-from ..filters.particle import ParticleFilterTracker
+from ..filters.particle import RESAMPLERS, ParticleFilterTracker
+from ..params import param
+
+
+@dataclasses.dataclass(frozen=True)
+class CentrePFParams:
+    """The knobs every seed-001 tracker shares: the filter, not the observation model."""
+
+    n_particles: int = param(300, 1, 999, 1, "N, number of particles (Kim et al. 2016: up to 999)")
+    sigma: float = param(4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction, pixels")
+    velocity_gain: float = param(1.0, 0.0, 1.0, 0.05, "fraction g of the last motion of the "
+                                 "estimate added in the prediction (1 = the paper)")
+    lost_growth: float = param(1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame")
+    resampler: str = param("multinomial", doc="resampling scheme", choices=tuple(RESAMPLERS))
 
 
 class CentreParticleFilter(ParticleFilterTracker):
     """SIR particle filter on the centre ``(x, y)`` of a box of fixed size (scale a hook).
 
-    Params used (the subclass's ``Params`` must define them): ``n_particles``, ``sigma`` (the
-    random-walk standard deviation in pixels), ``lost_growth`` (the spread is multiplied by
-    this on every consecutive lost frame), ``resampler``, ``velocity_gain``.
+    Params (:class:`CentrePFParams`, which a subclass's ``Params`` extends): ``n_particles``,
+    ``sigma`` (the random-walk standard deviation in pixels), ``velocity_gain``,
+    ``lost_growth`` (the spread is multiplied by this on every consecutive lost frame),
+    ``resampler``.
 
     Motion model: ``x_t = x_{t-1} + v + N(0, sigma^2)``, with ``v = g (C_t - C_{t-1})`` the
     last change of the estimate times the gain ``g = velocity_gain`` (1 in the paper and

@@ -25,14 +25,12 @@ import numpy as np
 
 from ..features import edge_rays as er
 from ..params import param
-from .centre_pf import CentreParticleFilter
+from .centre_pf import CentreParticleFilter, CentrePFParams
 from .registry import register
 
 
 @dataclasses.dataclass(frozen=True)
-class EdgeRayParams:
-    n_particles: int = param(300, 1, 999, 1, "N, number of particles (eq. 2; paper: up to 999)")
-    sigma: float = param(4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction, pixels")
+class EdgeRayParams(CentrePFParams):
     ratio_low: float = param(0.8, 0.1, 1.0, 0.05, "lower bound of the Ratio window (eq. 5)")
     ratio_high: float = param(1.2, 1.0, 5.0, 0.05, "upper bound of the Ratio window (eq. 5)")
     canny_low: float = param(50.0, 0.0, 500.0, 5.0, "Canny low hysteresis threshold")
@@ -43,11 +41,6 @@ class EdgeRayParams:
     adapt_scale: bool = param(False, doc="box size follows the weighted median Ratio (not in paper)")
     model_rate: float = param(0.0, 0.0, 0.5, 0.01,
                               "rate of blending M towards the estimate's rays (0 = paper)")
-    velocity_gain: float = param(1.0, 0.0, 1.0, 0.05, "fraction g of the last motion of the "
-                                 "estimate added in the prediction (1 = the paper)")
-    lost_growth: float = param(1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame")
-    resampler: str = param("multinomial", doc="resampling scheme",
-                           choices=("multinomial", "systematic", "stratified", "residual"))
 
 
 @register

@@ -23,21 +23,14 @@ from ..features.color import bhattacharyya_coefficient
 from ..features.hog import hog_descriptors
 from ..features.hsi import hsi_histograms
 from ..params import param
-from .centre_pf import CentreParticleFilter
+from .centre_pf import CentreParticleFilter, CentrePFParams
 from .registry import register
 
 
 @dataclasses.dataclass(frozen=True)
-class AppearanceParams:
-    n_particles: int = param(300, 1, 999, 1, "N, number of particles (as edge-ray-pf)")
-    sigma: float = param(4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction, pixels")
+class AppearanceParams(CentrePFParams):
     obs_sigma: float = param(0.2, 0.01, 1.0, 0.01,
                              "sigma of the likelihood exp(-D^2 / 2 sigma^2)")
-    velocity_gain: float = param(1.0, 0.0, 1.0, 0.05, "fraction g of the last motion of the "
-                                 "estimate added in the prediction (1 = the paper)")
-    lost_growth: float = param(1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame")
-    resampler: str = param("multinomial", doc="resampling scheme",
-                           choices=("multinomial", "systematic", "stratified", "residual"))
 
 
 class _AppearancePF(CentreParticleFilter):
