@@ -28,6 +28,7 @@ FILES = {
     "seed000_real.csv": (1e-5, "seed"),      # written with 6 significant digits
     "seed001_real.csv": (1e-9, None),
     "seed001_variants.csv": (1e-9, "seed"),  # the library's trackers only, seed 0 only
+    "seed002_real.csv": (1e-5, None),        # 6 significant digits
     "seed003_real.csv": (5e-5, None),        # written with 4 decimals
 }
 
