@@ -93,7 +93,8 @@ def _edge_image_x(frame, p, gain=1.0):
 
 
 def _mid(d):
-    """Mean of the two middle values of the last axis (eq. 5's 4th and 5th of 8)."""
+    """Mean of the two middle values of the last axis: eq. 5's 4th and 5th of 8, as
+    ``er.median_pair_mean``, but for any number of rays (the pooled 40- and 72-ray models)."""
     n = d.shape[-1]
     s = np.partition(d, (n // 2 - 1, n // 2), axis=-1)
     return 0.5 * (s[..., n // 2 - 1] + s[..., n // 2])

@@ -3,7 +3,7 @@
 Chapters read these files instead of re-running minutes of tracking, so a change to a tracker
 or a feature can leave them stale without any chapter failing (``seed001_real.csv`` once kept
 ``hog-pf`` rows from before a HOG fix). This re-runs every deterministic tracker of each file
-on its shortest row's sequence and demands the committed AUC. OpenCV's MIL is left out: it does
+on one short sequence (Crossing, 120 frames) and demands the committed AUC. OpenCV's MIL is left out: it does
 not repeat within a process. When a tracker changes on purpose, regenerate the file with the
 command its chapter gives.
 """
