@@ -169,7 +169,8 @@ def cmd_notebooks(args) -> int:
     import jupytext
 
     book = Path(args.book)
-    chapters = sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
+    chapters = (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
+                + sorted(book.glob("lab_notes_*.md")))
     if not chapters:
         raise SystemExit(f"no chapters in {book}; run from the repository root or pass --book.")
     out = Path(args.out)

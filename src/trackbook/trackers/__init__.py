@@ -11,6 +11,7 @@ matches one chapter of the book.
 
 from __future__ import annotations
 
+from .. import params as _params
 from .._checks import clip_box
 from . import registry as _registry
 from .base import Tracker
@@ -45,11 +46,34 @@ def get(name: str) -> type[Tracker]:
         ) from None
 
 
-def create(name: str, seed: int | None = 0, **params) -> Tracker:
-    """Create the tracker called ``name`` with a seed and keyword params (its ``Params`` fields)."""
-    return get(name)(seed=seed, **params)
+PRESETS = ("book", "paper")
+
+
+def create(name: str, seed: int | None = 0, preset: str = "book", **params) -> Tracker:
+    """Create the tracker called ``name`` with a seed and keyword params (its ``Params`` fields).
+
+    ``preset="book"`` (the default) starts from the book's defaults; ``preset="paper"`` starts
+    from the values the paper prints (see :func:`departures` for where the two differ). Keyword
+    params override either preset.
+    """
+    if preset not in PRESETS:
+        raise ValueError(f"unknown preset {preset!r}; use one of {', '.join(PRESETS)}.")
+    cls = get(name)
+    if preset == "paper":
+        params = {**_params.paper_values(cls.Params), **params}
+    return cls(seed=seed, **params)
+
+
+def departures(name: str) -> list[dict]:
+    """Where the book's defaults for ``name`` are not the printed method.
+
+    Rows ``{param, paper, book, why}``: the paper's value (or ``"not printed"``), the book's
+    default and one line on why. Each chapter's departures table is generated from this.
+    """
+    return _params.departures(get(name).Params)
 
 
 register = _registry.register
 
-__all__ = ["MultiTracker", "Tracker", "available", "create", "get", "register", "clip_box"]
+__all__ = ["MultiTracker", "Tracker", "available", "create", "departures", "get", "register",
+           "clip_box"]

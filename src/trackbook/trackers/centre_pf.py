@@ -14,7 +14,8 @@ import dataclasses
 
 import numpy as np
 
-from ..filters.particle import RESAMPLERS, ParticleFilterTracker
+from ..filters.particle import RESAMPLERS
+from .particle_filter import ParticleFilterTracker
 from ..params import param
 
 

@@ -56,7 +56,8 @@ from ..features.hog import gray_patches, hog_of_patches
 from ..features.patches import sample_patches
 from ..filters.motion import (VX, VY, W, H, box_to_state, clamp_states, fuse, gaussian_likelihood,
                               predict_eq9, similarity, states_to_boxes)
-from ..filters.particle import RESAMPLERS, ParticleFilterTracker, effective_sample_size
+from ..filters.particle import RESAMPLERS, effective_sample_size
+from .particle_filter import ParticleFilterTracker
 from ..learning.incremental_svd import IncrementalSVD
 from ..params import param
 from .registry import register

@@ -34,7 +34,7 @@ import numpy as np
 from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift_with_scale,
                                   region_around)
 from ..filters.optical_flow import motion_vector, pyramid
-from ..filters.particle import ParticleFilterTracker
+from .particle_filter import ParticleFilterTracker
 from ..params import param
 from .base import Tracker, readonly
 from .registry import register
