@@ -136,43 +136,126 @@ def per_attribute(rows, attributes: dict, codes=tuple(DIFFICULTIES)) -> list[dic
     return out
 
 
-def check_claims(rows, clips, papers=PAPERS) -> list[dict]:
-    """Each paper's central claim tested on ``rows`` restricted to ``clips``.
+#: Each claim as pairwise comparisons ``(better, worse)``: "better scores higher than worse".
+CLAIM_PAIRS = {
+    "000": [("color-hog-pf", "color-pf"), ("color-hog-ipca", "color-hog-pf")],
+    "001": [("hog-pf", "hsi-color-pf"), ("edge-ray-pf", "hog-pf")],
+    "002": [("kalman-covariance", "covariance")],
+    "003": [("condensation-mean-shift", "condensation"),
+            ("condensation-mean-shift", "mean-shift")],
+}
 
-    Returns rows ``{paper, claim, paper's figures, ours, holds}``, ``holds`` being
-    ``"yes"``, ``"no"`` or ``"n/a"`` (trackers missing from the rows).
+VERDICTS = ("holds", "fails", "inconclusive")
+
+
+def paired_differences(rows, better: str, worse: str, metric: str = "auc",
+                       clips=None) -> dict[str, list[float]]:
+    """Per sequence, the paired differences ``score(better) - score(worse)``, one per seed.
+
+    Rows pair when they share ``clip`` and ``seed`` (a missing ``seed`` counts as 0); a
+    sequence where either tracker has no score is left out.
+    """
+    def key(r):
+        return r["clip"], int(r.get("seed") or 0)
+
+    def scores(name):
+        return {key(r): float(r[metric]) for r in rows
+                if r["tracker"] == name and r.get(metric) is not None
+                and (clips is None or r["clip"] in clips) and np.isfinite(float(r[metric]))}
+
+    b, w = scores(better), scores(worse)
+    out: dict[str, list[float]] = {}
+    for k in sorted(set(b) & set(w)):
+        out.setdefault(k[0], []).append(b[k] - w[k])
+    return out
+
+
+def bootstrap_mean_difference(diffs: dict[str, list[float]], n_boot: int = 10_000,
+                              level: float = 0.95, seed: int = 0) -> tuple[float, float, float]:
+    """Mean paired difference and its percentile bootstrap interval, resampling *sequences*.
+
+    Seeds of one sequence are not independent evidence (the same video, the same difficulty),
+    so the bootstrap draws whole sequences with replacement (a cluster bootstrap) and averages
+    every run of the drawn sequences. Returns ``(mean, low, high)``; NaNs without data.
+    """
+    seqs = [np.asarray(v, dtype=float) for v in diffs.values() if len(v)]
+    if not seqs:
+        return float("nan"), float("nan"), float("nan")
+    sums = np.array([v.sum() for v in seqs])
+    counts = np.array([len(v) for v in seqs], dtype=float)
+    mean = float(sums.sum() / counts.sum())
+    rng = np.random.default_rng(seed)
+    pick = rng.integers(0, len(seqs), size=(n_boot, len(seqs)))
+    boot = sums[pick].sum(axis=1) / counts[pick].sum(axis=1)
+    a = (1.0 - level) / 2.0
+    low, high = np.quantile(boot, [a, 1.0 - a])
+    return mean, float(low), float(high)
+
+
+def verdict(low: float, high: float) -> str:
+    """``holds`` when the whole interval is above 0, ``fails`` when below, else ``inconclusive``."""
+    if not (np.isfinite(low) and np.isfinite(high)):
+        return "inconclusive"
+    if low > 0:
+        return "holds"
+    if high < 0:
+        return "fails"
+    return "inconclusive"
+
+
+def check_claims(rows, metric: str = "auc", clips=None, papers=PAPERS, pairs=CLAIM_PAIRS,
+                 n_boot: int = 10_000, level: float = 0.95, seed: int = 0) -> list[dict]:
+    """Each paper's claim, as paired comparisons with a bootstrap interval and a verdict.
+
+    A claim "A < B < C" is the comparisons B > A and C > B. For each, the per-run differences
+    of ``metric`` (paired by sequence and seed, over ``clips`` or all) are averaged, and a 95 %
+    interval is bootstrapped over sequences (:func:`bootstrap_mean_difference`). The verdict is
+    ``holds`` (interval above 0), ``fails`` (below 0) or ``inconclusive`` (it straddles 0).
+
+    Returns
+    -------
+    rows ``{paper, comparison, metric, sequences, runs, mean_diff, ci_low, ci_high, verdict}``,
+    one per comparison; a comparison whose trackers did not run has ``runs = 0`` and verdict
+    ``inconclusive``.
     """
     out = []
-    names = {r["tracker"] for r in rows}
     for key, p in papers.items():
-        ts = p["trackers"]
-        if not set(ts) <= names:
-            out.append({"paper": p["paper"], "claim": p["claim"], "paper's figures": "",
-                        "ours": "trackers not run", "holds": "n/a"})
-            continue
-        rate = {t: _mean(rows, t, "tracking_rate", clips) for t in ts}
-        auc = {t: _mean(rows, t, "auc", clips) for t in ts}
-        ms = {t: _mean(rows, t, "ms_median", clips) for t in ts}
-        if p["kind"] == "rate_order":
-            holds = all(rate[a] < rate[b] for a, b in zip(ts, ts[1:]))
-            theirs = " < ".join(f"{100 * p['tracking_rate'][t]:.1f} %" for t in ts)
-            ours = " , ".join(f"{t} {100 * rate[t]:.1f} %" for t in ts)
-        elif p["kind"] == "kalman":
-            sr = {t: _mean(rows, t, "search_rate", clips) for t in ts}
-            holds = rate[ts[1]] >= rate[ts[0]] and sr[ts[1]] < sr[ts[0]]
-            theirs = (f"{100 * p['tracking_rate'][ts[0]]:.1f} % / {100 * p['search_rate'][ts[0]]:.3f} % "
-                      f"→ {100 * p['tracking_rate'][ts[1]]:.1f} % / {100 * p['search_rate'][ts[1]]:.3f} %")
-            ours = (f"{100 * rate[ts[0]]:.1f} % / {100 * sr[ts[0]]:.3f} % → "
-                    f"{100 * rate[ts[1]]:.1f} % / {100 * sr[ts[1]]:.3f} %")
-        else:  # speed_accuracy
-            c, m, pr = ts
-            holds = ms[pr] < ms[c] and auc[pr] >= max(auc[c], auc[m])
-            theirs = " / ".join(f"{p['ms'][t]:.0f} ms" for t in ts)
-            ours = (" / ".join(f"{ms[t]:.2f} ms" for t in ts) + "; AUC "
-                    + " / ".join(f"{auc[t]:.3f}" for t in ts))
-        out.append({"paper": p["paper"], "claim": p["claim"], "paper's figures": theirs,
-                    "ours": ours, "holds": "yes" if holds else "no"})
+        for better, worse in pairs.get(key, []):
+            d = paired_differences(rows, better, worse, metric, clips)
+            mean, low, high = bootstrap_mean_difference(d, n_boot, level, seed)
+            out.append({"paper": p["paper"].split(",")[0], "comparison": f"{better} > {worse}",
+                        "metric": metric, "sequences": len(d),
+                        "runs": int(sum(len(v) for v in d.values())), "mean_diff": mean,
+                        "ci_low": low, "ci_high": high, "verdict": verdict(low, high)})
     return out
+
+
+def loso_select(scores: dict[str, dict[str, float]]) -> dict:
+    """Leave-one-sequence-out choice among configurations, and the figure it earns.
+
+    ``scores[config][sequence]`` is a configuration's score on a sequence (e.g. mean AUC over
+    seeds). For each sequence in turn, the configuration with the best mean over the *other*
+    sequences is chosen and scored on the held-out one. Returns ``{"cv": mean held-out score,
+    "tuned": best mean over all sequences, "tuned_config": its name, "chosen": {sequence:
+    config}}``. ``tuned`` is what a table reports when it picks the default on the same
+    sequences it scores, and overstates what new video gives; ``cv`` does not peek.
+    """
+    configs = list(scores)
+    seqs = sorted(set.intersection(*(set(v) for v in scores.values()))) if configs else []
+    if len(seqs) < 2:
+        raise ValueError("leave-one-sequence-out needs at least two sequences scored by "
+                         "every configuration.")
+    table = np.array([[scores[c][s] for s in seqs] for c in configs])
+    chosen, held = {}, []
+    for j, s in enumerate(seqs):
+        rest = np.delete(table, j, axis=1).mean(axis=1)
+        i = int(np.argmax(rest))
+        chosen[s] = configs[i]
+        held.append(table[i, j])
+    means = table.mean(axis=1)
+    best = int(np.argmax(means))
+    return {"cv": float(np.mean(held)), "tuned": float(means[best]),
+            "tuned_config": configs[best], "chosen": chosen}
 
 
 def speed_ratios(rows, reference: str = "opencv-mil", papers=PAPERS) -> list[dict]:
