@@ -45,11 +45,13 @@ class Result:
         return ts, s, tp, p
 
 
-def _make(name_or_tracker, seed, params):
+def _make(name_or_tracker, seed, params, preset="book"):
     if isinstance(name_or_tracker, str):
-        return _trackers.create(name_or_tracker, seed=seed, **params), name_or_tracker
-    if params:
-        raise ValueError("params can only be given with a tracker name, not a tracker object.")
+        return (_trackers.create(name_or_tracker, seed=seed, preset=preset, **params),
+                name_or_tracker)
+    if params or preset != "book":
+        raise ValueError("params and preset can only be given with a tracker name, not a "
+                         "tracker object.")
     t = name_or_tracker
     if not (hasattr(t, "init") and hasattr(t, "update")):
         raise ValueError(
@@ -68,7 +70,7 @@ def _init_foreign(t, frame, box):
 
 
 def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None = None,
-             init_box=None, on_frame=None, **params) -> Result:
+             init_box=None, on_frame=None, preset: str = "book", **params) -> Result:
     """Track a clip from its first ground-truth box and score it (frame 0 excluded).
 
     Parameters
@@ -83,10 +85,12 @@ def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None
     init_box : (x, y, w, h), optional; default the first ground-truth box (clipped to the frame).
     on_frame : callable(i, tracker, frame, box), optional; called after every frame, e.g. to
         record particles for a drawing.
+    preset : ``"book"`` (the book's defaults) or ``"paper"`` (the printed method; see
+        :func:`trackbook.trackers.departures`), names only; ``params`` override either.
     **params : the tracker's params (names only).
     """
     clip = _clips.load(clip)
-    tracker, tname = _make(name_or_tracker, seed, params)
+    tracker, tname = _make(name_or_tracker, seed, params, preset)
     n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
     if n < 2:
         raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")

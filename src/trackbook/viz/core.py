@@ -14,11 +14,18 @@ from matplotlib import patches as mpatches
 
 from ..evaluation import metrics
 
-#: Colours the book uses consistently: ground truth green, estimate red, others cycle.
-GT_COLOR = "#2ca02c"
-EST_COLOR = "#d62728"
-CYCLE = ["#d62728", "#1f77b4", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
-         "#bcbd22", "#7f7f7f", "#2ca02c", "#000000", "#aec7e8"]
+#: The book's one palette: Okabe & Ito's eight colours, distinguishable with the common
+#: colour-vision deficiencies (black, orange, sky blue, bluish green, yellow, blue, vermillion,
+#: reddish purple).
+OKABE_ITO = ["#000000", "#E69F00", "#56B4E9", "#009E73", "#F0E442", "#0072B2", "#D55E00",
+             "#CC79A7"]
+#: Ground truth bluish green, the estimate vermillion, everything else from the palette; trackers
+#: that a comparison plot is not about are drawn in GREY.
+GT_COLOR = "#009E73"
+EST_COLOR = "#D55E00"
+GREY = "#BBBBBB"
+CYCLE = ["#D55E00", "#0072B2", "#E69F00", "#CC79A7", "#56B4E9", "#000000", "#009E73",
+         "#F0E442"]
 
 
 def bgr2rgb(frame: np.ndarray) -> np.ndarray:
