@@ -31,14 +31,15 @@ FILES = {
     "seed001_variants.csv": (1e-9, "seed"),  # the library's trackers only, seed 0 only
     "seed002_real.csv": (1e-5, None),        # 6 significant digits
     "seed003_real.csv": (5e-5, None),        # written with 4 decimals
+    "claims_real.csv": (1e-5, "seed"),       # both presets; 6 significant digits
 }
 #: Files with many configurations per tracker: checking one seed of each is enough.
 SEED0_ONLY = {"seed000_learning.csv", "seed001_variants.csv"}
 
 
 @functools.lru_cache(maxsize=None)
-def _auc(tracker: str, seed: int, params: str) -> float:
-    return trackbook.evaluate(tracker, str(SEQUENCES[CLIP]), seed=seed,
+def _auc(tracker: str, seed: int, params: str, preset: str = "book") -> float:
+    return trackbook.evaluate(tracker, str(SEQUENCES[CLIP]), seed=seed, preset=preset,
                               **json.loads(params)).scores["auc"]
 
 
@@ -53,16 +54,18 @@ def _cases():
                 if name in SEED0_ONLY and seed != 0:
                     continue
                 params = row.get("params") or "{}"
-                yield pytest.param(name, row["tracker"], seed, params, float(row["auc"]), tol,
-                                   id=f"{name}:{row['tracker']}{params}:seed{seed}")
+                preset = row.get("preset") or "book"
+                yield pytest.param(name, row["tracker"], seed, params, preset,
+                                   float(row["auc"]), tol,
+                                   id=f"{name}:{row['tracker']}:{preset}{params}:seed{seed}")
 
 
 @needs_sequences
 @pytest.mark.shared
 @pytest.mark.slow
 @pytest.mark.skipif(CLIP not in SEQUENCES, reason=f"sequence {CLIP} not found")
-@pytest.mark.parametrize("name, tracker, seed, params, committed, tol", list(_cases()))
-def test_committed_auc_is_reproduced(name, tracker, seed, params, committed, tol):
-    assert _auc(tracker, seed, params) == pytest.approx(committed, abs=tol), (
+@pytest.mark.parametrize("name, tracker, seed, params, preset, committed, tol", list(_cases()))
+def test_committed_auc_is_reproduced(name, tracker, seed, params, preset, committed, tol):
+    assert _auc(tracker, seed, params, preset) == pytest.approx(committed, abs=tol), (
         f"book/results/{name} is stale for {tracker} (seed {seed}) on {CLIP}; regenerate it "
         "with the command in its chapter.")

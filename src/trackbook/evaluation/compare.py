@@ -36,6 +36,7 @@ DIFFICULTIES = {
 #: The papers' headline figures (their tables), and the hardware they were measured on.
 PAPERS = {
     "000": {
+        "label": "Lee et al. 2012",
         "paper": "Lee et al. 2012, Table 3",
         "trackers": ["color-pf", "color-hog-pf", "color-hog-ipca"],
         "tracking_rate": {"color-pf": 0.711, "color-hog-pf": 0.903, "color-hog-ipca": 0.924},
@@ -45,6 +46,7 @@ PAPERS = {
         "kind": "rate_order",
     },
     "001": {
+        "label": "Kim et al. 2016",
         "paper": "Kim, Kim & Choi 2016, Table 3",
         "trackers": ["hsi-color-pf", "hog-pf", "edge-ray-pf"],
         "tracking_rate": {"hsi-color-pf": 0.623, "hog-pf": 0.704, "edge-ray-pf": 0.898},
@@ -54,6 +56,7 @@ PAPERS = {
         "kind": "rate_order",
     },
     "002": {
+        "label": "Lee 2015",
         "paper": "Lee 2015, Table 1 (RedCube, 164 frames)",
         "trackers": ["covariance", "kalman-covariance"],
         "tracking_rate": {"covariance": 0.871, "kalman-covariance": 0.963},
@@ -64,6 +67,7 @@ PAPERS = {
         "kind": "kalman",
     },
     "003": {
+        "label": "Cho & Kang 2005",
         "paper": "Cho & Kang 2005, Table 1 (single target)",
         "trackers": ["condensation", "mean-shift", "condensation-mean-shift"],
         "tracking_rate": {},
@@ -223,7 +227,7 @@ def check_claims(rows, metric: str = "auc", clips=None, papers=PAPERS, pairs=CLA
         for better, worse in pairs.get(key, []):
             d = paired_differences(rows, better, worse, metric, clips)
             mean, low, high = bootstrap_mean_difference(d, n_boot, level, seed)
-            out.append({"paper": p["paper"].split(",")[0], "comparison": f"{better} > {worse}",
+            out.append({"paper": p.get("label", p["paper"]), "comparison": f"{better} > {worse}",
                         "metric": metric, "sequences": len(d),
                         "runs": int(sum(len(v) for v in d.values())), "mean_diff": mean,
                         "ci_low": low, "ci_high": high, "verdict": verdict(low, high)})

@@ -56,6 +56,17 @@ def run(out: str, seeds=range(3), workers: int | None = None, trackers=None) -> 
     return rows
 
 
+def load(path) -> list[dict]:
+    """The rows of a claims table, numbers as numbers (what chapter 09 reads)."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        r["seed"], r["frames"] = int(r["seed"]), int(r["frames"])
+        for k in ("auc", "precision20", "tracking_rate", "ms_median"):
+            r[k] = float(r[k])
+    return rows
+
+
 def _seeds(text: str) -> range:
     a, _, b = text.partition("-")
     return range(int(a), int(b or a) + 1)
