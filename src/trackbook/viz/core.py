@@ -20,6 +20,11 @@ EST_COLOR = "#d62728"
 CYCLE = ["#d62728", "#1f77b4", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf",
          "#bcbd22", "#7f7f7f", "#2ca02c", "#000000", "#aec7e8"]
 
+#: The book's colour-blind-safe palette (Okabe & Ito 2008), by name.
+OKABE_ITO = {"black": "#000000", "orange": "#E69F00", "sky blue": "#56B4E9",
+             "bluish green": "#009E73", "yellow": "#F0E442", "blue": "#0072B2",
+             "vermillion": "#D55E00", "reddish purple": "#CC79A7"}
+
 
 def bgr2rgb(frame: np.ndarray) -> np.ndarray:
     """BGR (OpenCV) to RGB (matplotlib)."""
