@@ -391,7 +391,9 @@ class ColorHogParticleFilter(ParticleFilterTracker):
 
 @register
 class ColorPF(ColorHogParticleFilter):
-    """``color-pf``: the colour-only particle filter baseline ([20], Perez et al. 2002)."""
+    """``color-pf``: the colour-only particle filter Lee et al. 2012 compare against
+    (Pérez et al. 2002), with their state (eq. 8), motion (eq. 9), colour likelihood (eq. 10,
+    sign corrected) and N = 100. The first whole tracker of the book (chapter 2)."""
 
     name = "color-pf"
     Params = ColorPFParams
