@@ -1,13 +1,15 @@
 """Kernel-weighted colour histograms and the Bhattacharyya coefficient.
 
-Chapter 01 of the book. The histogram of a region counts the colours of its pixels, each
+Chapter 1 of the book. The histogram of a region counts the colours of its pixels, each
 pixel weighted by a kernel that trusts the centre more than the border (eq. 1 of Lee et al.
 2012; eq. 2-3 of Cho & Kang 2005; Comaniciu, Ramesh & Meer 2003):
 
     q_u = C * sum_i k(||x_i*||^2) * delta[b(x_i) - u],   k(r^2) = 1 - r^2,
 
 with r the pixel's distance to the region centre normalised so that the farthest pixel (or
-the ellipse boundary) has r = 1, and C making the bins sum to 1.
+the ellipse boundary) has r = 1, and C making the bins sum to 1. (Lee et al. 2012's prose
+describes the kernel as 1 - r; their eq. 1 prints 1 - r^2, which is what this module uses.)
+Two histograms are compared by the Bhattacharyya coefficient rho = sum_u sqrt(p_u q_u).
 """
 
 from __future__ import annotations
@@ -41,7 +43,8 @@ def kernel_weights(height: int, width: int) -> np.ndarray:
     """Epanechnikov weights k = 1 - r^2 of a ``height x width`` patch (eq. 1, Lee et al. 2012).
 
     r is each pixel centre's distance to the patch centre divided by the largest such
-    distance, so the corner pixels get weight 0 and the centre the most.
+    distance, so the corner pixels get weight 0 and the centre the most. The paper's prose
+    says k = 1 - r (a cone); the book follows the printed eq. 1 (chapter 1 compares the two).
     """
     yy, xx = np.mgrid[0:height, 0:width].astype(float)
     dy = yy + 0.5 - height / 2

@@ -1,9 +1,12 @@
 """The particle filter's pure steps: normalised weights, effective sample size, resamplers, estimate.
 
-Chapter 02 of the book. The SIR tracker built from these steps is
-:class:`trackbook.trackers.particle_filter.ParticleFilterTracker`. Resamplers are pure functions that take normalised weights and a
-``numpy.random.Generator`` and return the indices of the particles to keep (as filterpy's
-``monte_carlo`` module does, but without the global RNG).
+Chapter 2 of the book (the Bayes filter, factored sampling, SIR/Condensation, degeneracy and
+resampling). The SIR tracker built from these steps is
+:class:`trackbook.trackers.particle_filter.ParticleFilterTracker`. Resamplers are pure
+functions that take normalised weights and a ``numpy.random.Generator`` and return the indices
+of the particles to keep (as filterpy's ``monte_carlo`` module does, but without the global
+RNG). All four place *pointers* on the cumulative weights c_i and keep, for each pointer r, the
+smallest i with c_i >= r; they differ only in where the pointers go.
 """
 
 from __future__ import annotations
@@ -27,7 +30,11 @@ def normalize_weights(w) -> tuple[np.ndarray, bool]:
 
 
 def effective_sample_size(weights) -> float:
-    """N_eff = 1 / sum w_i^2 of normalised weights: N when uniform, 1 when one particle has all."""
+    """N_eff = 1 / sum w_i^2 of normalised weights: N when uniform, 1 when one particle has all.
+
+    The usual measure of weight degeneracy (Arulampalam et al. 2002); chapter 2 plots it with
+    and without resampling.
+    """
     w = np.asarray(weights, dtype=float)
     return float(1.0 / np.sum(w**2))
 
@@ -39,21 +46,30 @@ def _cumsum(weights):
 
 
 def multinomial_resample(weights, rng: np.random.Generator) -> np.ndarray:
-    """SIR selection of Lee et al. 2012's pseudocode: for each i draw r ~ U[0, 1] and keep
-    the smallest index j with c_j >= r, c the cumulative weights."""
+    """SIR selection of Lee et al. 2012's pseudocode (section V): for each i draw r ~ U[0, 1]
+    and keep the smallest index j with c_j >= r, c the cumulative weights.
+
+    N independent pointers, so particle i gets Binomial(N, w_i) copies: mean N w_i, variance
+    N w_i (1 - w_i).
+    """
     c = _cumsum(weights)
     return np.searchsorted(c, rng.random(len(c)), side="left")
 
 
 def systematic_resample(weights, rng: np.random.Generator) -> np.ndarray:
-    """One uniform offset u ~ U[0, 1/N), then the N evenly spaced points u + i/N."""
+    """One uniform offset u ~ U[0, 1/N), then the N evenly spaced pointers u + i/N.
+
+    Particle i gets floor(N w_i) or ceil(N w_i) copies, whatever the offset: the least copying
+    noise of the four resamplers.
+    """
     n = len(weights)
     positions = (rng.random() + np.arange(n)) / n
     return np.searchsorted(_cumsum(weights), positions, side="left")
 
 
 def stratified_resample(weights, rng: np.random.Generator) -> np.ndarray:
-    """One uniform draw in each of the N strata [i/N, (i+1)/N)."""
+    """One pointer (i + u_i)/N in each of the N strata [i/N, (i+1)/N), the u_i ~ U[0, 1)
+    drawn by one ``rng.random(N)`` call."""
     n = len(weights)
     positions = (rng.random(n) + np.arange(n)) / n
     return np.searchsorted(_cumsum(weights), positions, side="left")
@@ -82,5 +98,6 @@ RESAMPLERS = {
 
 
 def weighted_mean(states, weights) -> np.ndarray:
-    """The estimate sum_i w_i x_i of normalised weights (the pseudocode's expectation)."""
+    """The estimate sum_i w_i x_i of normalised weights (the expectation that closes Lee et
+    al. 2012's pseudocode)."""
     return np.asarray(weights, dtype=float) @ np.asarray(states, dtype=float)

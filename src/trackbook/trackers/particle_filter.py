@@ -1,4 +1,4 @@
-"""The SIR particle-filter tracker (chapter 02): the frame every particle tracker fills in.
+"""The SIR particle-filter tracker (chapter 2): the frame every particle tracker fills in.
 
 The estimation steps it calls (weights, resamplers, estimate) are pure functions in
 :mod:`trackbook.filters.particle`; this class only strings them together behind the
@@ -14,7 +14,8 @@ from .base import Tracker, readonly
 
 
 class ParticleFilterTracker(Tracker):
-    """Sequential importance resampling as in Lee et al. 2012's pseudocode, for subclasses.
+    """Sequential importance resampling (SIR, Condensation) as in Lee et al. 2012's
+    pseudocode, for subclasses.
 
     Each ``update``: select (resample by the previous weights) -> predict -> [refine] ->
     weight -> normalise -> estimate. Subclasses implement

@@ -1,0 +1,79 @@
+"""``color-pf`` against the values Lee et al. (2012) print (section V of the paper).
+
+The expected numbers are copied from the paper, not from the code: a changed default fails
+here unless the field says why the book departs from the paper.
+"""
+import dataclasses
+
+import numpy as np
+import pytest
+
+from trackbook import trackers, viz
+from trackbook.params import NOT_PRINTED, has_paper, is_departure
+
+# Printed in section V of Lee et al. (2012) (the seed text has no page numbers, so the
+# comments name the passage):
+PRINTED = {
+    "n_particles": 100,        # "N = 100", the sentence after the pseudocode
+    "sigma_color": 0.4,        # "all sigma_color and sigma_hog ... 0.4", after eq. 12-13
+    "size_noise": 2.5,         # gamma_width, gamma_height ~ U(-2.5, 2.5), after eq. 9
+    "vx_noise": 6.5,           # gamma_xdot ~ U(-6.5, 6.5), after eq. 9
+    "vy_noise": 2.5,           # gamma_ydot ~ U(-2.5, 2.5), after eq. 9
+    "resampler": "multinomial",  # pseudocode: one r ~ U[0, 1] per particle, smallest c_i >= r
+    "init": "frame",           # pseudocode, t = 0: particles spread uniformly over the image
+}
+NOT_IN_PAPER = {"min_size"}    # eq. 9 has no floor on w and h
+
+
+def _fields():
+    return {f.name: f for f in dataclasses.fields(trackers.get("color-pf").Params)}
+
+
+def test_every_field_records_the_paper():
+    fields = _fields()
+    assert set(fields) == set(PRINTED) | NOT_IN_PAPER
+    for name, f in fields.items():
+        assert has_paper(f), f"{name} does not record the paper's value (paper=)"
+
+
+@pytest.mark.parametrize("name", sorted(PRINTED))
+def test_printed_values_are_pinned(name):
+    assert _fields()[name].metadata["paper"] == PRINTED[name]
+
+
+@pytest.mark.parametrize("name", sorted(NOT_IN_PAPER))
+def test_not_printed_fields_say_so(name):
+    assert _fields()[name].metadata["paper"] is NOT_PRINTED
+
+
+def test_every_departure_says_why():
+    for name, f in _fields().items():
+        if is_departure(f):
+            assert len(f.metadata["why"].split()) >= 5, f"{name} departs without a why"
+
+
+def test_paper_preset_builds_the_printed_method():
+    p = trackers.create("color-pf", preset="paper").params
+    for name, value in PRINTED.items():
+        assert getattr(p, name) == value, name
+
+
+def test_departures_table_lists_exactly_the_departures():
+    table = viz.departures_table("color-pf")
+    lines = table.splitlines()
+    assert lines[0] == "| param | paper | book | why |"
+    rows = {line.split("|")[1].strip() for line in lines[2:]}
+    assert rows == {r["param"] for r in trackers.departures("color-pf")}
+    assert {"sigma_color", "init", "min_size"} <= rows
+
+
+def test_paper_preset_spreads_particles_over_the_frame():
+    frame = np.zeros((120, 160, 3), np.uint8)
+    t = trackers.create("color-pf", preset="paper", seed=0)
+    t.init(frame, (70, 50, 20, 20))
+    xy = np.asarray(t.particles)[:, :2]
+    # uniform over the frame: far wider than the quarter box of the book's start
+    assert xy[:, 0].max() - xy[:, 0].min() > 80
+    b = trackers.create("color-pf", seed=0)
+    b.init(frame, (70, 50, 20, 20))
+    assert np.ptp(np.asarray(b.particles)[:, 0]) <= 10 + 1e-9
