@@ -856,7 +856,7 @@ def _robot(night: bool) -> Rendering:
 
 
 _ROBOT = """Side view from a camera on a mobile robot that follows a person down a corridor
-(paper 000). The robot lags behind the person, so the wall and its doors and photographs
+(the scenario of Lee et al. 2012). The robot lags behind the person, so the wall and its doors and photographs
 scroll sideways (camera motion) while the person, wearing the astronaut's orange suit, walks
 with changing speed, slows to a halt around frame 62 and turns back, pauses again around
 frames 104-112 and then hurries away. {light} Three passers-by dressed in similar
@@ -882,7 +882,7 @@ def _robot_night() -> Rendering:
 
 @_scenario("patterned-object", "001", 30.0, ("BC", "CM", "IPR", "SV"), """
 A multicoloured object, a photograph of an espresso cup and saucer mounted as a small
-board, glides over a wooden plank table of the same browns and reds (paper 001). A hand-held
+board, glides over a wooden plank table of the same browns and reds (the scenario of Kim et al. 2016). A hand-held
 camera shakes (random shifts of up to 4 px every frame), the object turns in the image
 plane by up to 10 degrees, and it comes closer and recedes (scale 1.0 -> 1.3 -> 0.85 ->
 1.1, i.e. about 30 % size change).""")
@@ -965,7 +965,7 @@ def _red_cube() -> Rendering:
 
 @_scenario("yellow-ball", "002", 25.0, ("FM", "LR"), """
 A small yellow ball (18 px across) bounces fast across a lawn in parabolic arcs,
-rebounding from the ground and from the side of the picture (paper 002's "YellowBall").
+rebounding from the ground and from the side of the picture (Lee 2015's "YellowBall").
 Its speed reaches 12 px per frame near the ground and drops near the top of each arc;
 its soft shadow follows it on the grass.""")
 def _yellow_ball() -> Rendering:
@@ -1009,7 +1009,7 @@ def _flag_walker(height: int):
 
 @_scenario("occluder", "003", 25.0, ("OCC", "DEF"), """
 A person in a striped shirt (cut from the flag in the astronaut photo) walks from left to
-right along a brick wall and passes behind a tree trunk (paper 003). The ground truth
+right along a brick wall and passes behind a tree trunk (the scenario of Cho and Kang 2005). The ground truth
 stays the person's true box while hidden (OTB convention): the trunk starts to cover the
 person at frame 53, hides more than 80 % of it at frames 64-82 and all of it at frames
 71-76, and releases it at frame 94 (frames counted from 0).""")
@@ -1038,7 +1038,7 @@ def _occluder() -> Rendering:
 
 @_scenario("shelves", "003", 25.0, ("BC", "DEF", "OPR"), """
 A person in an orange suit walks back and forth in front of shelves crowded with
-colourful boxes (paper 003): reds, oranges and skin tones in the clutter resemble the
+colourful boxes (the scenario of Cho and Kang 2005): reds, oranges and skin tones in the clutter resemble the
 target's colours. The person walks right, pauses and turns at frames 40-55, walks left,
 pauses and turns again at 100-115, then walks right once more.""")
 def _shelves_clip() -> Rendering:
@@ -1059,7 +1059,7 @@ def _shelves_clip() -> Rendering:
 @_scenario("two-faces", "003", 30.0, ("OCC", "BC"), """
 Two faces, the astronaut's (face1, the ground truth) and the cat's from "chelsea"
 (face2), drift towards each other in front of a blurred garage, cross and overlap with
-the cat in front (it partly hides face1 at frames 50-76) and separate again (paper 003's
+the cat in front (it partly hides face1 at frames 50-76) and separate again (Cho and Kang 2005's
 multi-target experiment). Both boxes are given in Clip.targets.""")
 def _two_faces() -> Rendering:
     n = 120
