@@ -140,7 +140,7 @@ CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
                    paper=1,
                    why="the book's reading: eq. 12-13 print one shift; the book repeats steps "
                        "②-⑥ of §3.3 (halving, stop below eps) up to 10 times so each candidate "
-                       "reaches its hill top (chapter 8, iteration-limit figure)"),
+                       "reaches its hill top (chapter 8; preset='paper' runs one shift)"),
     eps=param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps pixels",
               paper=NOT_PRINTED,
               why="step ⑥ of §3.3 names epsilon without a value; half a pixel"),
