@@ -158,3 +158,25 @@ def test_existing_book_results_still_load():
     rows = bench.load(results.path("real"))
     assert rows and {"tracker", "clip", "auc"} <= set(rows[0])
     shutil.rmtree  # noqa: B018  (imported for fixtures above)
+
+
+def test_ctrl_c_during_a_parallel_bench_prints_one_line(tmp_path, two_clips):
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    p = subprocess.Popen([sys.executable, "-m", "trackbook", "bench", "--trackers",
+                          "color-pf,covariance", "--clips", ",".join(two_clips), "--workers",
+                          "2", "--quiet", "--seeds", "0-20", "--out", str(tmp_path / "o")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    runs = tmp_path / "o" / "runs"
+    t0 = time.time()
+    while time.time() - t0 < 60 and not (runs.is_dir() and any(runs.glob("*.json"))):
+        time.sleep(0.2)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=60)
+    lines = [x for x in err.splitlines() if x.strip()]
+    assert p.returncode == 130, err
+    assert len(lines) == 1 and "resume" in lines[0], err

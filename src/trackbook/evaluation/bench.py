@@ -335,6 +335,12 @@ def _check_trackers_and_params(trackers, params):
             _trackers.create(t, seed=0, **p)  # bad names/values -> ValueError naming them
 
 
+def _frozen(p: dict) -> tuple:
+    def f(v):
+        return tuple(f(x) for x in v) if isinstance(v, (list, tuple)) else v
+    return tuple(sorted((k, f(v)) for k, v in p.items()))
+
+
 def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
          seeds=None) -> list[Task]:
     """The runs a bench would do, in order (clips, then seeds, then trackers); MIL, which
@@ -358,8 +364,7 @@ def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
             for t in trackers:
                 if t == REFERENCE and s != seeds[0]:
                     continue
-                tasks.append(Task(t, ref, s, max_frames, tuple(sorted(params.get(t, {}).items())),
-                                  fp, n))
+                tasks.append(Task(t, ref, s, max_frames, _frozen(params.get(t, {})), fp, n))
     return tasks
 
 

@@ -50,6 +50,14 @@ def groups(tasks, workers: int = 1) -> list[list]:
     return out
 
 
+def _ignore_sigint():
+    # Ctrl-C is the parent's to handle (one line, then it stops the workers): a worker that
+    # also caught it would print its own traceback.
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _work(group, out, multi_seed):
     return _bench.run_group(group, out, multi_seed)
 
@@ -76,7 +84,7 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
 
     # spawn: a worker must not inherit this process's threads (a notebook's, tqdm's) or state.
     pool = ProcessPoolExecutor(max_workers=min(workers, len(gs)),
-                               mp_context=mp.get_context("spawn"))
+                               mp_context=mp.get_context("spawn"), initializer=_ignore_sigint)
     try:
         pending = {pool.submit(_work, g, str(out), multi_seed): g for g in gs}
         while pending:
@@ -85,7 +93,13 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
                 g = pending.pop(f)
                 finished(g, f.result())
     except BaseException:
+        # stop now: finished runs are on disk, a running group is re-run on resume
+        procs = list((getattr(pool, "_processes", None) or {}).values())
         pool.shutdown(wait=False, cancel_futures=True)
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            p.join(timeout=5)
         raise
     pool.shutdown()
 
