@@ -1,7 +1,7 @@
 """``edge-ray-pf``: the particle filter with the 8-ray edge observation model.
 
 Kim, Kim & Choi, "Tracking moving objects using particle filter and edge observation model",
-J. KSII 2016 (chapter 03 of the book). Table 2 of the paper, step by step:
+J. KSII 2016 (chapter 5 of the book). Table 2 of the paper, step by step:
 
 1. init: Canny edges of the first frame; the model M = the 8 nearest-edge distances mDis_j
    from the centre of the box (eq. 1); N particles around the centre with equal weights.
@@ -14,7 +14,7 @@ The distances are computed only along the image lines through the particles (row
 and diagonals), not as 8 whole-frame maps: exactly the same numbers, several times faster.
 
 Options beyond the paper (off by default): ``max_ray`` caps the rays, ``adapt_scale`` lets the box follow the
-weighted median Ratio, ``model_rate`` blends M towards the rays at the current estimate.
+weighted mean Ratio (sum_i w_i Ratio_i), ``model_rate`` blends M towards the rays at the current estimate.
 """
 
 from __future__ import annotations
@@ -76,12 +76,14 @@ class EdgeRayPF(CentreParticleFilter):
     def _rays(self, xy):
         """pDis_j (eq. 4) of centres ``xy`` (N, 2) in the current edge map, capped at max_ray.
 
-        A centre is continuous; its pixel is the one that contains it (hence the - 0.5). The
+        A centre is continuous; its pixel is the one that contains it, ``floor(c)`` (pixel i
+        covers [i, i + 1)). ``np.rint(c - 0.5)`` would round halves to even, so 21.0 would map to
+        pixel 20 while 20.0 maps to 20; floor maps every centre to its own pixel. The
         distances are computed along the lines through the particles only
         (:func:`~trackbook.features.edge_rays.ray_steps_at`): the same numbers as 8 per-pixel
         maps of the whole frame, at a fraction of the cost.
         """
-        return er.rays_at_points(self.edges, xy - 0.5, self.params.max_ray or None)
+        return er.rays_at_points(self.edges, np.floor(xy), self.params.max_ray or None)
 
     def _likelihood(self, frame, particles):
         p = self.params
