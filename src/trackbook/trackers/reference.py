@@ -65,7 +65,7 @@ class OpenCVMIL(Tracker):
     gives the same boxes in ``evaluate``, frame by frame, in ``bench`` (fresh or resumed, any
     number of workers) and on every page of the book. The cost is the child's start (about
     0.3 s per run on a quiet 2-core machine, 0.5 s under load) plus copying each frame
-    through the pipe (a few ms per 640 x 480 frame).
+    through the pipe.
 
     The box is adjusted before OpenCV sees it (:func:`safe_box`): sides below ``MIN_SIDE`` px
     are grown about the centre (MIL never returns from ``init`` on a 4 x 4 box), sides within
