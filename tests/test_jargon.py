@@ -22,7 +22,9 @@ PATTERNS = {
         r"(?<!public )(?<!seven )\bdevelopment sequences?\b", re.I),
     # numeric citations such as [20] or [3-5]; Markdown links [text](...) and list indices
     # in code (x[0]) are not citations: require a space or line start before the bracket
-    "numeric citation": re.compile(r"(?:^|(?<=\s))\[\d+(?:\s*[-–,]\s*\d+)*\](?!\()"),
+    # (an interval such as [0, 1] or a kernel [1, 4, 6, 4, 1] has a 0 or 1 in it; reference
+    # numbers of the papers' bibliographies run from 2 up, so a lone [1] is left alone too)
+    "numeric citation": re.compile(r"(?:^|(?<=\s))\[(?![01]\b)\d+(?:\s*[-–]\s*\d+)?\](?!\()"),
 }
 
 

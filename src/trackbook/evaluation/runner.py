@@ -50,8 +50,8 @@ def _make(name_or_tracker, seed, params, preset="book"):
         return (_trackers.create(name_or_tracker, seed=seed, preset=preset, **params),
                 name_or_tracker)
     if params or preset != "book":
-        raise ValueError("params and preset can only be given with a tracker name, not a "
-                         "tracker object.")
+        raise ValueError("params can only be given with a tracker name, not a tracker object "
+                         "(and so can preset).")
     t = name_or_tracker
     if not (hasattr(t, "init") and hasattr(t, "update")):
         raise ValueError(
