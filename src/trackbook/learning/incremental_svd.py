@@ -50,7 +50,7 @@ class IncrementalSVD:
     Parameters
     ----------
     K : int
-        Number of singular vectors kept (16 in trackbook's ``color-hog-ipca``).
+        Number of singular vectors kept (``color-hog-ipca`` defaults to 2; Lee et al. 2012 print no K).
     forgetting : float in (0, 1]
         f of Ross et al.: old singular values are scaled by f at every ``partial_fit``.
     centre : bool
