@@ -1,7 +1,7 @@
 """``color-hog-pf`` and ``color-hog-ipca`` against the values Lee et al. (2012) print.
 
-Expected numbers are copied from the paper (section V, "experiments"; the seed text has no
-page numbers, so comments name the passage), not from the code: a default that differs from
+Expected numbers are copied from the paper (the text has no page numbers, so comments name
+the section and passage), not from the code: a default that differs from
 the paper fails here unless its field says why.
 """
 import dataclasses
@@ -16,15 +16,15 @@ from trackbook.trackers import color_hog
 PRINTED = {
     "color-hog-pf": {
         "n_particles": 100,    # "N = 100", section V, the sentence after the pseudocode
-        "sigma_color": 0.4,    # "all sigma ... 0.4", section V after eq. 12-13
+        "sigma_color": 0.4,    # "all sigma_color and sigma_hog ... 0.4", section V, after eq. 12-13
         "sigma_hog": 0.4,      # same sentence
-        "alpha": 0.1,          # alpha of eq. 14 = 0.1, section V
-        "size_noise": 2.5,     # gamma_w, gamma_h ~ U(-2.5, 2.5), after eq. 9
+        "alpha": 0.1,          # "alpha = 0.1", section V, after eq. 14
+        "size_noise": 2.5,     # gamma_w, gamma_h ~ U(-2.5, 2.5), section V, after eq. 9
         "vx_noise": 6.5,       # gamma_xdot ~ U(-6.5, 6.5), after eq. 9
         "vy_noise": 2.5,       # gamma_ydot ~ U(-2.5, 2.5), after eq. 9
     },
 }
-PRINTED["color-hog-ipca"] = dict(PRINTED["color-hog-pf"], T=40)  # T = 40, section V
+PRINTED["color-hog-ipca"] = dict(PRINTED["color-hog-pf"], T=40)  # "T = 40", end of section II; n = 40 in section IV
 # The paper gives no number of basis vectors (its 16 is the patch width) and no forgetting.
 NOT_PRINTED_IPCA = {"K", "forgetting", "gate_on", "gate_window", "min_size"}
 
@@ -56,7 +56,7 @@ def test_no_K_is_credited_to_the_paper():
 
 
 def test_patch_and_bins_are_the_papers():
-    # 16 x 24 px patch and 8 x 8 x 4 HSV bins: section V, the paragraph on features.
+    # ROI resized to 16 x 24 px: section II; 8 x 8 x 4 HSV bins: section III (after eq. 1).
     assert color_hog.PATCH_SIZE == (16, 24)
     assert tuple(HSV_BINS) == (8, 8, 4)
 

@@ -127,7 +127,7 @@ class ColorHogPFParams(ColorPFParams):
     comment names the passage); ``trackers.departures("color-hog-pf")`` lists the book's choices.
     """
 
-    # alpha = 0.1: section V, the sentence after eq. 14.
+    # alpha = 0.1: section V, the sentence after eq. 14 ("alpha = 0.1").
     alpha: float = param(0.1, 0.0, 1.0, 0.05, "alpha of eq. 14: weight of colour vs HOG",
                          paper=0.1)
     # sigma_hog = 0.4: section V, after eq. 12-13 ("all sigma ... 0.4").
@@ -149,7 +149,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
     book, switched off (or set to the printed raw features) in the paper preset.
     """
 
-    # T = 40: section V (the first 40 frames are collected before the first SVD).
+    # T = 40: end of section II ("T = 40"), n = 40 in section IV.
     T: int = param(40, 2, 200, 1, "frames collected before the first SVD (section II, V)",
                    paper=40)
     # Not printed: the paper names no number of basis vectors.
@@ -161,9 +161,9 @@ class ColorHogIPCAParams(ColorHogPFParams):
     forgetting: float = param(0.95, 0.5, 1.0, 0.01,
                               "forgetting factor f (old singular values x f, Ross et al. 2008)",
                               paper=NOT_PRINTED, paper_value=1.0,
-                              why="the paper prints none (paper preset: 1.0 = no forgetting); "
-                              "0.95 is Ross et al.'s usual value and scored higher on the seven "
-                              "public sequences we tuned on (lab notes)")
+                              why="the paper says old features are removed (section II) but "
+                              "prints no rule or factor (paper preset: 1.0); 0.95 scored higher "
+                              "than 1.0 on the seven public sequences we tuned on (lab notes)")
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
                                    "(0 = every frame, as the paper)", paper=0.0)
@@ -192,7 +192,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                              paper=1)
     centre: bool = param(False, doc="learn mean-centred features (Ross et al.) instead of the "
                          "raw z of eq. 12-13 (the paper)", paper=False)
-    # The paper learns the histograms themselves (section II, eq. 12-13).
+    # The paper learns the histograms themselves (section IV, eq. 12-13 of section V).
     feature_map: str = param("sqrt", doc="learned feature z: 'sqrt' = sqrt(histogram) "
                              "(unit norm), 'raw' = the histogram itself", choices=("sqrt", "raw"),
                              paper="raw",
