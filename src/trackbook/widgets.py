@@ -76,6 +76,11 @@ def slider_for(field: dataclasses.Field, value=None) -> W.Widget:
     return W.Text(value=str(value), description=desc, style=style, continuous_update=False)
 
 
+#: The browser viewer holds at most this many frames of each clip (page weight and build time);
+#: the Jupyter sliders run the whole ``n_frames``.
+HTML_MAX_FRAMES = 80
+
+
 class Playground:
     """A clip x tracker x params panel with a frame slider and the clip's scores.
 
@@ -306,13 +311,14 @@ class Playground:
             else:
                 vals = []
         vals = [v for v in vals if v != field.default]
-        return [field.default] + vals[:5]
+        return [field.default] + vals[:3]
 
     def html(self) -> str:
         """The playground as the browser viewer: runs precomputed, frames encoded once."""
         from . import playground as _pg
 
-        n_default = self.n_frames
+        n_default = HTML_MAX_FRAMES if self.n_frames is None else min(self.n_frames,
+                                                                      HTML_MAX_FRAMES)
         main = self.tracker_names[0]
         fields = {f.name: f for f in dataclasses.fields(_trackers.get(main).Params)}
         knobs = {}
@@ -333,7 +339,8 @@ class Playground:
                 tf = {f.name for f in dataclasses.fields(_trackers.get(t).Params)}
                 r, st = self._record(t, clip, n, {k: v for k, v in base.items() if k in tf})
                 runs[f"{t}|{cname}|"] = _pg.run_record(r, st, clip.groundtruth, 40)
-            for name, spec in knobs.items():
+            # knob values are precomputed on the first clip only (build time and page weight)
+            for name, spec in (knobs.items() if cname == self.clip_names[0] else ()):
                 for label, v in zip(spec["values"][1:], spec["typed"][1:]):
                     r, st = self._record(main, clip, n, {**base, name: v})
                     rec = _pg.run_record(r, st, clip.groundtruth, 0)
@@ -346,7 +353,8 @@ class Playground:
         fig.savefig(buf, format="png", dpi=70)
         plt.close(fig)
         note = (f"This page holds precomputed runs: each knob at a few values, one knob at a time, "
-                f"for {main}; run the chapter in Jupyter to try any value "
+                f"for {main} on {self.clip_names[0]} (first {n_default} frames); run the chapter "
+                f"in Jupyter to try any value on any clip "
                 f"(Playground.set(...) or the sliders below the viewer).")
         return _pg.page_html(clip_data, runs, self.tracker_names, knobs, buf.getvalue(), note)
 

@@ -55,6 +55,10 @@
         .join("|");
       return data.runs[key] || data.runs[[state.tracker, state.clip, ""].join("|")];
     }
+    function precomputed() {
+      return !state.knob || (state.tracker + "|" + state.clip + "|" + state.knob + "=" +
+                             state.value) in data.runs;
+    }
     function image(clip, i) {
       const k = clip + "#" + i;
       if (!images[k]) {
@@ -105,7 +109,8 @@
       const cx = x0 + (x1 - x0) * state.frame / Math.max(1, n - 1);
       ctx.strokeStyle = "#000"; ctx.setLineDash([2, 2]); ctx.beginPath();
       ctx.moveTo(cx, y0); ctx.lineTo(cx, y1); ctx.stroke(); ctx.setLineDash([]);
-      scores.textContent = r.scores;
+      scores.textContent = r.scores + (precomputed() ? "" :
+        " (defaults shown: this knob value was precomputed for another clip or tracker)");
     }
     function stop() { state.playing = false; clearInterval(state.timer); play.textContent = "\u25B6 play"; }
     function step(d) {
