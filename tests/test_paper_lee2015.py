@@ -30,7 +30,7 @@ NOT_IN_PAPER = {
                    "model_update"},
     "kalman-covariance": {"stride", "search_radius", "threshold", "global_stride", "eps",
                           "model_update", "p0", "gate", "min_radius", "manoeuvre_gate",
-                          "manoeuvre_sigma"},
+                          "manoeuvre_sigma", "motion_threshold"},
 }
 
 

@@ -130,6 +130,12 @@ class KalmanCovarianceParams(CovarianceParams):
         "manoeuvre: the second, larger window",
         paper=NOT_PRINTED,   # not in the paper; unused when manoeuvre_gate = 0
         why="the book's addition: 8 px/frame, about a bouncing ball's speed change")
+    motion_threshold: float = param(
+        10.0, 1.0, 100.0, 1.0, doc="grey-level change that counts as motion in "
+        "`init_from_motion`'s frame difference",
+        paper=NOT_PRINTED,   # sec. 2.3 / Fig. 2: frame differencing, no threshold printed
+        why="at 25 grey levels RedCube's 1.6 px move between frames 0 and 1 leaves only its "
+            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube (chapter 7)")
     init_size: int = param(
         24, 4, 128, 1, doc="side (px) of the model window centred on the moving region "
         "when initialising without a box (`init_from_motion`)",
@@ -382,6 +388,9 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         cx, cy = region[0] + region[2] / 2.0, region[1] + region[3] / 2.0
         box = (cx - s / 2.0, cy - s / 2.0, s, s)
         self.init(frame1, box)
+        # The model window is whole pixels; the filter starts at the region's exact centre.
+        self._kf.x[:2] = (cx, cy)
+        self.prediction = (self._kf.x.copy(), self._kf.P.copy())
         return tuple(float(v) for v in self.bbox)
 
     @property
