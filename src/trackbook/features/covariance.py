@@ -65,7 +65,7 @@ def feature_image(frame: np.ndarray, features: str = "xyI|Ix||Iy|") -> np.ndarra
     ----------
     frame : H x W x 3 uint8 BGR image (or H x W grey).
     features : one of :data:`FEATURE_SETS`
-        ``"xyI|Ix||Iy|"`` — f = [x, y, I, |Ix|, |Iy|] (eq. 2, the book's default);
+        ``"xyI|Ix||Iy|"`` — f = [x, y, I, |Ix|, |Iy|] (eq. 2 plus |·|: the book's default);
         ``"rI|Ix||Iy|"`` — f = [‖(x′, y′)‖, I, |Ix|, |Iy|] (eq. 3). The radius depends on the
         window's centre, so this image holds only the last three channels and
         :class:`IntegralCovariance` adds the radius per window;
