@@ -56,7 +56,7 @@ class CovarianceParams:
         choices=FEATURE_SETS,
         paper="xyIIxIy",   # sec. 2.1, eq. 2: f_k = [x y I(x,y) I_x(x,y) ...], signed gradients
         why="|Ix|, |Iy| as in Tuzel et al. (2006): a dark-on-light and a light-on-dark edge "
-            "give the same feature, so the model survives a change of background (chapter 7)")
+            "give the same feature (chapter 7)")
     stride: int = param(
         1, 1, 8, 1, doc="pixels between neighbouring candidate windows",
         paper=NOT_PRINTED,   # sec. 2.1 and 3 give no candidate spacing
@@ -64,13 +64,14 @@ class CovarianceParams:
     search_radius: int = param(
         8, 1, 64, 1, doc="candidates' centres within ±radius px of the last position",
         paper=NOT_PRINTED,   # sec. 2.3 names a "search range" with no size
-        why="±8 px covers the cube's usual inter-frame motion on RedCube (chapter 7)")
+        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (chapter 6 "
+            "compares the search rates)")
     threshold: float = param(
         3.0, 0.1, 20.0, 0.1, doc="ρ (eq. 5) above which the match is poor: the target is "
         "lost and `fallback` says where to search again",
         paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
-        why="3 lies above the best ρ of a correct match on the seven public sequences the "
-            "book was tuned on (chapter 7 measures it)")
+        why="on RedCube the tracked cube scores ρ ≈ 0.5 and background windows above 4; 3 lies "
+            "between (chapter 7 measures it)")
     fallback: str = param(
         "frame", doc="where to search again when the best ρ is above `threshold`: the whole "
         "frame ('frame') or nowhere else, keeping the prediction ('window')",
@@ -80,8 +81,8 @@ class CovarianceParams:
         4, 1, 16, 1, doc="stride of the coarse whole-frame search (refined at `stride` "
         "around its best window)",
         paper=NOT_PRINTED, paper_value=1,   # sec. 3: every window of the frame is a candidate
-        why="coarse-to-fine (4 px, then refined) evaluates about 16 times fewer windows than "
-            "the exhaustive search and finds the same target on RedCube")
+        why="coarse-to-fine (4 px, then refined at `stride` around the best window) evaluates "
+            "about 16 times fewer windows than the exhaustive search")
     eps: float = param(
         1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6",
         paper=NOT_PRINTED,   # eq. 5-6 assume positive-definite matrices
@@ -99,8 +100,8 @@ class KalmanCovarianceParams(CovarianceParams):
         "frame ('frame') or only the next, larger Kalman window ('window')",
         choices=("frame", "window"),
         paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
-        why="the book's addition: on RedCube a whole-frame search recovers the target once the "
-            "Kalman window has lost it; 'window' is the paper's method (chapter 6)")
+        why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
+            "the yellow ball again after its first bounce; 'window' is the paper's (chapter 6)")
     q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
                      paper=1.0)   # sec. 2.2: Q = I_4 printed
     r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
