@@ -1,4 +1,4 @@
-"""Region covariance descriptors and the Förstner–Moonen metric (chapter 04, Lee 2015 §2.1).
+"""Region covariance descriptors and the Förstner–Moonen metric (chapter 7, Lee 2015 §2.1).
 
 A region R of a frame is described by the d x d covariance of per-pixel feature vectors
 (eq. 2 / eq. 4 of Lee 2015). Two regions are compared with the Förstner–Moonen distance
@@ -22,21 +22,25 @@ import cv2
 import numpy as np
 
 #: The feature sets a tracker can use; the string spells the feature vector.
-FEATURE_SETS = ("xyI|Ix||Iy|", "rI|Ix||Iy|", "xyRGB|Ix||Iy|")
+#: ``"xyIIxIy"`` is eq. 2 as Lee (2015) prints it (signed Ix, Iy); the book's default
+#: ``"xyI|Ix||Iy|"`` takes their absolute values as Tuzel et al. (2006) do (chapter 7).
+FEATURE_SETS = ("xyI|Ix||Iy|", "rI|Ix||Iy|", "xyRGB|Ix||Iy|", "xyIIxIy")
 
 
 def _check_feature_set(features: str) -> str:
     if features not in FEATURE_SETS:
         raise ValueError(
             f"unknown feature set {features!r}; choose one of {FEATURE_SETS} "
-            "(eq. 2 of Lee 2015 is 'xyI|Ix||Iy|', eq. 3 is 'rI|Ix||Iy|')."
+            "(eq. 2 of Lee 2015 as printed is 'xyIIxIy', with absolute gradients 'xyI|Ix||Iy|'; "
+            "eq. 3 is 'rI|Ix||Iy|')."
         )
     return features
 
 
 def feature_dimension(features: str = "xyI|Ix||Iy|") -> int:
-    """Length d of the feature vector f_k of a feature set (5, 4 or 7)."""
-    return {"xyI|Ix||Iy|": 5, "rI|Ix||Iy|": 4, "xyRGB|Ix||Iy|": 7}[_check_feature_set(features)]
+    """Length d of the feature vector f_k of a feature set (5, 4, 7 or 5)."""
+    return {"xyI|Ix||Iy|": 5, "rI|Ix||Iy|": 4, "xyRGB|Ix||Iy|": 7,
+            "xyIIxIy": 5}[_check_feature_set(features)]
 
 
 def _grey(frame: np.ndarray) -> np.ndarray:
@@ -61,11 +65,12 @@ def feature_image(frame: np.ndarray, features: str = "xyI|Ix||Iy|") -> np.ndarra
     ----------
     frame : H x W x 3 uint8 BGR image (or H x W grey).
     features : one of :data:`FEATURE_SETS`
-        ``"xyI|Ix||Iy|"`` — f = [x, y, I, |Ix|, |Iy|] (eq. 2, the book's default);
+        ``"xyI|Ix||Iy|"`` — f = [x, y, I, |Ix|, |Iy|] (eq. 2 plus |·|: the book's default);
         ``"rI|Ix||Iy|"`` — f = [‖(x′, y′)‖, I, |Ix|, |Iy|] (eq. 3). The radius depends on the
         window's centre, so this image holds only the last three channels and
         :class:`IntegralCovariance` adds the radius per window;
-        ``"xyRGB|Ix||Iy|"`` — f = [x, y, R, G, B, |Ix|, |Iy|] (colour option).
+        ``"xyRGB|Ix||Iy|"`` — f = [x, y, R, G, B, |Ix|, |Iy|] (colour option);
+        ``"xyIIxIy"`` — f = [x, y, I, Ix, Iy], eq. 2 with the signed gradients it prints.
 
     Notes
     -----
@@ -83,6 +88,11 @@ def feature_image(frame: np.ndarray, features: str = "xyI|Ix||Iy|") -> np.ndarra
     y, x = np.mgrid[0:H, 0:W].astype(np.float64)
     if features == "xyI|Ix||Iy|":
         return np.stack([x, y, grey, ax, ay], axis=-1)
+    if features == "xyIIxIy":
+        kx = np.array([[-1.0, 0.0, 1.0]])
+        ix = cv2.filter2D(grey, cv2.CV_64F, kx, borderType=cv2.BORDER_REPLICATE)
+        iy = cv2.filter2D(grey, cv2.CV_64F, kx.T, borderType=cv2.BORDER_REPLICATE)
+        return np.stack([x, y, grey, ix, iy], axis=-1)
     if frame.ndim != 3:
         raise ValueError("the colour feature set 'xyRGB|Ix||Iy|' needs an H x W x 3 BGR frame.")
     rgb = frame[..., ::-1].astype(np.float64)
@@ -118,9 +128,12 @@ def feature_planes(frame: np.ndarray, features: str = "xyI|Ix||Iy|", out=None) -
         c += 1
     kx = np.array([[-1.0, 0.0, 1.0]])
     for kernel in (kx, kx.T):
-        # Same [-1 0 1] filter and borders as _abs_gradients.
-        np.abs(cv2.filter2D(grey, cv2.CV_64F, kernel, borderType=cv2.BORDER_REPLICATE),
-               out=out[c])
+        # Same [-1 0 1] filter and borders as _abs_gradients; signed for eq. 2 as printed.
+        g = cv2.filter2D(grey, cv2.CV_64F, kernel, borderType=cv2.BORDER_REPLICATE)
+        if features == "xyIIxIy":
+            out[c] = g
+        else:
+            np.abs(g, out=out[c])
         c += 1
     return out
 

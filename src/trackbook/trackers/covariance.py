@@ -1,17 +1,21 @@
-"""Seed 002 (Lee 2015): region-covariance tracking, with and without a Kalman search window.
+"""Lee (2015): region-covariance tracking, with and without a Kalman search window.
 
 ``covariance`` (the paper's baseline, Fig. 3)
     compares the target's covariance (eq. 4) with every candidate window of the target's size
-    around the last position (Förstner distance, eq. 5–6); the smallest ρ wins. When even the
-    best ρ is above ``threshold`` the target is lost and the whole frame is searched.
+    around the last position (Förstner distance d_F = ρ, eq. 5–6); the smallest ρ wins. When
+    even the best ρ is above ``threshold`` the target is lost and the whole frame is searched
+    (the paper describes this whole-frame search for covariance alone, Fig. 3, frame 160).
 ``kalman-covariance`` (proposed, Fig. 1)
     predicts the target's centre with a constant-velocity Kalman filter (eq. 7–13), searches
-    only inside the predicted search window (the gate ``gate`` σ of the innovation covariance
-    S = H P⁻ Hᵀ + R, so the window grows when the filter is unsure), takes the best candidate's
-    centre as the measurement and updates the filter. Whole-frame search as above.
-    Not in the paper: when the best ρ is much worse than usual (``manoeuvre_gate``) the target
-    has probably changed velocity (a bounce); the window is searched again as if the
-    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 05, "The bounce").
+    only inside the predicted search window, takes the best candidate's centre as the
+    measurement and updates the filter. The paper says that when the match is poor it
+    searches *again inside the Kalman window* (``fallback="window"``, the paper preset); it
+    never sizes the window from S. Both are the book's: the window's half-size of ``gate`` σ
+    of the innovation covariance S = H P⁻ Hᵀ + R, the ``threshold``, and the whole-frame
+    fallback of the book default (``fallback="frame"``).
+    Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
+    target has probably changed velocity (a bounce); the window is searched again as if the
+    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 6, "The bounce").
 
 Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
 ``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
@@ -35,7 +39,7 @@ from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
                                    feature_dimension, feature_planes, forstner_distance)
 from ..features.motion import find_moving_region
 from ..filters.kalman import constant_velocity
-from ..params import param
+from ..params import NOT_PRINTED, param
 from .base import Tracker
 from .registry import register
 
@@ -45,32 +49,98 @@ RHO_HISTORY = 25
 
 @dataclasses.dataclass(frozen=True)
 class CovarianceParams:
-    features: str = param("xyI|Ix||Iy|", doc="feature vector f_k: eq. 2 (default), eq. 3 "
-                          "('rI|Ix||Iy|') or colour ('xyRGB|Ix||Iy|')", choices=FEATURE_SETS)
-    stride: int = param(1, 1, 8, 1, doc="pixels between neighbouring candidate windows")
-    search_radius: int = param(8, 1, 64, 1, doc="candidates' centres within ±radius px of the "
-                               "last position")
-    threshold: float = param(3.0, 0.1, 20.0, 0.1, doc="ρ (eq. 5) above which the target is "
-                             "lost and the whole frame is searched")
-    global_stride: int = param(4, 1, 16, 1, doc="stride of the coarse whole-frame search "
-                               "(refined at `stride` around its best window)")
-    eps: float = param(1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6")
-    model_update: float = param(0.0, 0.0, 1.0, 0.05, doc="α of C_model ← (1−α)C_model + "
-                                "αC_best (the paper keeps the model fixed: 0)")
+    # Section numbers are those of Lee (2015), J. KIICE 19(6), pp. 1477-1484.
+    features: str = param(
+        "xyI|Ix||Iy|", doc="feature vector f_k: eq. 2 with |Ix|, |Iy| (default), eq. 2 as "
+        "printed ('xyIIxIy'), eq. 3 ('rI|Ix||Iy|') or colour ('xyRGB|Ix||Iy|')",
+        choices=FEATURE_SETS,
+        paper="xyIIxIy",   # sec. 2.1, eq. 2: f_k = [x y I(x,y) I_x(x,y) ...], signed gradients
+        why="|Ix|, |Iy| as in Tuzel et al. (2006): a dark-on-light and a light-on-dark edge "
+            "give the same feature (chapter 7)")
+    stride: int = param(
+        1, 1, 8, 1, doc="pixels between neighbouring candidate windows",
+        paper=NOT_PRINTED,   # sec. 2.1 and 3 give no candidate spacing
+        why="every pixel (1), the finest grid; the search rate of Table 1 is counted at it")
+    search_radius: int = param(
+        8, 1, 64, 1, doc="candidates' centres within ±radius px of the last position",
+        paper=NOT_PRINTED,   # sec. 2.3 names a "search range" with no size
+        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (chapter 6 "
+            "compares the search rates)")
+    threshold: float = param(
+        3.0, 0.1, 20.0, 0.1, doc="ρ (eq. 5) above which the match is poor: the target is "
+        "lost and `fallback` says where to search again",
+        paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
+        why="on RedCube the tracked cube scores ρ ≈ 0.5 and background windows above 4; 3 lies "
+            "between (chapter 7 measures it)")
+    fallback: str = param(
+        "frame", doc="where to search again when the best ρ is above `threshold`: the whole "
+        "frame ('frame') or nowhere else, keeping the prediction ('window')",
+        choices=("frame", "window"),
+        paper="frame")     # sec. 3, Fig. 3, frame 160: covariance alone searches the whole frame
+    global_stride: int = param(
+        4, 1, 16, 1, doc="stride of the coarse whole-frame search (refined at `stride` "
+        "around its best window)",
+        paper=NOT_PRINTED, paper_value=1,   # sec. 3: every window of the frame is a candidate
+        why="coarse-to-fine (4 px, then refined at `stride` around the best window) evaluates "
+            "about 16 times fewer windows than the exhaustive search")
+    eps: float = param(
+        1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6",
+        paper=NOT_PRINTED,   # eq. 5-6 assume positive-definite matrices
+        why="a flat window has a singular C (zero gradient variance); εI keeps eq. 6 solvable")
+    model_update: float = param(
+        0.0, 0.0, 1.0, 0.05, doc="α of C_model ← (1−α)C_model + αC_best (0: fixed model)",
+        paper=NOT_PRINTED, paper_value=0.0,   # sec. 2.3: the target's covariance is computed once
+        why="the paper describes no model update; 0 keeps the model fixed, as the paper does")
 
 
 @dataclasses.dataclass(frozen=True)
 class KalmanCovarianceParams(CovarianceParams):
-    q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10); the paper prints Q = I")
-    r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11); the paper prints R = I")
-    p0: float = param(1.0, 0.01, 1000.0, 1.0, doc="P₀ = p0·I, the initial state covariance")
-    gate: float = param(3.0, 0.5, 10.0, 0.5, doc="search-window half-size in σ of "
-                        "S = HP⁻Hᵀ + R")
-    min_radius: int = param(4, 0, 64, 1, doc="smallest search-window half-size in px")
-    manoeuvre_gate: float = param(3.0, 0.0, 10.0, 0.5, doc="κ: a best ρ above κ·(median ρ of "
-                                  "the last accepted frames) signals a manoeuvre; 0 = never")
-    manoeuvre_sigma: float = param(8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity "
-                                   "change allowed on a manoeuvre: the second, larger window")
+    fallback: str = param(
+        "frame", doc="where to search again when the best ρ is above `threshold`: the whole "
+        "frame ('frame') or only the next, larger Kalman window ('window')",
+        choices=("frame", "window"),
+        paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
+        why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
+            "the yellow ball again after its first bounce; 'window' is the paper's (chapter 6)")
+    q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
+                     paper=1.0)   # sec. 2.2: Q = I_4 printed
+    r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
+                     paper=1.0)   # sec. 2.2: R = I_2 printed
+    p0: float = param(
+        1.0, 0.01, 1000.0, 1.0, doc="P₀ = p0·I, the initial state covariance",
+        paper=NOT_PRINTED,   # sec. 2.2 prints F, H, Q, R but no P_0
+        why="P₀ = I, the same scale as Q and R; the window settles within a few frames")
+    gate: float = param(
+        3.0, 0.5, 10.0, 0.5, doc="search-window half-size in σ of S = HP⁻Hᵀ + R",
+        paper=NOT_PRINTED,   # Fig. 2 draws the window; the paper never sizes it from S
+        why="the book sizes the window from S: 3σ holds the measurement 99 % of the time if "
+            "the model is right")
+    min_radius: int = param(
+        4, 0, 64, 1, doc="smallest search-window half-size in px",
+        paper=NOT_PRINTED,   # no window size printed
+        why="a floor under the gate (with Q = R = I, 3σ of S settles near ±7 px); 4 px keeps a "
+            "search area if q, r are set small")
+    manoeuvre_gate: float = param(
+        3.0, 0.0, 10.0, 0.5, doc="κ: a best ρ above κ·(median ρ of the last accepted "
+        "frames) signals a manoeuvre; 0 = never",
+        paper=NOT_PRINTED, paper_value=0.0,   # not in the paper; 0 switches it off
+        why="the book's addition: a ball's bounce leaves the constant-velocity window while ρ "
+            "stays below `threshold` (chapter 6, the bounce)")
+    manoeuvre_sigma: float = param(
+        8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity change allowed on a "
+        "manoeuvre: the second, larger window",
+        paper=NOT_PRINTED,   # not in the paper; unused when manoeuvre_gate = 0
+        why="the book's addition: 8 px/frame, about a bouncing ball's speed change")
+    motion_threshold: float = param(
+        10.0, 1.0, 100.0, 1.0, doc="grey-level change that counts as motion in "
+        "`init_from_motion`'s frame difference",
+        paper=NOT_PRINTED,   # sec. 2.3 / Fig. 2: frame differencing, no threshold printed
+        why="at 25 grey levels RedCube's 1.6 px move between frames 0 and 1 leaves only its "
+            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube (chapter 7)")
+    init_size: int = param(
+        24, 4, 128, 1, doc="side (px) of the model window centred on the moving region "
+        "when initialising without a box (`init_from_motion`)",
+        paper=24)   # sec. 3, Table 1: "tracked with a 24x24 area"
 
 
 def n_windows(frame_shape, size, stride: int) -> int:
@@ -104,7 +174,7 @@ def grid_boxes(frame_shape, size, center, radius, stride: int) -> np.ndarray:
 
 
 class _CovarianceSearch(Tracker):
-    """What both seed-002 trackers share: the model, candidate scoring, whole-frame search.
+    """What both trackers of Lee (2015) share: the model, candidate scoring, whole-frame search.
 
     Attributes (read-only, for drawing)
     -----------------------------------
@@ -240,7 +310,7 @@ class CovarianceTracker(_CovarianceSearch):
         box, rho, boxes, rhos = self._search(frame, self._center, (r, r))
         self.candidates, self.distances = boxes, rhos
         self.search_window = self._window_of(self._center, (r, r))
-        if rho > self.params.threshold:
+        if rho > self.params.threshold and self.params.fallback == "frame":
             gbox, grho = self._whole_frame_search(frame)
             if grho < rho:
                 box, rho = gbox, grho
@@ -259,8 +329,10 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     Per frame: predict (eq. 9–10); the search window is the predicted centre ±
     max(``gate``·σ, ``min_radius``) with σ² the diagonal of S = H P⁻ Hᵀ + R; the best
     candidate's centre is the measurement y_k (eq. 8) and updates the filter (eq. 11–13).
-    Best ρ above ``threshold`` → whole-frame search; still above → ``ok`` False, no update
-    (P keeps growing, so the next window is larger) and the box follows the prediction.
+    Best ρ above ``threshold`` → with ``fallback="frame"`` (the book's) a whole-frame search;
+    still above, or with ``fallback="window"`` (the paper's), ``ok`` is False, no update (P keeps
+    growing, so the next Kalman window, searched again, is larger) and the box follows the
+    prediction. ``gate``, ``threshold`` and the whole-frame fallback are the book's choices.
 
     Manoeuvre (the book's addition, off with ``manoeuvre_gate=0``): a constant-velocity model
     with Q = I cannot follow a bounce (the velocity reverses in one frame), and the best
@@ -295,16 +367,32 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     def init_from_motion(self, frame0, frame1, **kwargs):
         """Initialise with no box: the moving region between two frames (Fig. 1 of Lee 2015).
 
-        ``kwargs`` go to :func:`~trackbook.features.motion.find_moving_region`. Returns the box
-        found (the tracker is then initialised on ``frame1``) or raises ``ValueError`` if
-        nothing moved.
+        Section 2.3 of Lee (2015): the moving region's *centre* becomes the centre of the first
+        Kalman search window. Its *box* is not the target: a difference image covers where
+        the object was and where it is, and a flat object changes only at its leading and
+        trailing edges (on red-cube, frames 0→1 give a 19×3 strip). So the model window is
+        ``init_size`` × ``init_size`` px (the paper's 24×24, Table 1) centred on the region's
+        centre, measured on ``frame1``; the Kalman filter starts there with zero velocity.
+
+        ``kwargs`` go to :func:`~trackbook.features.motion.find_moving_region` (its
+        ``threshold`` defaults to ``motion_threshold``). Returns the
+        model box ``(x, y, w, h)`` (the tracker is then initialised on ``frame1``); raises
+        ``ValueError`` if nothing moved.
         """
-        box = find_moving_region(frame0, frame1, **kwargs)
-        if box is None:
+        kwargs.setdefault("threshold", self.params.motion_threshold)
+        region = find_moving_region(frame0, frame1, **kwargs)
+        if region is None:
             raise ValueError("no moving region between the two frames; lower `threshold` or "
                              "pass a box to init(frame, bbox).")
+        self.motion_region = region
+        s = float(self.params.init_size)
+        cx, cy = region[0] + region[2] / 2.0, region[1] + region[3] / 2.0
+        box = (cx - s / 2.0, cy - s / 2.0, s, s)
         self.init(frame1, box)
-        return box
+        # The model window is whole pixels; the filter starts at the region's exact centre.
+        self._kf.x[:2] = (cx, cy)
+        self.prediction = (self._kf.x.copy(), self._kf.P.copy())
+        return tuple(float(v) for v in self.bbox)
 
     @property
     def kalman(self):
@@ -360,7 +448,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         self.prediction = (kf.x.copy(), kf.P.copy())
         self.candidates, self.distances = boxes, rhos
         self.search_window = self._window_of(centre, radius)
-        if rho > p.threshold:
+        if rho > p.threshold and p.fallback == "frame":
             gbox, grho = self._whole_frame_search(frame)
             if grho < rho:
                 box, rho = gbox, grho
