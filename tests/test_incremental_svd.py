@@ -110,3 +110,21 @@ def test_bad_input():
         isvd.partial_fit(np.full(4, np.nan))
     with pytest.raises(ValueError, match="fit"):
         IncrementalSVD(K=2).reconstruction_error(np.ones(4))
+
+
+def test_reconstruction_error_is_one_plus_rho_times_the_bhattacharyya_distance():
+    """With z = sqrt(h) and one learned appearance u = sqrt(h_ref), eq. 12-13 (book's reading)
+    give ||z - u u^T z||^2 = (1 - rho)(1 + rho): about twice eq. 10's D^2 = 1 - rho, so the
+    same sigma is narrower after learning (chapter 4). Hand-worked identity, checked on
+    random histograms."""
+    import numpy as np
+    from trackbook.learning.incremental_svd import IncrementalSVD
+    rng = np.random.default_rng(0)
+    h_ref = rng.dirichlet(np.ones(256))
+    m = IncrementalSVD(K=1).fit(np.sqrt(h_ref)[:, None])
+    for _ in range(20):
+        h = 0.8 * h_ref + 0.2 * rng.dirichlet(np.ones(256))
+        rho = np.sum(np.sqrt(h * h_ref))
+        err2 = m.reconstruction_error(np.sqrt(h)[:, None])[0] ** 2
+        assert err2 == pytest.approx((1 - rho) * (1 + rho), rel=1e-9)
+        assert 1.9 < err2 / (1 - rho) <= 2.0
