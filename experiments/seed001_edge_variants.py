@@ -1,4 +1,4 @@
-"""Chapter 03's search for a better edge observation model: every variant, seeds 0-9.
+"""The search for a better edge observation model of the lab notes on Kim et al. (2016): every variant, seeds 0-9.
 
 Development code, not part of the library: it defines ``edge-ray-x``, a subclass of
 ``edge-ray-pf`` whose params switch on one departure from Kim et al. 2016 at a time, runs
@@ -8,7 +8,7 @@ trackers) on the real sequences, and writes one row per (variant, seed, sequence
     PYTHONPATH=src python experiments/seed001_edge_variants.py \
         --seeds 0-9 --out book/results/seed001_variants.csv
 
-About 15 minutes on 2 cores. Chapter 03 reads the CSV ("Looking for a better edge model").
+About 15 minutes on 2 cores. The lab notes on Kim et al. (2016) read the CSV ("Looking for a better edge model").
 
 One class, ``edge-ray-x``, whose params switch the departures on one by one:
 
@@ -125,8 +125,8 @@ class EdgeRayX(EdgeRayPF):
             return super()._rays(xy)
         e = self.edges
         H, W = e.shape
-        x = np.clip(np.rint(xy[:, 0] - 0.5), 0, W - 1).astype(np.intp)
-        y = np.clip(np.rint(xy[:, 1] - 0.5), 0, H - 1).astype(np.intp)
+        x = np.clip(np.floor(xy[:, 0]), 0, W - 1).astype(np.intp)
+        y = np.clip(np.floor(xy[:, 1]), 0, H - 1).astype(np.intp)
         out = np.empty((len(x), 8), dtype=np.intp)
         for a, maps in enumerate(self._axis_edges):
             st = er.ray_steps_at(maps, x, y)

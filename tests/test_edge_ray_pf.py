@@ -177,10 +177,23 @@ def test_particle_rays_equal_whole_frame_maps(max_ray):
     prev = t.particles.copy()
     t.update(frames[1])
     full = er.ray_distance_maps(t.edges, max_ray or None)
-    expect = er.rays_at(full, t.particles - 0.5)
+    expect = er.rays_at(full, np.floor(t.particles))
     np.testing.assert_allclose(t.particle_rays, expect, rtol=1e-6)
     np.testing.assert_allclose(t.likelihoods, er.edge_weight(expect, t.model_rays))
     assert not np.array_equal(prev, t.particles)
+
+
+def test_a_centre_maps_to_the_pixel_that_contains_it():
+    # Regression: np.rint(c - 0.5) rounds halves to even, so the centres 20.0 and 21.0 both
+    # landed on pixel 20. Pixel i covers [i, i + 1), so c -> floor(c). A vertical edge at
+    # column 25: the east ray from pixel 20 is 5 px long, from pixel 21 it is 4 px.
+    edges = np.zeros((50, 50), bool)
+    edges[:, 25] = True
+    t = trackers.create("edge-ray-pf", seed=0)
+    t.edges = edges
+    xy = np.array([[20.0, 10.0], [21.0, 10.0], [21.99, 10.0], [22.0, 10.0]])
+    east = t._rays(xy)[:, 0]
+    np.testing.assert_allclose(east, [5.0, 4.0, 4.0, 3.0])
 
 
 @pytest.mark.slow

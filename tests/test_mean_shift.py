@@ -305,3 +305,20 @@ def test_cost_counts_histograms_and_pixels(blob):
     clip = moving_blob_clip(4)
     r = trackbook.evaluate("condensation", clip, seed=0, n_particles=40)
     np.testing.assert_array_equal(r.extras["histograms"][1:], 40)
+
+
+def test_prediction_moves_the_position_by_the_new_noised_velocity():
+    """The module docstring's dynamics (issue 12): x_t = x + x_dot_t + w_x, with x_dot_t the
+    velocity AFTER its noise, not x + x_dot_{t-1}. With no position noise the displacement of
+    every candidate equals its new velocity exactly."""
+    import numpy as np
+    from trackbook import trackers
+    t = trackers.create("condensation", seed=3, noise_position=0.0, noise_velocity=0.2)
+    frame = np.full((80, 100, 3), 90, np.uint8)
+    frame[30:50, 40:60] = (40, 60, 200)
+    t.init(frame, (40, 30, 20, 20))
+    s0 = np.array(t._initial_particles(frame, (40, 30, 20, 20)), dtype=float)
+    s0[:, 2:4] = [1.5, -0.5]                      # a known previous velocity
+    s1 = t._predict(s0.copy())
+    np.testing.assert_allclose(s1[:, 0:2] - s0[:, 0:2], s1[:, 2:4], atol=1e-9)
+    assert not np.allclose(s1[:, 2:4], s0[:, 2:4])  # the velocity did receive noise

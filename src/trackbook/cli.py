@@ -154,15 +154,42 @@ def cmd_bench(args) -> int:
     params: dict[str, dict] = {}
     for item in args.param or []:
         if ":" not in item:
-            raise SystemExit(f"--param {item!r}: write TRACKER:NAME=VALUE")
+            raise ValueError(f"--param {item!r}: write TRACKER:NAME=VALUE, e.g. "
+                             "--param color-pf:n_particles=200")
         t, kv = item.split(":", 1)
-        params.setdefault(t, {}).update(_parse_params([kv]))
-    rows = bench.run(args.trackers, args.clips, args.out, seed=args.seed,
-                     max_frames=args.max_frames, params=params, progress=not args.quiet,
-                     force=args.force)
+        params.setdefault(t.strip(), {}).update(_bench_param(t.strip(), kv))
+    try:
+        rows = bench.run(args.trackers, args.clips, args.out, seed=args.seed,
+                         seeds=args.seeds, max_frames=args.max_frames, params=params,
+                         progress=not args.quiet, force=args.force, workers=args.workers,
+                         scheduler=args.scheduler)
+    except KeyboardInterrupt:
+        print(f"\ntrackbook: interrupted; finished runs are saved in {args.out}/runs; run the "
+              "same command again to resume.", file=sys.stderr)
+        return 130
+    except ImportError as e:   # --scheduler without the dask extra
+        print(f"trackbook: error: {e}", file=sys.stderr)
+        return 2
     print(bench.markdown_table(rows))
     print(f"wrote {args.out}/results.csv, results.json, table.md, success.png, precision.png")
     return 0
+
+
+def _bench_param(tracker: str, kv: str) -> dict:
+    """One ``NAME=VALUE`` for ``tracker``, through the shared parameter parser when present."""
+    from . import params as _params
+    from . import trackers
+
+    if "=" not in kv:
+        raise ValueError(f"--param {tracker}:{kv!r}: write TRACKER:NAME=VALUE, e.g. "
+                         "--param color-pf:n_particles=200")
+    name, value = (x.strip() for x in kv.split("=", 1))
+    parse = getattr(_params, "parse", None)
+    if parse is not None:
+        cls = getattr(trackers.get(tracker), "Params", None)
+        if cls is not None:
+            return {name: parse(cls, name, value)}
+    return _parse_params([f"{name}={value}"])
 
 
 def cmd_notebooks(args) -> int:
@@ -209,13 +236,20 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--trackers", required=True, help="comma-separated names; opencv-mil is "
                    "always added as the reference row")
     b.add_argument("--clips", default="samples",
-                   help="comma-separated: names, paths, 'samples' (all), 'shared' (all sequences)")
+                   help="comma-separated: names, paths, 'samples' (all), 'shared' (all "
+                        "sequences), or a dataset root (OTB-100, UAV123, a folder of sequences)")
     b.add_argument("--out", default="bench-results")
     b.add_argument("--seed", type=int, default=0)
+    b.add_argument("--seeds", help="sweep seeds: 0-9, 0,3,7 or 0-2,5 (overrides --seed)")
     b.add_argument("--max-frames", type=int)
     b.add_argument("--param", action="append", help="TRACKER:NAME=VALUE, repeatable")
     b.add_argument("--force", action="store_true", help="re-run finished runs")
     b.add_argument("--quiet", action="store_true", help="no progress bar")
+    b.add_argument("--workers", type=int, default=None,
+                   help="worker processes (default: the number of cores)")
+    b.add_argument("--scheduler", default=None,
+                   help="Dask scheduler address, e.g. tcp://HOST:8786 (default: "
+                        "$TRACKBOOK_DASK_SCHEDULER; needs pip install 'trackbook[dask]')")
     b.set_defaults(fn=cmd_bench)
 
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")

@@ -1,4 +1,5 @@
-"""Sphinx extension: serve MathJax from the built book instead of a CDN.
+"""Sphinx extension: serve MathJax from the built book instead of a CDN, and load nothing else
+from one (sphinx-thebe's scripts are dropped).
 
 The HTML book must show its equations on a machine without internet (a classroom behind a
 firewall, CI). MathJax 2.7 ships inside the ``jupyter-server-mathjax`` package on PyPI; this
@@ -50,7 +51,24 @@ def _copy(app, exception):
                         dirs_exist_ok=True)
 
 
+def _drop_thebe(app, pagename, templatename, context, doctree):
+    """Remove sphinx-thebe's scripts from every page.
+
+    Jupyter Book always loads sphinx-thebe, which adds an inline ``const THEBE_JS_URL`` block
+    (twice: a script error on the second) pointing at a CDN. The book has no live-code
+    buttons, so the scripts are dropped rather than repaired.
+    """
+    scripts = context.get("script_files")
+    if not scripts:
+        return
+    keep = [js for js in scripts
+            if "thebe" not in str(getattr(js, "filename", js) or "").lower()
+            and "THEBE" not in str(getattr(js, "attributes", {}).get("body", ""))]
+    scripts[:] = keep
+
+
 def setup(app):
     app.connect("config-inited", _configure, priority=900)
+    app.connect("html-page-context", _drop_thebe)
     app.connect("build-finished", _copy)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -96,7 +96,8 @@ class Playground:
     widget : the ipywidgets panel
     """
 
-    def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None):
+    def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None,
+                 samples=None):
         clips = [clips] if isinstance(clips, str) else list(clips)
         trackers = [trackers] if isinstance(trackers, str) else list(trackers)
         if not clips or not trackers:
@@ -104,6 +105,9 @@ class Playground:
         for t in trackers:
             _trackers.get(t)  # fail early, with the list of names
         self.param_names = list(params)
+        self.samples = dict(samples or {})
+        self.clip_names = [str(c) for c in clips]
+        self.tracker_names = list(trackers)
         self.n_frames = n_frames
         self.seed = seed
         self._values = dict(values or {})
@@ -143,7 +147,7 @@ class Playground:
         return W.VBox([top, self.params_box, self.frame_w, self.scores_w, self.image_w])
 
     def _ipython_display_(self):
-        display(self.widget)
+        self.show()
 
     def params(self) -> dict:
         """The param values currently set on the sliders."""
@@ -253,9 +257,112 @@ class Playground:
         fig.tight_layout()
         return fig
 
-    def show(self):
-        """Display the static figure (what the HTML book shows) and the live panel."""
+    def set(self, **knobs):
+        """Set knobs (as a slider would) and re-run; returns the new :class:`trackbook.Result`."""
+        fields = {f.name: f for f in dataclasses.fields(_trackers.get(self.tracker_w.value).Params)}
+        unknown = sorted(set(knobs) - set(self.param_ws) - set(fields))
+        if unknown:
+            raise ValueError(f"unknown knob(s) {unknown}; this playground has "
+                             f"{sorted(self.param_ws)}.")
+        for k, v in knobs.items():
+            if k in self.param_ws:
+                with self.param_ws[k].hold_trait_notifications():
+                    self.param_ws[k].value = v
+            self._values[k] = v
+        extra = {k: v for k, v in knobs.items() if k not in self.param_ws}
+        return self._run_with(extra)
+
+    def _run_with(self, extra):
+        saved = self.params
+        self.params = lambda: {**saved(), **extra}
+        try:
+            return self.run()
+        finally:
+            self.params = saved
+
+    # -- the browser viewer (HTML book and Jupyter alike) ----------------------------------
+    def knob_values(self, name: str, field: dataclasses.Field) -> list:
+        """The values the HTML precomputes for one knob (one knob at a time, around the default)."""
+        if name in self.samples:
+            vals = list(self.samples[name])
+        else:
+            m, d = field.metadata, field.default
+            lo, hi = m.get("lo"), m.get("hi")
+            if m.get("choices"):
+                vals = list(m["choices"])
+            elif isinstance(d, bool):
+                vals = [False, True]
+            elif name == "n_particles":
+                vals = [v for v in (10, 30, 100, 300, 1000)
+                        if (lo is None or v >= lo) and (hi is None or v <= hi)]
+            elif name == "alpha":
+                vals = [0.0, 0.1, 0.3, 0.5, 0.9, 1.0]
+            elif isinstance(d, (int, float)) and lo is not None and hi is not None:
+                grid = np.linspace(lo, hi, 5)
+                if isinstance(d, int):
+                    vals = sorted({int(round(v)) for v in grid})
+                else:
+                    vals = [float(f"{v:.3g}") for v in grid]
+            else:
+                vals = []
+        vals = [v for v in vals if v != field.default]
+        return [field.default] + vals[:5]
+
+    def html(self) -> str:
+        """The playground as the browser viewer: runs precomputed, frames encoded once."""
+        from . import playground as _pg
+
+        n_default = self.n_frames
+        main = self.tracker_names[0]
+        fields = {f.name: f for f in dataclasses.fields(_trackers.get(main).Params)}
+        knobs = {}
+        for name in self.param_names:
+            if name in fields:
+                vals = self.knob_values(name, fields[name])
+                if len(vals) > 1:
+                    knobs[name] = {"values": [str(v) for v in vals],
+                                   "default": str(self._values.get(name, fields[name].default)),
+                                   "typed": vals}
+        clip_data, runs = {}, {}
+        base = {k: v for k, v in self._values.items() if k in fields}
+        for cname in self.clip_names:
+            clip = _clips.load(cname)
+            n = len(clip) if n_default is None else min(n_default, len(clip))
+            clip_data[cname] = _pg.clip_entry(clip, n)
+            for t in self.tracker_names:
+                tf = {f.name for f in dataclasses.fields(_trackers.get(t).Params)}
+                r, st = self._record(t, clip, n, {k: v for k, v in base.items() if k in tf})
+                runs[f"{t}|{cname}|"] = _pg.run_record(r, st, clip.groundtruth, 40)
+            for name, spec in knobs.items():
+                for label, v in zip(spec["values"][1:], spec["typed"][1:]):
+                    r, st = self._record(main, clip, n, {**base, name: v})
+                    rec = _pg.run_record(r, st, clip.groundtruth, 0)
+                    rec.pop("particles", None)
+                    runs[f"{main}|{cname}|{name}={label}"] = rec
+        for spec in knobs.values():
+            spec.pop("typed")
         fig = self.static_figure()
-        display(fig)
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=70)
         plt.close(fig)
+        note = (f"This page holds precomputed runs: each knob at a few values, one knob at a time, "
+                f"for {main}; run the chapter in Jupyter to try any value "
+                f"(Playground.set(...) or the sliders below the viewer).")
+        return _pg.page_html(clip_data, runs, self.tracker_names, knobs, buf.getvalue(), note)
+
+    def _record(self, tracker, clip, n, params):
+        states = []
+        r = evaluate(tracker, clip, seed=self.seed, max_frames=n,
+                     on_frame=lambda i, t, f, b: states.append(_snapshot(t)), **params)
+        return r, states
+
+    def _repr_html_(self):
+        return self.html()
+
+    def show(self):
+        """Display the browser viewer (live in the HTML book, from disk too) and, in Jupyter,
+        the slider panel that re-runs the tracker for any value."""
+        from IPython.display import HTML
+
+        display(HTML(self.html()))
         display(self.widget)

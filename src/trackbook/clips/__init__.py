@@ -86,3 +86,7 @@ __all__ = [
     "describe", "load", "export", "find_sequences", "load_folder", "load_video",
     "read_groundtruth",
 ]
+
+
+from . import datasets  # noqa: E402  (after load(): datasets builds clips with the loaders)
+from .datasets import load_dataset  # noqa: E402,F401

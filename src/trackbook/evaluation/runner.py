@@ -50,8 +50,8 @@ def _make(name_or_tracker, seed, params, preset="book"):
         return (_trackers.create(name_or_tracker, seed=seed, preset=preset, **params),
                 name_or_tracker)
     if params or preset != "book":
-        raise ValueError("params and preset can only be given with a tracker name, not a "
-                         "tracker object.")
+        raise ValueError("params can only be given with a tracker name, not a tracker object "
+                         "(and so can preset).")
     t = name_or_tracker
     if not (hasattr(t, "init") and hasattr(t, "update")):
         raise ValueError(
@@ -89,8 +89,22 @@ def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None
         :func:`trackbook.trackers.departures`), names only; ``params`` override either.
     **params : the tracker's params (names only).
     """
+    return evaluate_many([(name_or_tracker, seed, params)], clip, max_frames=max_frames,
+                         init_box=init_box, on_frame=on_frame, preset=preset)[0]
+
+
+def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_frame=None,
+                  preset: str = "book") -> list[Result]:
+    """Several trackers over one clip in lockstep: each frame is decoded once and given to
+    every tracker, so a benchmark decodes a clip once for all its trackers while holding only
+    the current frame (memory stays bounded however long the clip).
+
+    ``runs`` is a list of ``(name_or_tracker, seed, params)``; the results, in that order, are
+    exactly what :func:`evaluate` gives for each run alone (the trackers share nothing but the
+    read-only frame). ``on_frame`` is called as ``on_frame(i, tracker, frame, box)`` for each.
+    """
     clip = _clips.load(clip)
-    tracker, tname = _make(name_or_tracker, seed, params, preset)
+    made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
     n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
     if n < 2:
         raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")
@@ -103,38 +117,47 @@ def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None
         )
     box0 = clip_box(box0, first.shape)
 
-    boxes = np.full((n, 4), np.nan)
-    ok = np.zeros(n, dtype=bool)
-    ms = np.zeros(n)
-    extras: dict[str, list] = {}
-    t0 = time.perf_counter()
-    _init_foreign(tracker, first, box0)
-    ms[0] = (time.perf_counter() - t0) * 1e3
-    boxes[0], ok[0] = box0, True
-    if on_frame is not None:
-        on_frame(0, tracker, first, box0)
+    k = len(made)
+    boxes = np.full((k, n, 4), np.nan)
+    ok = np.zeros((k, n), dtype=bool)
+    ms = np.zeros((k, n))
+    extras: list[dict[str, list]] = [{} for _ in made]
+    for j, (tracker, _) in enumerate(made):
+        t0 = time.perf_counter()
+        _init_foreign(tracker, first, box0)
+        ms[j, 0] = (time.perf_counter() - t0) * 1e3
+        boxes[j, 0], ok[j, 0] = box0, True
+        if on_frame is not None:
+            on_frame(0, tracker, first, box0)
     for i in range(1, n):
         frame = next(frames)
-        t0 = time.perf_counter()
-        good, box = tracker.update(frame)
-        ms[i] = (time.perf_counter() - t0) * 1e3
-        boxes[i], ok[i] = np.asarray(box, dtype=float), bool(good)
-        report = getattr(tracker, "frame_report", None)
-        if callable(report):
-            for k, v in report().items():
-                extras.setdefault(k, [np.nan] * n)[i] = v
-        if on_frame is not None:
-            on_frame(i, tracker, frame, boxes[i])
+        for j, (tracker, _) in enumerate(made):
+            t0 = time.perf_counter()
+            good, box = tracker.update(frame)
+            ms[j, i] = (time.perf_counter() - t0) * 1e3
+            boxes[j, i], ok[j, i] = np.asarray(box, dtype=float), bool(good)
+            report = getattr(tracker, "frame_report", None)
+            if callable(report):
+                for key, v in report().items():
+                    extras[j].setdefault(key, [np.nan] * n)[i] = v
+            if on_frame is not None:
+                on_frame(i, tracker, frame, boxes[j, i])
 
     gt = clip.groundtruth[:n]
-    try:
-        scores = metrics.summary(boxes[1:], gt[1:])
-    except ValueError:  # no ground truth (a user's video without annotation)
-        scores = {}
-    scores["ms_median"] = float(np.median(ms[1:]))
-    scores["ms_mean"] = float(np.mean(ms[1:]))
-    p = tracker.params if hasattr(tracker, "params") and dataclasses.is_dataclass(
-        getattr(tracker, "params", None)) else None
-    return Result(tname, clip.name, boxes, ok, ms, scores,
-                  params=dataclasses.asdict(p) if p is not None else {},
-                  extras={k: np.asarray(v) for k, v in extras.items()})
+    results = []
+    for j, (tracker, tname) in enumerate(made):
+        close = getattr(tracker, "close", None)
+        if isinstance(runs[j][0], str) and callable(close):
+            close()  # a tracker we made: free e.g. opencv-mil's child process now
+        try:
+            scores = metrics.summary(boxes[j, 1:], gt[1:])
+        except ValueError:  # no ground truth (a user's video without annotation)
+            scores = {}
+        scores["ms_median"] = float(np.median(ms[j, 1:]))
+        scores["ms_mean"] = float(np.mean(ms[j, 1:]))
+        p = tracker.params if hasattr(tracker, "params") and dataclasses.is_dataclass(
+            getattr(tracker, "params", None)) else None
+        results.append(Result(tname, clip.name, boxes[j], ok[j], ms[j], scores,
+                              params=dataclasses.asdict(p) if p is not None else {},
+                              extras={key: np.asarray(v) for key, v in extras[j].items()}))
+    return results

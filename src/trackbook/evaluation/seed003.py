@@ -1,6 +1,6 @@
 """Cho & Kang 2005's Tables 1-2 on our data: ms per frame and accuracy of the three trackers.
 
-Regenerate the committed real-sequence table of chapter 07 with::
+Regenerate the committed real-sequence table of the Cho & Kang lab notes (chapter 8) with::
 
     TRACKBOOK_SEQUENCES=/path/to/sequences python -m trackbook.evaluation.seed003 \\
         --out book/results/seed003_real.csv

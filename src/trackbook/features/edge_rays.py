@@ -1,4 +1,4 @@
-"""The 8-ray edge observation model of Kim, Kim & Choi 2016 (chapter 03 of the book).
+"""The 8-ray edge observation model of Kim, Kim & Choi 2016 (chapter 5 of the book).
 
 From a point, walk along 8 rays at 45 degree steps and note how far the nearest edge pixel is
 on each ray (eq. 1 for the target model M, eq. 4 for a particle's model p). Two sets of rays
@@ -51,7 +51,11 @@ RATIO_WINDOW = (0.8, 1.2)
 
 def edge_image(frame: np.ndarray, low: float = 50.0, high: float = 150.0,
                blur: int = 0) -> np.ndarray:
-    """Canny edge map of a BGR (or grey) frame as an (H, W) bool array.
+    """Canny (1986) edge map of a BGR (or grey) frame as an (H, W) bool array.
+
+    Kim et al. (2016) name no edge detector, thresholds or smoothing; Canny with 50/150 and no
+    blur are the book's choices (the ``canny_low``, ``canny_high``, ``blur`` params of
+    ``edge-ray-pf`` record them as not printed).
 
     Parameters
     ----------

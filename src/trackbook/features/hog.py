@@ -1,6 +1,9 @@
 """The HOG descriptor of Lee et al. 2012 (section III.2, eq. 2-5), batched over boxes.
 
-Chapter 02 of the book. The recipe, on a grey patch resized to 16 wide x 24 high:
+A variant of Dalal & Triggs (2005): signed angles (8 bins of 45 degrees over 360), small 4 x 4 px
+cells and one normalisation of the whole descriptor instead of overlapping blocks.
+
+Chapter 3 of the book. The recipe, on a grey patch resized to 16 wide x 24 high:
 
 1. smooth with a 5 x 5 Gaussian;
 2. central differences (eq. 2)::

@@ -1,6 +1,6 @@
 """Kernel mean-shift on an ellipse target (Comaniciu, Ramesh & Meer 2003; §3.3 of Cho & Kang 2005).
 
-Chapter 07 of the book. The target is an ellipse with centre ``y`` and half-axes ``(Hx, Hy)``.
+Chapter 8 of the book. The target is an ellipse with centre ``y`` and half-axes ``(Hx, Hy)``.
 Its colour distribution counts the colours of the pixels inside the ellipse, each weighted by
 the Epanechnikov profile ``k(r) = 1 - r^2`` of its ellipse-normalised radius
 ``r^2 = ((x - y_x) / Hx)^2 + ((y - y_y) / Hy)^2`` (eq. 2-3 of Cho & Kang 2005).

@@ -1,6 +1,6 @@
 """Incremental SVD with a forgetting factor (eq. 6-7 of Lee et al. 2012; Ross et al. 2008).
 
-Chapter 08 of the book. Given the thin SVD A = U Sigma V^T of the d x n features seen so far
+Chapter 4 of the book. Given the thin SVD A = U Sigma V^T of the d x n features seen so far
 and m new columns B, the SVD of [A B] follows from a small (k+m) x (k+m) problem (eq. 6):
 
     [A B] = [U  B~] [ Sigma   U^T B  ] [ V^T  0 ]
@@ -50,7 +50,7 @@ class IncrementalSVD:
     Parameters
     ----------
     K : int
-        Number of singular vectors kept (16 in trackbook's ``color-hog-ipca``).
+        Number of singular vectors kept (``color-hog-ipca`` defaults to 2; Lee et al. 2012 print no K).
     forgetting : float in (0, 1]
         f of Ross et al.: old singular values are scaled by f at every ``partial_fit``.
     centre : bool

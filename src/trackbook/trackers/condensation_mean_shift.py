@@ -1,9 +1,9 @@
 """Cho & Kang 2005: Condensation, mean-shift, and Condensation with candidates moved by mean-shift.
 
-Chapter 07 of the book (and its Condensation-cost page under chapter 06). Three registered
+Chapter 8 of the book (and its lab notes, ``lab_notes_cho2005``). Three registered
 trackers share one target model, an ellipse with a kernel-weighted colour distribution:
 
-- ``condensation`` (baseline, Nummiaro et al. 2002): factored sampling -> predict
+- ``condensation`` (baseline, Nummiaro et al. 2003): factored sampling -> predict
   ``s_t = A s_{t-1} + w`` -> weight every candidate by its Bhattacharyya likelihood; 100 candidates.
 - ``mean-shift`` (baseline, Comaniciu, Ramesh & Meer 2003): one ellipse moved uphill on
   rho[p(y), q] from the last position (steps ①-⑥ of §3.3).
@@ -17,10 +17,13 @@ velocity in pixels per frame, its half-axes and ``a``, the size change of this f
 The dynamics ``s_t = A s_{t-1} + w_{t-1}`` (eq. 9) are, with all noise Gaussian and scaled by
 the candidate's own half-axes so that one setting fits small and large targets::
 
-    x_t  = x + x_dot + w_x          x_dot_t = x_dot + w_xdot       a_t = 1 + w_a
-    y_t  = y + y_dot + w_y          y_dot_t = y_dot + w_ydot       Hx_t = a_t Hx,  Hy_t = a_t Hy
+    x_dot_t = x_dot + w_xdot        x_t = x + x_dot_t + w_x        a_t = 1 + w_a
+    y_dot_t = y_dot + w_ydot        y_t = y + y_dot_t + w_y        Hx_t = a_t Hx,  Hy_t = a_t Hy
 
-(the size is multiplied by ``a``, the one non-linear step; the paper leaves A unspecified).
+The velocity is drawn first and the position moves by the *new*, already-noised velocity
+``x_dot_t`` (not by ``x_dot_{t-1}``), so the position's spread per frame is
+``sqrt(noise_position^2 + noise_velocity^2)`` half-axes. The size is multiplied by ``a``, the
+one non-linear step; the paper leaves A unspecified.
 The likelihood of a candidate is Nummiaro's ``exp(-(1 - rho) / (2 sigma^2))``.
 """
 
@@ -35,7 +38,7 @@ from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift
                                   region_around)
 from ..filters.optical_flow import motion_vector, pyramid
 from .particle_filter import ParticleFilterTracker
-from ..params import param
+from ..params import NOT_PRINTED, param
 from .base import Tracker, readonly
 from .registry import register
 
@@ -55,7 +58,7 @@ def ellipse_to_box(cx, cy, hx, hy) -> np.ndarray:
 
 
 def colour_likelihood(rho, sigma: float) -> np.ndarray:
-    """Nummiaro et al. 2002: pi = exp(-(1 - rho) / (2 sigma^2)), d^2 = 1 - rho the Bhattacharyya
+    """Nummiaro et al. 2003: pi = exp(-(1 - rho) / (2 sigma^2)), d^2 = 1 - rho the Bhattacharyya
     distance squared (the constant 1 / (sqrt(2 pi) sigma) is dropped: weights are normalised)."""
     return np.exp(-(1.0 - np.asarray(rho, dtype=float)) / (2.0 * sigma * sigma))
 
@@ -64,33 +67,56 @@ def _common_params():
     """Fields shared by the three trackers (a function so each dataclass gets its own copies)."""
     return dict(
         sigma=param(0.1, 0.01, 1.0, 0.01,
-                    "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro 2002: 0.1)"),
-        h_bins=param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)"),
-        s_bins=param(8, 1, 32, 1, "saturation bins (eq. 3)"),
-        v_bins=param(4, 1, 32, 1, "value bins (eq. 3)"),
+                    "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro et al. 2003: 0.1)",
+                    paper=NOT_PRINTED,
+                    why="Cho & Kang print no likelihood; the book takes Nummiaro et al. (2003)'s "
+                        "0.1, the baseline they cite"),
+        h_bins=param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)",
+                     paper=NOT_PRINTED,
+                     why="eq. 3 names bins u but no count; 8x8x4 HSV after Nummiaro et al. (2003)"),
+        s_bins=param(8, 1, 32, 1, "saturation bins (eq. 3)", paper=NOT_PRINTED,
+                     why="not printed; 8 saturation bins after Nummiaro et al. (2003)"),
+        v_bins=param(4, 1, 32, 1, "value bins (eq. 3)", paper=NOT_PRINTED,
+                     why="not printed; 4 value bins (value is least stable under light)"),
         resolution=param(8, 2, 64, 1,
                          "lattice pixels across the shorter half-axis: larger targets are read "
                          "every k-th pixel so the cost does not grow with their size (speed; "
-                         "the paper's small 320x240 targets are read at every pixel anyway)"),
+                         "the paper's small 320x240 targets are read at every pixel anyway)",
+                         paper=NOT_PRINTED,
+                         why="the book's addition for speed on large targets; eq. 3 sums every "
+                             "pixel, which this setting matches on targets of 8 px half-axes"),
         min_rho=param(0.3, 0.0, 1.0, 0.05,
-                      "best rho below this: the frame is reported lost (ok=False)"),
+                      "best rho below this: the frame is reported lost (ok=False)",
+                      paper=NOT_PRINTED, paper_value=0.0,
+                      why="the paper never reports a lost target; the book flags frames whose "
+                          "best rho is below 0.3 (0 = off)"),
     )
 
 
 def _candidate_params(n: int, n_max: int, n_doc: str):
     """The candidates of eq. 9, s_t = A s_(t-1) + w: how many, and the noise w of A."""
     return dict(
-        n_particles=param(n, 1, n_max, 1, n_doc),
+        n_particles=param(n, 1, n_max, 1, n_doc, paper=n),  # Cho & Kang 2005 §5.1
         noise_position=param(0.15, 0.0, 2.0, 0.01,
-                             "std of w_x, w_y of eq. 9, in half-axes (the noise of A)"),
+                             "std of w_x, w_y of eq. 9, in half-axes (the noise of A)",
+                             paper=NOT_PRINTED,
+                             why="eq. 9 names the noise w but prints no size; 0.15 half-axes "
+                                 "chosen on the sample clips (lab notes)"),
         noise_velocity=param(0.05, 0.0, 1.0, 0.01,
-                             "std of w_xdot, w_ydot of eq. 9, in half-axes per frame"),
+                             "std of w_xdot, w_ydot of eq. 9, in half-axes per frame",
+                             paper=NOT_PRINTED,
+                             why="not printed; 0.05 half-axes per frame chosen on the sample "
+                                 "clips (lab notes)"),
         noise_scale=param(0.0, 0.0, 0.3, 0.005,
                           "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
                           "size, for all three trackers: the colour likelihood alone lets the "
-                          "size drift, mostly smaller; chapter 07)"),
+                          "size drift, mostly smaller; chapter 8)",
+                          paper=NOT_PRINTED,
+                          why="eq. 1 has a size change a but no spread; the book fixes the size "
+                              "(0) because the colour likelihood lets it shrink (chapter 8)"),
         resampler=param("multinomial", doc="factored sampling (step ①)",
-                        choices=("multinomial", "systematic", "stratified", "residual")),
+                        choices=("multinomial", "systematic", "stratified", "residual"),
+                        paper="multinomial"),  # §3.2 step ①: sample from the weighted set
     )
 
 
@@ -104,27 +130,49 @@ CondensationParams = _dataclass("CondensationParams", dict(
     **_candidate_params(100, 2000, "N, number of candidates (100 in Cho & Kang 2005 §5.1, "
                                    "after Nummiaro)"),
     **_common_params(),
-), "Tunables of ``condensation`` (Nummiaro et al. 2002 as used by Cho & Kang 2005).")
+), "Tunables of ``condensation`` (Nummiaro et al. 2003 as used by Cho & Kang 2005).")
 
 
 CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
     **_candidate_params(5, 500, "N, number of candidates (5 in Cho & Kang 2005 §5.1)"),
-    max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)"),
-    eps=param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps pixels"),
-    use_motion=param(True, doc="seed the prediction with the motion vector (p, q) of eq. 8"),
+    # §4, eq. 12-13: one mean-shift step moves each candidate, printed once per candidate.
+    max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)",
+                   paper=1,
+                   why="the book's reading: eq. 12-13 print one shift; the book repeats steps "
+                       "②-⑥ of §3.3 (halving, stop below eps) up to 10 times so each candidate "
+                       "reaches its hill top (chapter 8; preset='paper' runs one shift)"),
+    eps=param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps pixels",
+              paper=NOT_PRINTED,
+              why="step ⑥ of §3.3 names epsilon without a value; half a pixel"),
+    use_motion=param(True, doc="seed the prediction with the motion vector (p, q) of eq. 8",
+                     paper=True),  # §4, eq. 5-9
     flow_levels=param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
-                                  "single solve)"),
+                                  "single solve)",
+                      paper=1,  # eq. 5-8: one least-squares solve on the frame pair
+                      why="one solve cannot measure motions over ~1 px; a 3-level pyramid "
+                          "measures the sample clips' 2-6 px steps (lab notes)"),
     flow_iterations=param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's single "
-                                       "solve; more re-warp and solve for the remainder)"),
+                                       "solve; more re-warp and solve for the remainder)",
+                          paper=1),  # eq. 8: one solve
     **_common_params(),
 ), "Tunables of ``condensation-mean-shift`` (Cho & Kang 2005).")
 
 
 MeanShiftParams = _dataclass("MeanShiftParams", dict(
-    max_iter=param(20, 1, 100, 1, "mean-shift iterations per frame at most (Comaniciu: 20)"),
-    eps=param(0.5, 0.01, 10.0, 0.05, "stop when the step is below eps pixels (step ⑥)"),
-    scale_adapt=param(False, doc="try ±10 % half-axes and keep the best rho (Comaniciu §5.2)"),
-    gamma=param(0.1, 0.0, 1.0, 0.05, "scale smoothing h = gamma h_opt + (1 - gamma) h_prev"),
+    max_iter=param(20, 1, 100, 1, "mean-shift iterations per frame at most (Comaniciu: 20)",
+                   paper=NOT_PRINTED,
+                   why="Cho & Kang loop steps ②-⑥ until the step is below epsilon; the cap of "
+                       "20 is Comaniciu et al. (2003)'s"),
+    eps=param(0.5, 0.01, 10.0, 0.05, "stop when the step is below eps pixels (step ⑥)",
+              paper=NOT_PRINTED,
+              why="step ⑥ of §3.3 names epsilon without a value; half a pixel"),
+    scale_adapt=param(False, doc="try ±10 % half-axes and keep the best rho (Comaniciu §5.2)",
+                      paper=NOT_PRINTED, paper_value=False,
+                      why="§3.3's steps move the centre only; the ±10 % search is Comaniciu "
+                          "et al. (2003)'s, off by default"),
+    gamma=param(0.1, 0.0, 1.0, 0.05, "scale smoothing h = gamma h_opt + (1 - gamma) h_prev",
+                paper=NOT_PRINTED,
+                why="only used with scale_adapt; Comaniciu et al. (2003)'s 0.1"),
     **_common_params(),
 ), "Tunables of ``mean-shift`` (Comaniciu, Ramesh & Meer 2003).")
 
@@ -166,7 +214,7 @@ class _EllipseColourModel:
 
 @register
 class Condensation(_EllipseColourModel, ParticleFilterTracker):
-    """Condensation with a colour distribution (Nummiaro et al. 2002), the baseline of Cho & Kang.
+    """Condensation with a colour distribution (Nummiaro et al. 2003), the baseline of Cho & Kang.
 
     Attributes (read-only, for drawings)
     ------------------------------------

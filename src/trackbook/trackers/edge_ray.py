@@ -1,7 +1,7 @@
 """``edge-ray-pf``: the particle filter with the 8-ray edge observation model.
 
 Kim, Kim & Choi, "Tracking moving objects using particle filter and edge observation model",
-J. KSII 2016 (chapter 03 of the book). Table 2 of the paper, step by step:
+J. KSII 2016 (chapter 5 of the book). Table 2 of the paper, step by step:
 
 1. init: Canny edges of the first frame; the model M = the 8 nearest-edge distances mDis_j
    from the centre of the box (eq. 1); N particles around the centre with equal weights.
@@ -14,7 +14,7 @@ The distances are computed only along the image lines through the particles (row
 and diagonals), not as 8 whole-frame maps: exactly the same numbers, several times faster.
 
 Options beyond the paper (off by default): ``max_ray`` caps the rays, ``adapt_scale`` lets the box follow the
-weighted median Ratio, ``model_rate`` blends M towards the rays at the current estimate.
+weighted mean Ratio (sum_i w_i Ratio_i), ``model_rate`` blends M towards the rays at the current estimate.
 """
 
 from __future__ import annotations
@@ -24,23 +24,42 @@ import dataclasses
 import numpy as np
 
 from ..features import edge_rays as er
-from ..params import param
+from ..params import NOT_PRINTED, param
 from .centre_pf import CentreParticleFilter, CentrePFParams
 from .registry import register
 
 
 @dataclasses.dataclass(frozen=True)
 class EdgeRayParams(CentrePFParams):
-    ratio_low: float = param(0.8, 0.1, 1.0, 0.05, "lower bound of the Ratio window (eq. 5)")
-    ratio_high: float = param(1.2, 1.0, 5.0, 0.05, "upper bound of the Ratio window (eq. 5)")
-    canny_low: float = param(50.0, 0.0, 500.0, 5.0, "Canny low hysteresis threshold")
-    canny_high: float = param(150.0, 0.0, 1000.0, 5.0, "Canny high hysteresis threshold")
-    blur: int = param(0, 0, 15, 2, "Gaussian blur kernel before Canny (0 = none, as the paper)")
-    max_ray: float = param(0.0, 0.0, 1000.0, 5.0,
-                           "cap on every ray in pixels (0 = up to the frame border, as the paper)")
-    adapt_scale: bool = param(False, doc="box size follows the weighted median Ratio (not in paper)")
-    model_rate: float = param(0.0, 0.0, 0.5, 0.01,
-                              "rate of blending M towards the estimate's rays (0 = paper)")
+    # Kim et al. (2016), section 3.2 after eq. 5: "the range of Ratio is set to 0.8-1.2".
+    ratio_low: float = param(0.8, 0.1, 1.0, 0.05, "lower bound of the Ratio window (eq. 5)",
+                             paper=0.8)
+    ratio_high: float = param(1.2, 1.0, 5.0, 0.05, "upper bound of the Ratio window (eq. 5)",
+                              paper=1.2)
+    canny_low: float = param(
+        50.0, 0.0, 500.0, 5.0, "Canny low hysteresis threshold", paper=NOT_PRINTED,
+        why="the paper names no edge detector or threshold; the book uses Canny (1986) "
+        "with the common 50/150 pair")
+    canny_high: float = param(
+        150.0, 0.0, 1000.0, 5.0, "Canny high hysteresis threshold", paper=NOT_PRINTED,
+        why="the paper names no edge detector or threshold; the book uses Canny (1986) "
+        "with the common 50/150 pair")
+    blur: int = param(
+        0, 0, 15, 2, "Gaussian blur kernel before Canny (0 = none)", paper=NOT_PRINTED,
+        paper_value=0, why="the paper says nothing about smoothing; the book's default is none, "
+        "an option for noisy video")
+    max_ray: float = param(
+        0.0, 0.0, 1000.0, 5.0, "cap on every ray in pixels (0 = up to the frame border)",
+        paper=NOT_PRINTED, paper_value=0.0,
+        why="eq. 1 and 4 give no cap; the book's option, off by default")
+    adapt_scale: bool = param(
+        False, doc="box size follows the weighted mean Ratio sum_i w_i Ratio_i (not in the paper)",
+        paper=NOT_PRINTED, paper_value=False,
+        why="the paper tracks the position only (eq. 3); the book's option, off by default")
+    model_rate: float = param(
+        0.0, 0.0, 0.5, 0.01, "rate of blending M towards the estimate's rays (0 = off)",
+        paper=NOT_PRINTED, paper_value=0.0,
+        why="the paper keeps M from the first frame; the book's option, off by default")
 
 
 @register
@@ -76,12 +95,14 @@ class EdgeRayPF(CentreParticleFilter):
     def _rays(self, xy):
         """pDis_j (eq. 4) of centres ``xy`` (N, 2) in the current edge map, capped at max_ray.
 
-        A centre is continuous; its pixel is the one that contains it (hence the - 0.5). The
+        A centre is continuous; its pixel is the one that contains it, ``floor(c)`` (pixel i
+        covers [i, i + 1)). ``np.rint(c - 0.5)`` would round halves to even, so 21.0 would map to
+        pixel 20 while 20.0 maps to 20; floor maps every centre to its own pixel. The
         distances are computed along the lines through the particles only
         (:func:`~trackbook.features.edge_rays.ray_steps_at`): the same numbers as 8 per-pixel
         maps of the whole frame, at a fraction of the cost.
         """
-        return er.rays_at_points(self.edges, xy - 0.5, self.params.max_ray or None)
+        return er.rays_at_points(self.edges, np.floor(xy), self.params.max_ray or None)
 
     def _likelihood(self, frame, particles):
         p = self.params
@@ -96,7 +117,7 @@ class EdgeRayPF(CentreParticleFilter):
         p = self.params
         if ok and (p.adapt_scale or p.model_rate > 0):
             if p.adapt_scale:
-                # the weighted Ratio says how much larger the median ray is than the model's
+                # the weighted mean Ratio says how much larger the median ray is than the model's
                 r = float(self.weights @ self.ratios)
                 self.scale = float(np.clip(self.scale * r, 0.25, 4.0))
             if p.model_rate > 0:

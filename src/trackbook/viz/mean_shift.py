@@ -1,4 +1,4 @@
-"""Drawings of chapter 07 (mean-shift) and its Condensation-cost page (Cho & Kang 2005 Fig. 1-6).
+"""Drawings of chapter 8 (mean-shift) and its lab notes (Cho & Kang 2005 Fig. 1-6).
 
 Coordinates: trackers use continuous image coordinates (pixel i covers [i, i+1)); matplotlib's
 ``imshow`` puts pixel i at i, so everything drawn here is shifted by half a pixel.
@@ -17,7 +17,7 @@ def rho_map(frame, q, axes, region, step: int = 2, stride: int = 1, bins=(8, 8, 
     """rho[p(y), q] for every centre y on a grid over ``region = (x0, y0, x1, y1)``.
 
     Returns ``(xs, ys, rho)`` with rho of shape ``(len(ys), len(xs))``: the surface mean-shift
-    climbs (chapter 07's density picture).
+    climbs (chapter 8's density picture).
     """
     x0, y0, x1, y1 = region
     xs = np.arange(x0, x1, step) + 0.5
@@ -55,14 +55,19 @@ def show_rho_map(frame, xs, ys, rho, ax=None, trajectories=None, title=None, alp
 
 
 def show_candidates(frame, states, values, ax=None, estimate=None, gt=None, title=None,
-                    label="likelihood", vmax=None):
-    """Fig. 1 / Fig. 2 of Cho & Kang: candidate centres coloured by their likelihood."""
+                    label="likelihood", vmin=None, vmax=None):
+    """Fig. 1 / Fig. 2 of Cho & Kang: candidate centres coloured by their likelihood.
+
+    The colour scale is fitted to the values (``vmin``/``vmax`` default to their range) so that
+    differences of a few hundredths stay visible; pass both to share a scale between panels.
+    """
     if ax is None:
         _, ax = plt.subplots(figsize=(5, 3.8))
     ax.imshow(bgr2rgb(frame))
     s = np.asarray(states)
-    sc = ax.scatter(s[:, 0] - 0.5, s[:, 1] - 0.5, c=values, cmap="viridis", s=22, vmin=0,
-                    vmax=vmax, edgecolors="k", linewidths=0.3)
+    sc = ax.scatter(s[:, 0] - 0.5, s[:, 1] - 0.5, c=values, cmap="viridis", s=22,
+                    vmin=np.nanmin(values) if vmin is None else vmin,
+                    vmax=np.nanmax(values) if vmax is None else vmax, edgecolors="k", linewidths=0.3)
     plt.colorbar(sc, ax=ax, fraction=0.035, label=label)
     if estimate is not None:
         draw_ellipse(ax, estimate[0] - 0.5, estimate[1] - 0.5, estimate[2], estimate[3],

@@ -1,0 +1,131 @@
+"""Where a benchmark's runs execute: this process, worker processes, or a Dask cluster.
+
+The unit of work is a *group*: runs that share one clip. A worker loads the clip once and
+gives each decoded frame to every tracker of its group in turn
+(:func:`trackbook.evaluation.runner.evaluate_many`), so a clip is decoded once per group and
+only the current frame is held (memory stays bounded by one clip's trackers, not by the dataset).
+When there are fewer clips than ``4 x workers`` the trackers of a clip are split into several
+groups so that all workers stay busy; groups go out longest first.
+
+Every run's result is the same wherever it runs: trackers are seeded per run and OpenCV's MIL
+runs each run in a fresh child process. Local workers write each run's file themselves
+(atomically); with Dask the records come back and this process writes them, so a cluster
+whose workers do not share the output folder works too (they must see the clips at the same
+paths, or use sample clips).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+from . import bench as _bench
+
+ENV_SCHEDULER = "TRACKBOOK_DASK_SCHEDULER"
+
+
+def default_workers() -> int:
+    """The cores this process may use (``os.sched_getaffinity`` where available)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # macOS, Windows
+        return max(1, os.cpu_count() or 1)
+
+
+def groups(tasks, workers: int = 1) -> list[list]:
+    """Tasks -> groups sharing a clip, split so there are at least ``4 x workers`` groups when
+    possible, longest (frames x runs) first."""
+    by: dict = {}
+    for t in tasks:
+        by.setdefault(t.clip.identity, []).append(t)
+    out = []
+    want = 4 * workers if workers > 1 else 1
+    split = max(1, math.ceil(want / max(1, len(by))))
+    for ts in by.values():
+        k = min(split, len(ts))
+        size = math.ceil(len(ts) / k)
+        out.extend(ts[i:i + size] for i in range(0, len(ts), size))
+    out.sort(key=lambda g: -sum(t.frames for t in g))
+    return out
+
+
+def _ignore_sigint():
+    # Ctrl-C is the parent's to handle (one line, then it stops the workers): a worker that
+    # also caught it would print its own traceback.
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _work(group, out, multi_seed):
+    return _bench.run_group(group, out, multi_seed)
+
+
+def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None,
+            multi_seed: bool = False) -> None:
+    """Run ``tasks``; call ``finished(group, records)`` in this process as each group ends."""
+    if not tasks:
+        return
+    scheduler = scheduler or os.environ.get(ENV_SCHEDULER) or None
+    if workers is None:
+        workers = default_workers()
+    if isinstance(workers, bool) or int(workers) < 1:
+        raise ValueError(f"workers = {workers!r}: use a whole number of processes, at least 1.")
+    workers = int(workers)
+    if scheduler:
+        return _execute_dask(tasks, out, finished, scheduler, multi_seed)
+    gs = groups(tasks, workers)
+    if workers == 1 or len(gs) == 1:
+        for g in gs:
+            finished(g, _bench.run_group(g, out, multi_seed))
+        return
+    import multiprocessing as mp
+
+    # spawn: a worker must not inherit this process's threads (a notebook's, tqdm's) or state.
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(gs)),
+                               mp_context=mp.get_context("spawn"), initializer=_ignore_sigint)
+    try:
+        pending = {pool.submit(_work, g, str(out), multi_seed): g for g in gs}
+        while pending:
+            done, _ = wait(pending, return_when=FIRST_COMPLETED)
+            for f in done:
+                g = pending.pop(f)
+                finished(g, f.result())
+    except BaseException:
+        # stop now: finished runs are on disk, a running group is re-run on resume
+        procs = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for p in procs:
+            p.terminate()
+        for p in procs:
+            p.join(timeout=5)
+        raise
+    pool.shutdown()
+
+
+def _execute_dask(tasks, out, finished, scheduler, multi_seed):
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise ImportError("--scheduler needs Dask: pip install 'trackbook[dask]' "
+                          "(dask[distributed]).") from None
+    client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
+    try:
+        n = max(1, len(client.scheduler_info().get("workers", {})))
+        gs = groups(tasks, n)
+        futs = {client.submit(_bench.run_group, g, None, multi_seed, pure=False): i
+                for i, g in enumerate(gs)}
+        try:
+            for f in as_completed(list(futs)):
+                g = gs[futs[f]]
+                recs = f.result()
+                for t, r in zip(g, recs):
+                    _bench.write_atomic(t.path(out), _bench.json.dumps(r))
+                finished(g, recs)
+        except BaseException:
+            client.cancel(list(futs))
+            raise
+    finally:
+        if client is not scheduler:
+            client.close()

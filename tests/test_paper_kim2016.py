@@ -1,0 +1,83 @@
+"""``edge-ray-pf`` (and its two comparison filters) against what Kim, Kim & Choi (2016) print.
+
+The expected numbers are copied from the paper, not from the code: a changed default fails here
+unless the field says why the book departs from the paper. The seed text has no page numbers,
+so each comment names the section and passage.
+"""
+import dataclasses
+
+import numpy as np
+import pytest
+
+from trackbook import trackers, viz
+from trackbook.features import edge_rays as er
+from trackbook.params import NOT_PRINTED, has_paper, is_departure
+
+PRINTED = {
+    "n_particles": 999,   # section 3, before eq. 2: "at most 999 particles were used"
+    "ratio_low": 0.8,     # section 3.2, after eq. 5: "the range of Ratio is 0.8-1.2"
+    "ratio_high": 1.2,    # same sentence
+}
+NOT_IN_PAPER = {"sigma", "velocity_gain", "lost_growth", "resampler", "canny_low",
+                "canny_high", "blur", "max_ray", "adapt_scale", "model_rate"}
+TRACKERS = ["edge-ray-pf", "hsi-color-pf", "hog-pf"]
+
+
+def _fields(name="edge-ray-pf"):
+    return {f.name: f for f in dataclasses.fields(trackers.get(name).Params)}
+
+
+def test_eight_rays_at_45_degrees():
+    # Section 2, eq. 1: theta_j = 45 j degrees, j = 0..7 (8 directions)
+    assert len(er.DIRECTIONS) == 8
+    np.testing.assert_allclose(er.THETAS, 45.0 * np.arange(8))
+
+
+def test_ratio_window_constant_is_the_printed_one():
+    assert er.RATIO_WINDOW == (PRINTED["ratio_low"], PRINTED["ratio_high"])
+
+
+def test_every_field_records_the_paper():
+    fields = _fields()
+    assert set(fields) == set(PRINTED) | NOT_IN_PAPER
+    for name in TRACKERS:
+        for fname, f in _fields(name).items():
+            assert has_paper(f), f"{name}.{fname} does not record the paper's value (paper=)"
+
+
+@pytest.mark.parametrize("name", sorted(PRINTED))
+def test_printed_values_are_pinned(name):
+    assert _fields()[name].metadata["paper"] == PRINTED[name]
+
+
+@pytest.mark.parametrize("name", sorted(NOT_IN_PAPER))
+def test_not_printed_fields_say_so(name):
+    assert _fields()[name].metadata["paper"] is NOT_PRINTED
+
+
+@pytest.mark.parametrize("tracker", TRACKERS)
+def test_every_departure_says_why(tracker):
+    for name, f in _fields(tracker).items():
+        if is_departure(f):
+            assert len(f.metadata["why"].split()) >= 5, f"{tracker}.{name} departs without a why"
+
+
+def test_velocity_gain_paper_reading_is_one():
+    # Section 3, prediction step: particles move by the object's displacement (no factor).
+    assert trackers.create("edge-ray-pf", preset="paper").params.velocity_gain == 1.0
+    assert trackers.create("edge-ray-pf").params.velocity_gain == 1.0
+
+
+def test_paper_preset_builds_the_printed_method():
+    p = trackers.create("edge-ray-pf", preset="paper").params
+    for name, value in PRINTED.items():
+        assert getattr(p, name) == value, name
+    assert (p.max_ray, p.adapt_scale, p.model_rate, p.blur) == (0.0, False, 0.0, 0)
+
+
+def test_departures_table_lists_exactly_the_departures():
+    table = viz.departures_table("edge-ray-pf")
+    rows = {line.split("|")[1].strip() for line in table.splitlines()[2:]}
+    assert rows == {r["param"] for r in trackers.departures("edge-ray-pf")}
+    assert {"n_particles", "canny_low", "sigma"} <= rows
+    assert "ratio_low" not in rows
