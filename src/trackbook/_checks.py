@@ -72,6 +72,11 @@ def clip_box(bbox, frame_shape) -> np.ndarray:
     """Intersect a box ``(x, y, w, h)`` with the frame; raise if nothing is left."""
     box = as_box(bbox)
     H, W = frame_shape[:2]
+    if box[2] < 1 or box[3] < 1:
+        raise ValueError(
+            f"bbox {tuple(box)} has a side under 1 px ({box[2]:g} x {box[3]:g}); a target box "
+            "must be at least 1 x 1 pixel (x, y, w, h in pixels)."
+        )
     x0, y0 = max(box[0], 0.0), max(box[1], 0.0)
     x1, y1 = min(box[0] + box[2], float(W)), min(box[1] + box[3], float(H))
     if x1 - x0 < 1 or y1 - y0 < 1:
@@ -98,6 +103,17 @@ def check_box_in_frame(bbox, frame_shape, *, name: str = "bbox", tol: float = 1.
             "clip it first with trackbook.trackers.clip_box(bbox, frame.shape)."
         )
     return clip_box(box, frame_shape)
+
+
+def check_seed(seed) -> None:
+    """Raise ``ValueError`` unless ``seed`` is None or a non-negative integer (not a bool)."""
+    if seed is None:
+        return
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise ValueError(f"seed must be a non-negative int or None, got {seed!r}.")
+    if seed < 0:
+        raise ValueError(f"seed = {seed} is negative; pass 0 or a positive integer "
+                         "(or None for a fresh random run).")
 
 
 def check_finite_number(value, *, name: str) -> None:

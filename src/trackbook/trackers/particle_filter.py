@@ -36,11 +36,24 @@ class ParticleFilterTracker(Tracker):
     weights : (N,) normalised weights of the last update.
     likelihoods : (N,) the unnormalised likelihoods of the last update.
     estimate : (d,) the weighted-mean state.
-    lost : bool, whether the last frame's weights were all zero.
+    lost : bool, whether the last frame's weights were all zero or the best particle scored
+        below ``lost_fraction`` of the reference's score against itself.
+
+    Lost rule
+    ---------
+    At ``init`` the tracker scores the reference against itself: the likelihood of the initial
+    state on the initial frame, ``L_self`` (the best score any frame can give; 1 for the
+    Gaussian-of-Bhattacharyya likelihoods). A frame whose best particle scores below
+    ``lost_fraction * L_self`` looks like the target nowhere -- an all-black, all-white or
+    constant frame, or the target out of view -- so ``update`` returns ``ok=False``, keeps the
+    last estimate and calls ``_on_lost()`` (which widens the search), instead of following
+    the least-bad particle.
     """
 
     #: Below this the weights are treated as carrying no information (frame "lost").
     min_total_likelihood = 0.0
+    #: A frame is lost when its best particle scores below this fraction of ``L_self``.
+    lost_fraction = 1e-3
 
     def _init(self, frame, box):
         self._model(frame, box)
@@ -50,6 +63,9 @@ class ParticleFilterTracker(Tracker):
         self._likelihoods = np.ones(n)
         self.estimate = self._box_to_state(box)
         self.lost = False
+        # L_self: the reference scored against itself (the initial state on the initial frame)
+        own = np.asarray(self._likelihood(frame, self.estimate[None, :]), dtype=float)
+        self._self_likelihood = float(own.max()) if own.size and np.isfinite(own).all() else 0.0
 
     def _update(self, frame):
         resample = RESAMPLERS[self.params.resampler]
@@ -59,6 +75,10 @@ class ParticleFilterTracker(Tracker):
         lik = np.asarray(self._likelihood(frame, particles), dtype=float)
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
+            informative = False
+        best = float(lik.max()) if lik.size else 0.0
+        self.best_ratio = best / self._self_likelihood if self._self_likelihood > 0 else 1.0
+        if informative and self.best_ratio < self.lost_fraction:
             informative = False
         self._particles, self._likelihoods = particles, lik
         if not informative:
