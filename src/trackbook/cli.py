@@ -123,12 +123,15 @@ def cmd_track(args) -> int:
     from . import clips
     from .evaluation.runner import evaluate
 
+    from . import trackers
+
+    trackers.get(args.tracker)          # unknown name: one line before any work
+    if args.max_frames is not None and args.max_frames < 1:
+        raise ValueError(f"--max-frames {args.max_frames}: pass at least 1 (the first frame "
+                         "is the one the tracker starts from).")
+    params = _track_params(args.tracker, args.param)
     clip = clips.load(args.clip)
-    params = {}
-    for kv in args.param or []:
-        params.update(_bench_param(args.tracker, kv, flag="--param"))
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = _out_dir(args.out)
     if args.all_targets:
         return _track_all_targets(args, clip, params, out)
     stem = f"{args.tracker}_{clip.name}"
