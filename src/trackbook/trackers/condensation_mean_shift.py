@@ -226,6 +226,9 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     name = "condensation"
     Params = CondensationParams
+    #: Its own gate (``min_rho`` on the Bhattacharyya coefficient) decides lost frames; the
+    #: base class's likelihood-ratio rule is off (constant frames are still lost, see there).
+    lost_fraction = 0.0
 
     # -- ParticleFilterTracker interface -------------------------------------------------
     def _model(self, frame, box):

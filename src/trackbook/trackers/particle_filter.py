@@ -47,13 +47,19 @@ class ParticleFilterTracker(Tracker):
     ``lost_fraction * L_self`` looks like the target nowhere -- an all-black, all-white or
     constant frame, or the target out of view -- so ``update`` returns ``ok=False``, keeps the
     last estimate and calls ``_on_lost()`` (which widens the search), instead of following
-    the least-bad particle.
+    the least-bad particle. A frame whose grey levels span at most ``flat_range`` (a constant
+    frame: all black, all white, one grey) carries no information at all -- no colour to
+    compare, no gradient for a HOG or an edge -- and is lost without being scored (a HOG of a
+    gradient-free patch is a flat histogram that can score above a real but hard frame, so the
+    likelihood alone cannot tell).
     """
 
     #: Below this the weights are treated as carrying no information (frame "lost").
     min_total_likelihood = 0.0
     #: A frame is lost when its best particle scores below this fraction of ``L_self``.
-    lost_fraction = 1e-3
+    lost_fraction = 1e-4
+    #: A frame whose values span at most this many grey levels carries no information.
+    flat_range = 2
 
     def _init(self, frame, box):
         self._model(frame, box)
@@ -64,15 +70,21 @@ class ParticleFilterTracker(Tracker):
         self.estimate = self._box_to_state(box)
         self.lost = False
         # L_self: the reference scored against itself (the initial state on the initial frame)
-        own = np.asarray(self._likelihood(frame, self.estimate[None, :]), dtype=float)
-        self._self_likelihood = float(own.max()) if own.size and np.isfinite(own).all() else 0.0
+        self._self_likelihood = 0.0
+        if self.lost_fraction > 0:
+            own = np.asarray(self._likelihood(frame, self.estimate[None, :]), dtype=float)
+            if own.size and np.isfinite(own).all():
+                self._self_likelihood = float(own.max())
 
     def _update(self, frame):
         resample = RESAMPLERS[self.params.resampler]
         idx = resample(self._weights, self.rng)
         particles = self._predict(self._particles[idx])
         particles = np.asarray(self._refine(frame, particles), dtype=float)
-        lik = np.asarray(self._likelihood(frame, particles), dtype=float)
+        if int(frame.max()) - int(frame.min()) <= self.flat_range:
+            lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
+        else:
+            lik = np.asarray(self._likelihood(frame, particles), dtype=float)
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
             informative = False
