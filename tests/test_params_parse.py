@@ -141,3 +141,12 @@ def test_fuzz_parser_valid_value_or_named_error(field, value):
         assert out in choices
     # the value is one the tracker accepts
     trackers.create(tracker, **{f.name: out})
+
+
+def test_unknown_tracker_and_clip_names_suggest_near_misses(capsys, tmp_path):
+    with pytest.raises(ValueError, match="did you mean 'color-pf'"):
+        trackers.get("color-pff")
+    rc = cli.main(["track", "color-pf", "red-cub", "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert rc != 0 and "did you mean 'red-cube'" in err
+    assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
