@@ -126,7 +126,7 @@ def test_unknown_tracker_name_is_a_value_error():
 def test_sub_pixel_box_is_named_as_such():
     t = trackers.create("mean-shift")
     frame = np.zeros((60, 80, 3), np.uint8)
-    with pytest.raises(ValueError, match="side under 1 px"):
+    with pytest.raises(ValueError, match=r"\(10, 10, 30, 0.5\) has a side under 1 px"):
         t.init(frame, (10, 10, 30, 0.5))
 
 
