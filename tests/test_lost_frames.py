@@ -56,11 +56,15 @@ def test_identical_black_frames_do_not_walk_with_ok(name):
         assert np.all(np.isfinite(b)) and b[2] > 0 and b[3] > 0
 
 
-def test_particle_lost_rule_is_relative_to_self_likelihood(start):
-    """The reference scored against itself is the top of the scale; normal frames stay near
-    it, far above the lost fraction."""
+def test_optional_self_likelihood_rule(start):
+    """With ``lost_fraction`` set, a frame whose best particle scores below that fraction of
+    the reference's score against itself is lost; a normal next frame is not."""
     frames, box = start
     t = trackers.create("color-pf")
+    t.lost_fraction = 1e-3
     t.init(frames[0], box)
     ok, _ = t.update(frames[1])
-    assert ok and t.best_ratio > 100 * t.lost_fraction
+    assert ok and t.best_ratio > t.lost_fraction
+    t.lost_fraction = 1.01            # nothing can beat the reference by 1 %
+    ok, _ = t.update(frames[2])
+    assert not ok and t.best_ratio < 1.01

@@ -227,7 +227,8 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     name = "condensation"
     Params = CondensationParams
     #: Its own gate (``min_rho`` on the Bhattacharyya coefficient) decides lost frames; the
-    #: base class's likelihood-ratio rule is off (constant frames are still lost, see there).
+    #: base class's likelihood-ratio rule stays off here even if enabled there (its
+    #: likelihood is scored after mean-shift moved the particles, so it has no ``L_self``).
     lost_fraction = 0.0
 
     # -- ParticleFilterTracker interface -------------------------------------------------
