@@ -45,6 +45,11 @@ def check_frame(frame, *, name: str = "frame") -> np.ndarray:
     return frame
 
 
+def _fmt(box) -> str:
+    """``(10, 20, 30, 0.5)``: a box in plain numbers (no ``np.float64(...)`` in messages)."""
+    return "(" + ", ".join(f"{float(v):g}" for v in box) + ")"
+
+
 def as_box(bbox, *, name: str = "bbox") -> np.ndarray:
     """Return ``bbox`` as a float array ``(x, y, w, h)`` with w, h > 0, else raise."""
     try:
@@ -59,10 +64,10 @@ def as_box(bbox, *, name: str = "bbox") -> np.ndarray:
             f"got {box.size} values."
         )
     if not np.all(np.isfinite(box)):
-        raise ValueError(f"{name} {tuple(box)} contains NaN or infinity; pass finite numbers.")
+        raise ValueError(f"{name} {_fmt(box)} contains NaN or infinity; pass finite numbers.")
     if box[2] <= 0 or box[3] <= 0:
         raise ValueError(
-            f"{name} {tuple(box)} has zero or negative size; width and height must be > 0 "
+            f"{name} {_fmt(box)} has zero or negative size; width and height must be > 0 "
             "(the box is (x, y, w, h), not (x1, y1, x2, y2))."
         )
     return box
@@ -72,11 +77,16 @@ def clip_box(bbox, frame_shape) -> np.ndarray:
     """Intersect a box ``(x, y, w, h)`` with the frame; raise if nothing is left."""
     box = as_box(bbox)
     H, W = frame_shape[:2]
+    if box[2] < 1 or box[3] < 1:
+        raise ValueError(
+            f"bbox {_fmt(box)} has a side under 1 px ({box[2]:g} x {box[3]:g}); a target box "
+            "must be at least 1 x 1 pixel (x, y, w, h in pixels)."
+        )
     x0, y0 = max(box[0], 0.0), max(box[1], 0.0)
     x1, y1 = min(box[0] + box[2], float(W)), min(box[1] + box[3], float(H))
     if x1 - x0 < 1 or y1 - y0 < 1:
         raise ValueError(
-            f"bbox {tuple(box)} lies outside the {W}x{H} frame; "
+            f"bbox {_fmt(box)} lies outside the {W}x{H} frame; "
             "give a box inside the image (x, y are the top-left corner in pixels)."
         )
     return np.array([x0, y0, x1 - x0, y1 - y0])
@@ -89,15 +99,26 @@ def check_box_in_frame(bbox, frame_shape, *, name: str = "bbox", tol: float = 1.
     x, y, w, h = box
     if x + w <= 0 or y + h <= 0 or x >= W or y >= H:
         raise ValueError(
-            f"{name} {tuple(box)} lies wholly outside the {W}x{H} frame; "
+            f"{name} {_fmt(box)} lies wholly outside the {W}x{H} frame; "
             "give the target's box in pixel coordinates of this frame."
         )
     if x < -tol or y < -tol or x + w > W + tol or y + h > H + tol:
         raise ValueError(
-            f"{name} {tuple(box)} lies partly outside the {W}x{H} frame; "
+            f"{name} {_fmt(box)} lies partly outside the {W}x{H} frame; "
             "clip it first with trackbook.trackers.clip_box(bbox, frame.shape)."
         )
     return clip_box(box, frame_shape)
+
+
+def check_seed(seed) -> None:
+    """Raise ``ValueError`` unless ``seed`` is None or a non-negative integer (not a bool)."""
+    if seed is None:
+        return
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise ValueError(f"seed must be a non-negative int or None, got {seed!r}.")
+    if seed < 0:
+        raise ValueError(f"seed = {seed} is negative; pass 0 or a positive integer "
+                         "(or None for a fresh random run).")
 
 
 def check_finite_number(value, *, name: str) -> None:

@@ -11,24 +11,66 @@
 from __future__ import annotations
 
 import argparse
-import ast
 import sys
 from pathlib import Path
 
 import numpy as np
 
 
+class CLIError(Exception):
+    """A user error the command reports in one line (exit code 2)."""
+
+
 def _parse_params(items) -> dict:
-    """``["n_particles=200", "window=(0.8,1.2)"]`` -> dict with Python literals where possible."""
+    """``["n_particles=200", "window=(0.8,1.2)"]`` -> ``{name: text}``; the values stay text
+    and are converted by :func:`trackbook.params.parse` with each field's type."""
     out = {}
     for item in items or []:
         if "=" not in item:
-            raise SystemExit(f"--param {item!r}: write NAME=VALUE, e.g. --param n_particles=200")
+            raise ValueError(f"--param {item!r}: write NAME=VALUE, e.g. --param n_particles=200")
         k, v = item.split("=", 1)
-        try:
-            out[k.strip()] = ast.literal_eval(v)
-        except (ValueError, SyntaxError):
-            out[k.strip()] = v
+        if not k.strip():
+            raise ValueError(f"--param {item!r} has no name; write NAME=VALUE.")
+        out[k.strip()] = v
+    return out
+
+
+def _track_params(tracker: str, items) -> dict:
+    """``track``'s ``--param [TRACKER:]NAME=VALUE`` converted by the one parser; a TRACKER
+    prefix must name the tracker being run."""
+    from . import trackers
+    from .params import make_params, parse
+
+    cls = trackers.get(tracker)
+    plain = []
+    for item in items or []:
+        head = item.split("=", 1)[0]
+        if ":" in head:
+            t, rest = item.split(":", 1)
+            if t.strip() != tracker:
+                raise ValueError(
+                    f"--param {item!r} is for tracker {t.strip()!r}, but this run uses "
+                    f"{tracker!r}; write --param {rest} (or TRACKER:NAME=VALUE with {tracker}).")
+            item = rest
+        plain.append(item)
+    raw = _parse_params(plain)
+    params = {k: parse(cls.Params, k, v) for k, v in raw.items()}
+    make_params(cls.Params, params)
+    return params
+
+
+def _out_dir(path) -> Path:
+    """``--out``: an existing folder or a new one; a file in the way is named in the error."""
+    out = Path(path)
+    for p in (out, *out.parents):
+        if p.exists() and not p.is_dir():
+            raise ValueError(f"--out {path}: {p} is a file, not a folder; pass a folder name "
+                             "(it is created if missing).")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise ValueError(f"--out {path}: cannot create the folder ({e.strerror}); pass a "
+                         "writable folder.") from None
     return out
 
 
@@ -37,7 +79,7 @@ def cmd_clips(args) -> int:
 
     if args.action == "export":
         if not args.name or not args.path:
-            raise SystemExit("usage: trackbook clips export NAME OUT.mp4")
+            raise ValueError("usage: trackbook clips export NAME OUT.mp4")
         video, gt = clips.export(args.name, args.path)
         print(f"wrote {video} and {gt}")
         return 0
@@ -81,10 +123,15 @@ def cmd_track(args) -> int:
     from . import clips
     from .evaluation.runner import evaluate
 
+    from . import trackers
+
+    trackers.get(args.tracker)          # unknown name: one line before any work
+    if args.max_frames is not None and args.max_frames < 1:
+        raise ValueError(f"--max-frames {args.max_frames}: pass at least 1 (the first frame "
+                         "is the one the tracker starts from).")
+    params = _track_params(args.tracker, args.param)
     clip = clips.load(args.clip)
-    params = _parse_params(args.param)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = _out_dir(args.out)
     if args.all_targets:
         return _track_all_targets(args, clip, params, out)
     stem = f"{args.tracker}_{clip.name}"
@@ -175,12 +222,18 @@ def cmd_bench(args) -> int:
     return 0
 
 
-def _bench_param(tracker: str, kv: str) -> dict:
-    """One ``NAME=VALUE`` for ``tracker``, through the shared parameter parser when present."""
+def _bench_param(tracker: str, kv: str, flag: str = "") -> dict:
+    """One ``NAME=VALUE`` for ``tracker``, through the shared parameter parser when present.
+
+    ``flag`` is the ``track`` form (``--param NAME=VALUE``); by default the ``bench`` form
+    (``--param TRACKER:NAME=VALUE``) is named in the message.
+    """
     from . import params as _params
     from . import trackers
 
     if "=" not in kv:
+        if flag:
+            raise ValueError(f"{flag} {kv!r}: write NAME=VALUE, e.g. --param n_particles=200")
         raise ValueError(f"--param {tracker}:{kv!r}: write TRACKER:NAME=VALUE, e.g. "
                          "--param color-pf:n_particles=200")
     name, value = (x.strip() for x in kv.split("=", 1))
@@ -199,9 +252,8 @@ def cmd_notebooks(args) -> int:
     chapters = (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
                 + sorted(book.glob("lab_notes_*.md")))
     if not chapters:
-        raise SystemExit(f"no chapters in {book}; run from the repository root or pass --book.")
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+        raise ValueError(f"no chapters in {book}; run from the repository root or pass --book.")
+    out = _out_dir(args.out)
     for md in chapters:
         nb = jupytext.read(md)
         jupytext.write(nb, out / (md.stem + ".ipynb"))
@@ -260,9 +312,20 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
+    """Run one subcommand; every error is one line on stderr and a non-zero exit code."""
     args = build_parser().parse_args(argv)
     try:
         return args.fn(args)
-    except (ValueError, FileNotFoundError) as e:
-        print(f"trackbook: error: {e}", file=sys.stderr)
+    except KeyboardInterrupt:
+        print("trackbook: interrupted (Ctrl-C).", file=sys.stderr)
+        return 130
+    except (ValueError, CLIError, OSError, KeyError) as e:
+        msg = e.args[0] if isinstance(e, KeyError) and e.args else e
+        if isinstance(e, OSError) and e.filename is not None and e.strerror:
+            msg = f"{e.filename}: {e.strerror}"
+        print(f"trackbook: error: {' '.join(str(msg).split())}", file=sys.stderr)
         return 2
+    except Exception as e:  # noqa: BLE001  a bug, still reported in one line
+        print(f"trackbook: error: {type(e).__name__}: {' '.join(str(e).split())} (this is a "
+              "bug; please report it with the command line)", file=sys.stderr)
+        return 1

@@ -14,7 +14,12 @@ they cannot drift from the code.
 from __future__ import annotations
 
 import dataclasses
+import difflib
+import math
+from numbers import Integral, Real
 from typing import Any
+
+import numpy as np
 
 from ._checks import check_finite_number
 
@@ -61,31 +66,169 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
     return dataclasses.field(default=default, metadata=meta)
 
 
+_TRUE = ("true", "yes", "1", "on")
+_FALSE = ("false", "no", "0", "off")
+
+
+def _kind(field: dataclasses.Field):
+    """The Python type of a field: its annotation, else the type of its default."""
+    t = field.type
+    if isinstance(t, str):
+        t = {"int": int, "float": float, "bool": bool, "str": str}.get(t.split("|")[0].strip(),
+                                                                        None)
+    if t in (int, float, bool, str):
+        return t
+    if isinstance(field.default, tuple):
+        return tuple
+    return type(field.default)
+
+
+def _field(cls, name: str) -> dataclasses.Field:
+    fields = {f.name: f for f in dataclasses.fields(cls)}
+    if name not in fields:
+        names = list(fields)
+        near = difflib.get_close_matches(str(name), names, n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        raise ValueError(f"unknown parameter {name!r} for {cls.__qualname__}{hint}; "
+                         f"valid names: {', '.join(names)}.")
+    return fields[name]
+
+
+def _number(name: str, value, kind):
+    """An int or float from a Python/numpy number or a string, refusing bools and NaN/inf."""
+    what = "an integer" if kind is int else "a number"
+    if isinstance(value, str):
+        text = value.strip()
+        try:
+            value = int(text) if kind is int else float(text)
+        except ValueError:
+            if kind is int:
+                try:
+                    f = float(text)
+                except ValueError:
+                    f = None
+                if f is not None and math.isfinite(f):
+                    value = f     # "50.5": fall through to the whole-number check below
+                else:
+                    raise ValueError(
+                        f"parameter {name} = {text!r} is not {what}; pass e.g. "
+                        f"{name}=100.") from None
+            else:
+                raise ValueError(f"parameter {name} = {text!r} is not {what}; pass a finite "
+                                 f"decimal number, e.g. {name}=0.5.") from None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Integral, Real)):
+        raise ValueError(f"parameter {name} = {value!r} ({type(value).__name__}) is not {what}; "
+                         f"pass {what}" + (" (True/False are not numbers here)."
+                                           if isinstance(value, (bool, np.bool_)) else "."))
+    f = float(value)
+    if not math.isfinite(f):
+        raise ValueError(f"parameter {name} = {value!r} is not finite; pass a real number.")
+    if kind is int:
+        if isinstance(value, Integral):
+            return int(value)
+        if f != int(f):
+            raise ValueError(f"parameter {name} = {value!r} is not a whole number; pass an "
+                             f"integer such as {int(f)}.")
+        return int(f)
+    return f
+
+
+def _bool(name: str, value):
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (Integral,)) and int(value) in (0, 1):
+        return bool(int(value))
+    if isinstance(value, str) and value.strip().lower() in _TRUE + _FALSE:
+        return value.strip().lower() in _TRUE
+    raise ValueError(f"parameter {name} = {value!r} is not a yes/no value; pass True or False "
+                     "(on the command line: true/false, yes/no or 1/0).")
+
+
+def _tuple(name: str, value, default: tuple):
+    if isinstance(value, str):
+        text = value.strip().strip("()[]")
+        value = tuple(v for v in (t.strip() for t in text.split(",")) if v)
+    if not isinstance(value, (tuple, list, np.ndarray)):
+        raise ValueError(f"parameter {name} = {value!r} is not a tuple; pass "
+                         f"{len(default)} values like {default!r}.")
+    value = tuple(value)
+    if default and len(value) != len(default):
+        raise ValueError(f"parameter {name} = {value!r} has {len(value)} values; it needs "
+                         f"{len(default)}, like {default!r}.")
+    kinds = [int if isinstance(d, Integral) and not isinstance(d, bool) else float
+             for d in default] or [float] * len(value)
+    return tuple(_number(name, v, k) for v, k in zip(value, kinds))
+
+
+def parse(cls, name: str, value):
+    """Convert ``value`` for the field ``name`` of the params dataclass ``cls``, or raise.
+
+    The one parser behind ``trackers.create(name, **params)`` and the CLI's
+    ``--param NAME=VALUE``: ints and floats accept Python and numpy numbers (and, from the
+    command line, their decimal spelling); bools are not numbers; a float is not an int unless
+    whole; NaN and infinity are refused however spelled; ``true/false/yes/no/1/0`` for bools;
+    tuples from ``(a, b)`` or ``a,b``; the range ``lo..hi`` and the choices are checked for
+    every kind of number. Returns the converted value; raises ``ValueError`` naming the
+    parameter and the fix.
+    """
+    f = _field(cls, name)
+    kind = _kind(f)
+    meta = f.metadata
+    if value is None:
+        raise ValueError(f"parameter {name} = None; pass a value like its default "
+                         f"{f.default!r} (or leave it out for the default).")
+    if kind is bool:
+        out = _bool(name, value)
+    elif kind in (int, float):
+        out = _number(name, value, kind)
+    elif kind is tuple:
+        out = _tuple(name, value, f.default)
+    elif kind is str:
+        if not isinstance(value, str):
+            raise ValueError(f"parameter {name} = {value!r} is not a string; pass one of "
+                             f"{meta.get('choices') or 'the documented values'}.")
+        out = value.strip()
+    else:
+        out = value
+    choices = meta.get("choices")
+    if choices is not None and out not in choices:
+        near = difflib.get_close_matches(str(out), [str(c) for c in choices], n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        raise ValueError(f"parameter {name} = {out!r} is not one of "
+                         f"{', '.join(map(str, choices))}{hint}.")
+    lo, hi = meta.get("lo"), meta.get("hi")
+    for v in (out if isinstance(out, tuple) else (out,)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            continue
+        if lo is not None and v < lo:
+            raise ValueError(f"parameter {name} = {value!r} is below its minimum {lo}; "
+                             f"pass a value in {lo}..{hi}.")
+        if hi is not None and v > hi:
+            raise ValueError(f"parameter {name} = {value!r} is above its maximum {hi}; "
+                             f"pass a value in {lo}..{hi}.")
+    return out
+
+
 def validate(params) -> None:
-    """Check a params dataclass instance: finite numbers, values in range, valid choices."""
+    """Check a params dataclass instance: every field as :func:`parse` would accept it."""
     for f in dataclasses.fields(params):
         value = getattr(params, f.name)
         check_finite_number(value, name=f.name)
-        lo, hi = f.metadata.get("lo"), f.metadata.get("hi")
-        choices = f.metadata.get("choices")
-        if choices is not None and value not in choices:
-            raise ValueError(f"parameter {f.name} = {value!r} is not one of {choices}.")
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            if lo is not None and value < lo:
-                raise ValueError(f"parameter {f.name} = {value!r} is below its minimum {lo}.")
-            if hi is not None and value > hi:
-                raise ValueError(f"parameter {f.name} = {value!r} is above its maximum {hi}.")
+        parse(type(params), f.name, value)
 
 
 def make_params(cls, values: dict):
-    """Build ``cls(**values)`` with a clear error for unknown names, then validate it."""
+    """Build ``cls(**values)`` with every value through :func:`parse`, then validate it."""
     names = [f.name for f in dataclasses.fields(cls)]
     unknown = sorted(set(values) - set(names))
     if unknown:
+        hints = [f"{u!r} (did you mean {m[0]!r}?)" if (m := difflib.get_close_matches(
+            str(u), names, n=1)) else repr(u) for u in unknown]
         raise ValueError(
-            f"unknown parameter(s) {unknown} for {cls.__qualname__}; valid names: {names}."
+            f"unknown parameter(s) {', '.join(hints)} for {cls.__qualname__}; "
+            f"valid names: {names}."
         )
-    p = cls(**values)
+    p = cls(**{k: parse(cls, k, v) for k, v in values.items()})
     validate(p)
     return p
 

@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import difflib
 from pathlib import Path
 
 import cv2
@@ -27,8 +28,17 @@ def available(paper: str | None = None) -> list[str]:
 
 def describe(name: str) -> str:
     """One paragraph on what a sample clip shows and which paper it stands in for."""
+    if not isinstance(name, str) or name not in _samples._SAMPLES:
+        raise ValueError(f"unknown sample clip {name!r}{_near(name, available())}; sample "
+                         f"clips: {', '.join(available())}.")
     s = _samples.info(name)
     return f"{s.name} (paper {s.paper}): {s.description}"
+
+
+def _near(name, names) -> str:
+    """`` (did you mean 'red-cube'?)`` for a near-miss name, else ``""``."""
+    m = difflib.get_close_matches(str(name), list(names), n=1, cutoff=0.6)
+    return f" (did you mean {m[0]!r}?)" if m else ""
 
 
 def load(name_or_path, groundtruth=None) -> Clip:
@@ -43,6 +53,10 @@ def load(name_or_path, groundtruth=None) -> Clip:
     """
     if isinstance(name_or_path, Clip):
         return name_or_path
+    if not isinstance(name_or_path, (str, Path)) or not str(name_or_path).strip():
+        raise ValueError(
+            f"clips.load({name_or_path!r}): pass a sample name (one of "
+            f"{', '.join(available())}), an OTB sequence folder or a video file.")
     if isinstance(name_or_path, str) and name_or_path in _samples._SAMPLES:
         return _samples.build(name_or_path)
     p = Path(str(name_or_path)).expanduser()
@@ -52,13 +66,15 @@ def load(name_or_path, groundtruth=None) -> Clip:
             and p.suffix == "":
         seq = find_sequences()
         if name_or_path in seq:
-            return load_folder(seq[name_or_path])
+            return load_folder(seq[name_or_path], groundtruth=groundtruth)
         raise ValueError(
-            f"unknown clip {name_or_path!r}; sample clips: {', '.join(available())}"
+            f"unknown clip {name_or_path!r}{_near(name_or_path, [*available(), *seq])}; "
+            f"sample clips: {', '.join(available())}"
             + (f"; sequences found: {', '.join(seq)}" if seq else "")
             + ". Or pass a path to an OTB sequence folder or a video file."
         )
-    raise FileNotFoundError(f"{p} does not exist; pass a sample name, a folder or a video file.")
+    raise FileNotFoundError(f"{p} does not exist; pass a sample name, a folder or a video "
+                            f"file{_near(name_or_path, available())}.")
 
 
 def export(clip, path, fourcc: str = "mp4v") -> tuple[Path, Path]:

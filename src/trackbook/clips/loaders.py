@@ -7,6 +7,7 @@ tabs or spaces. VOT's 8-value polygons are turned into their axis-aligned boundi
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from pathlib import Path
@@ -26,13 +27,24 @@ def read_groundtruth(path) -> np.ndarray:
     """Read a ground-truth file into an N x 4 float array (NaN rows where unknown).
 
     Accepts ``x,y,w,h`` / tab / space separated lines, VOT 8-value polygons, ``NaN`` entries,
-    and treats boxes of zero size (OTB's "target absent") as unknown.
+    a UTF-8 byte-order mark, and treats boxes of zero size (OTB's "target absent") as unknown.
+    Infinite values and negative widths or heights are refused with the file and line: they
+    are typing errors, not "target absent".
     """
     path = Path(path)
     if not path.is_file():
-        raise FileNotFoundError(f"ground-truth file {path} does not exist.")
+        raise FileNotFoundError(f"ground-truth file {path} does not exist; pass the path of "
+                                "a text file with one x,y,w,h line per frame.")
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        line = path.read_bytes()[:e.start].count(b"\n") + 1
+        raise ValueError(
+            f"{path}, line {line}: not UTF-8 text (byte {e.object[e.start]:#04x}); save the "
+            "ground truth as plain text with one x,y,w,h line per frame."
+        ) from None
     rows = []
-    for lineno, line in enumerate(path.read_text().splitlines(), start=1):
+    for lineno, line in enumerate(text.splitlines(), start=1):
         line = line.strip()
         if not line:
             continue
@@ -44,7 +56,18 @@ def read_groundtruth(path) -> np.ndarray:
                 f"{path}, line {lineno}: {line!r} is not numbers; each line must be "
                 "x,y,w,h (commas, tabs or spaces) or an 8-value polygon."
             ) from None
+        if any(math.isinf(v) for v in vals):
+            raise ValueError(
+                f"{path}, line {lineno}: {line!r} contains an infinite value; write the box "
+                "in pixels, or NaN (or 0,0,0,0) where the target is not visible."
+            )
         if len(vals) == 4:
+            if vals[2] < 0 or vals[3] < 0:
+                raise ValueError(
+                    f"{path}, line {lineno}: {line!r} has a negative width or height; write "
+                    "x,y,w,h with w, h >= 0 (the top-left corner and the size, not two "
+                    "corners), or 0,0,0,0 where the target is not visible."
+                )
             rows.append(vals)
         elif len(vals) == 8:
             xs, ys = vals[0::2], vals[1::2]
@@ -55,7 +78,8 @@ def read_groundtruth(path) -> np.ndarray:
                 "or 8 (a polygon)."
             )
     if not rows:
-        raise ValueError(f"ground-truth file {path} is empty; it needs one box per frame.")
+        raise ValueError(f"ground-truth file {path} is empty; it needs one x,y,w,h line per "
+                         "frame.")
     gt = np.asarray(rows, dtype=float)
     with np.errstate(invalid="ignore"):
         gt[~((gt[:, 2] > 0) & (gt[:, 3] > 0))] = np.nan
@@ -70,8 +94,11 @@ def _find_groundtruth(folder: Path) -> list[Path]:
     return multi
 
 
-def load_folder(folder, name: str | None = None, fps: float = 30.0) -> Clip:
-    """Load an OTB-style sequence folder (``img/*.jpg`` + ``groundtruth[_rect].txt``)."""
+def load_folder(folder, name: str | None = None, fps: float = 30.0, groundtruth=None) -> Clip:
+    """Load an OTB-style sequence folder (``img/*.jpg`` + ``groundtruth[_rect].txt``).
+
+    ``groundtruth`` names a ground-truth file to use instead of the folder's own.
+    """
     folder = Path(folder)
     img_dir = folder / "img" if (folder / "img").is_dir() else folder
     paths = sorted(p for p in img_dir.iterdir() if p.suffix.lower() in IMAGE_SUFFIXES)
@@ -79,11 +106,11 @@ def load_folder(folder, name: str | None = None, fps: float = 30.0) -> Clip:
         raise FileNotFoundError(
             f"no images in {img_dir}; an OTB sequence folder has img/0001.jpg, img/0002.jpg, ..."
         )
-    gt_files = _find_groundtruth(folder)
+    gt_files = [Path(groundtruth)] if groundtruth is not None else _find_groundtruth(folder)
     if not gt_files:
         raise FileNotFoundError(
             f"no ground truth in {folder}; expected one of {', '.join(GT_NAMES)} "
-            "(one x,y,w,h line per frame)."
+            "(one x,y,w,h line per frame), or pass groundtruth=PATH."
         )
     targets = {}
     for f in gt_files:
@@ -145,7 +172,8 @@ def load_path(path, **kw) -> Clip:
     """Load a folder or a video file."""
     p = Path(path)
     if p.is_dir():
-        return load_folder(p, **{k: v for k, v in kw.items() if k in ("name", "fps")})
+        return load_folder(p, **{k: v for k, v in kw.items()
+                                  if k in ("name", "fps", "groundtruth")})
     if p.is_file():
         if p.suffix.lower() not in VIDEO_SUFFIXES:
             raise ValueError(

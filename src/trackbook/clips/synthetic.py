@@ -1078,3 +1078,39 @@ def _two_faces() -> Rendering:
         p2 = canvas.paste(f2, c2[i], scale=s2[i])
         film.record(i, canvas, expose(canvas.img), face1=p1, face2=p2)
     return film.done()
+
+
+# ---------------------------------------------------------------- lost-and-found test clip
+def leave_and_return(n_before: int = 12, n_absent: int = 18, n_after: int = 20,
+                     seed: int = 0) -> Clip:
+    """A clip whose target leaves the view and comes back somewhere else (issue 13's probe).
+
+    A textured patch of the astronaut photograph drifts right over a blurred gravel
+    background for ``n_before`` frames, is out of view for ``n_absent`` frames (ground truth
+    NaN: nothing of it is in the frame) and reappears at x = 62, left of where it left, for
+    ``n_after`` frames, drifting slowly. The background has a little sensor noise so no two
+    frames are identical. Not a registered sample: the lost-target tests build it.
+    """
+    rng = np.random.default_rng(seed)
+    n = n_before + n_absent + n_after
+    bg = cv2.GaussianBlur(crop("gravel", 0, 0, 512, 384, (W, H)), (0, 0), 3.0)
+    bg = expose(bg, gain=0.8)
+    target = rect_sprite(crop("astronaut", 150, 20, 330, 260, (40, 52)), border=2,
+                         border_colour=(30, 30, 200))
+    frames = np.empty((n, H, W, 3), np.uint8)
+    gt = np.full((n, 4), np.nan)
+    for i in range(n):
+        canvas = Canvas(bg)
+        if i < n_before:
+            p = canvas.paste(target, (150 + 2.0 * i, 120 + np.sin(i / 3)))
+            gt[i] = p.box
+        elif i >= n_before + n_absent:
+            k = i - n_before - n_absent
+            p = canvas.paste(target, (62 + 22 + 1.0 * k, 110))
+            gt[i] = p.box
+        noisy = canvas.img + rng.normal(0, 2.0, canvas.img.shape).astype(np.float32)
+        frames[i] = np.clip(noisy, 0, 255).astype(np.uint8)
+    frames.setflags(write=False)
+    return Clip("leave-and-return", ArrayFrames(frames), gt, fps=30.0,
+                description="the target leaves the view and comes back elsewhere",
+                attributes=("OV",), source="generated")

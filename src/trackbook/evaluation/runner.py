@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import clips as _clips
 from .. import trackers as _trackers
-from .._checks import clip_box
+from .._checks import as_box, clip_box
 from . import metrics
 
 
@@ -105,15 +105,20 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
     """
     clip = _clips.load(clip)
     made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
+    if max_frames is not None and (isinstance(max_frames, bool) or not isinstance(
+            max_frames, (int, np.integer))):
+        raise ValueError(f"max_frames = {max_frames!r}: pass an integer (at least 2) or None.")
     n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
     if n < 2:
         raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")
     frames = iter(clip.frames)
     first = next(frames)
-    box0 = clip.groundtruth[0] if init_box is None else np.asarray(init_box, dtype=float)
+    box0 = clip.groundtruth[0] if init_box is None else as_box(init_box, name="init_box")
     if not np.all(np.isfinite(box0)):
         raise ValueError(
-            f"clip {clip.name!r} has no ground-truth box on frame 0; pass init_box=(x, y, w, h)."
+            f"clip {clip.name!r} has no ground-truth box on frame 0; give the target's first "
+            "box: init_box=(x, y, w, h) in Python, --box x,y,w,h on the command line (or a "
+            "<video stem>.groundtruth.txt file beside the video)."
         )
     box0 = clip_box(box0, first.shape)
 

@@ -323,7 +323,10 @@ def covariance_of_box(frame: np.ndarray, box, features: str = "xyI|Ix||Iy|") -> 
 
 def _inv_sqrt(A: np.ndarray, floor: float) -> np.ndarray:
     a, V = np.linalg.eigh(A)
-    a = np.maximum(a, floor)
+    # Eigenvalues below 1e-12 of the largest are round-off of a singular matrix (a flat or
+    # noise-free patch with eps = 0): flooring them there keeps C^{-1/2} finite instead of
+    # 1/sqrt(tiny) ~ 1e154, whose square overflows and makes eigvalsh fail.
+    a = np.maximum(a, np.maximum(floor, 1e-12 * np.abs(a).max(axis=-1, keepdims=True)))
     return (V / np.sqrt(a)[..., None, :]) @ np.swapaxes(V, -1, -2)
 
 
@@ -347,8 +350,16 @@ def generalized_eigenvalues(Ci, Cj, eps: float = 1e-6) -> np.ndarray:
     B = 0.5 * (Cj + np.swapaxes(Cj, -1, -2)) + eps * I
     tiny = np.finfo(np.float64).tiny
     W = _inv_sqrt(A, floor=max(eps, tiny))
-    M = W @ B @ np.swapaxes(W, -1, -2)
-    lam = np.linalg.eigvalsh(0.5 * (M + np.swapaxes(M, -1, -2)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        M = W @ B @ np.swapaxes(W, -1, -2)
+    M = 0.5 * (M + np.swapaxes(M, -1, -2))
+    finite = np.all(np.isfinite(M), axis=(-2, -1))
+    if not np.all(finite):
+        # a matrix too large for float64 is as far from the model as can be: lambda = inf
+        lam = np.full(M.shape[:-1], np.inf)
+        lam[finite] = np.linalg.eigvalsh(M[finite])
+        return np.maximum(lam, tiny)
+    lam = np.linalg.eigvalsh(M)
     # Round-off can leave a (near-)singular B's eigenvalue at 0 or slightly below.
     return np.maximum(lam, tiny)
 

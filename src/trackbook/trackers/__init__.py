@@ -11,6 +11,8 @@ matches one chapter of the book.
 
 from __future__ import annotations
 
+import difflib
+
 from .. import params as _params
 from .._checks import clip_box
 from . import registry as _registry
@@ -40,8 +42,10 @@ def get(name: str) -> type[Tracker]:
     try:
         return _registry.get(name)
     except ValueError:
+        near = difflib.get_close_matches(str(name), available(reference=True), n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
         raise ValueError(
-            f"unknown tracker {name!r}; registered trackers: "
+            f"unknown tracker {name!r}{hint}; registered trackers: "
             f"{', '.join(available()) or '(none)'}; reference: {', '.join(REFERENCE)}."
         ) from None
 

@@ -13,7 +13,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .._checks import check_box_in_frame, check_frame
+from .._checks import check_box_in_frame, check_frame, check_seed
 from .._memory import keep_freed_memory
 from ..params import make_params
 
@@ -58,8 +58,7 @@ class Tracker:
     Params: ClassVar[type] = NoParams
 
     def __init__(self, seed: int | None = 0, **params):
-        if seed is not None and not isinstance(seed, (int, np.integer)):
-            raise ValueError(f"seed must be an int or None, got {seed!r}.")
+        check_seed(seed)
         self.seed = seed
         self._params = make_params(self.Params, params)
         keep_freed_memory()     # per-frame temporaries reuse memory instead of page-faulting

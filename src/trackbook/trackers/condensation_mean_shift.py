@@ -226,6 +226,10 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     name = "condensation"
     Params = CondensationParams
+    #: Its own gate (``min_rho`` on the Bhattacharyya coefficient) decides lost frames; the
+    #: base class's likelihood-ratio rule stays off here even if enabled there (its
+    #: likelihood is scored after mean-shift moved the particles, so it has no ``L_self``).
+    lost_fraction = 0.0
 
     # -- ParticleFilterTracker interface -------------------------------------------------
     def _model(self, frame, box):

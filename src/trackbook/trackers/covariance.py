@@ -183,9 +183,27 @@ class _CovarianceSearch(Tracker):
     distances : (n,) their ρ (eq. 5)
     search_window : (x, y, w, h) the area the last local search covered
     best_rho : ρ of the chosen window on the last frame
+
+    Lost rule
+    ---------
+    Besides ρ > ``threshold``, a chosen window whose feature covariance is (near) singular --
+    smallest eigenvalue at most ``singular_tol`` times the largest, e.g. no intensity or
+    gradient variation at all in an all-black, all-white or constant frame -- carries no
+    information about the target: the regularised ρ of eq. 5-6 against such a window is only
+    a number produced by ε, so the frame is reported lost (``ok=False``) and the model is not
+    updated.
     """
 
     Params = CovarianceParams
+    #: λ_min / λ_max at or below this: the window's covariance is singular (no information).
+    singular_tol = 1e-10
+
+    def _informative(self, frame, box) -> bool:
+        """Whether the window ``box`` has a non-singular feature covariance (see Lost rule)."""
+        C = self._covariances(frame, np.asarray(box, dtype=np.int64)[None])[0]
+        ev = np.linalg.eigvalsh((C + C.T) / 2.0)
+        return bool(np.all(np.isfinite(ev)) and ev[-1] > 0
+                    and ev[0] > self.singular_tol * ev[-1])
 
     # -- scoring -------------------------------------------------------------------------
     def _covariances(self, frame, boxes):
@@ -315,7 +333,7 @@ class CovarianceTracker(_CovarianceSearch):
             if grho < rho:
                 box, rho = gbox, grho
         self.best_rho = rho
-        if rho > self.params.threshold:
+        if rho > self.params.threshold or not self._informative(frame, box):
             return False, np.asarray(self.bbox, dtype=float)
         self._accept(frame, box, rho)
         self._center = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
@@ -454,7 +472,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
                 box, rho = gbox, grho
         self.best_rho = rho
         w, h = self._size
-        if rho > p.threshold:
+        if rho > p.threshold or not self._informative(frame, box):
             return False, np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h])
         self._accept(frame, box, rho)
         kf.update((box[0] + w / 2.0, box[1] + h / 2.0))

@@ -102,7 +102,9 @@ class EdgeRayPF(CentreParticleFilter):
         (:func:`~trackbook.features.edge_rays.ray_steps_at`): the same numbers as 8 per-pixel
         maps of the whole frame, at a fraction of the cost.
         """
-        return er.rays_at_points(self.edges, np.floor(xy), self.params.max_ray or None)
+        cap = self.params.max_ray
+        # a cap under one pixel is the shortest ray there is: 1 px (0 still means "no cap")
+        return er.rays_at_points(self.edges, np.floor(xy), max(cap, 1.0) if cap > 0 else None)
 
     def _likelihood(self, frame, particles):
         p = self.params

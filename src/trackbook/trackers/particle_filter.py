@@ -36,11 +36,32 @@ class ParticleFilterTracker(Tracker):
     weights : (N,) normalised weights of the last update.
     likelihoods : (N,) the unnormalised likelihoods of the last update.
     estimate : (d,) the weighted-mean state.
-    lost : bool, whether the last frame's weights were all zero.
+    lost : bool, whether the last frame was lost (all weights zero, a constant frame, or --
+        when enabled -- a best particle below ``lost_fraction`` of ``L_self``).
+
+    Lost rule
+    ---------
+    A frame whose grey levels span at most ``flat_range`` (a constant frame: all black, all
+    white, one grey) carries no information at all -- no colour to compare, no gradient for a
+    HOG or an edge -- so it is not scored: ``update`` returns ``ok=False``, keeps the last
+    estimate and calls ``_on_lost()`` (which widens the search), instead of following the
+    least-bad particle. (The likelihood alone cannot tell: the HOG of a gradient-free patch is
+    a flat histogram that scores above a real but hard frame.)
+
+    Optional second rule, off by default (``lost_fraction = 0``): at ``init`` the reference is
+    scored against itself, ``L_self`` (1 for the Gaussian-of-Bhattacharyya likelihoods); a
+    frame whose best particle scores below ``lost_fraction * L_self`` is lost. It is off
+    because a fraction of a likelihood depends on the likelihood's sigma: at sigma = 0.1,
+    hard but correct frames of Crossing score below 1e-8 of ``L_self`` and a gate there
+    changed committed scores; a sigma-free gate is still to be designed.
     """
 
     #: Below this the weights are treated as carrying no information (frame "lost").
     min_total_likelihood = 0.0
+    #: A frame is lost when its best particle scores below this fraction of ``L_self`` (0: off).
+    lost_fraction = 0.0
+    #: A frame whose values span at most this many grey levels carries no information.
+    flat_range = 2
 
     def _init(self, frame, box):
         self._model(frame, box)
@@ -50,15 +71,28 @@ class ParticleFilterTracker(Tracker):
         self._likelihoods = np.ones(n)
         self.estimate = self._box_to_state(box)
         self.lost = False
+        # L_self: the reference scored against itself (the initial state on the initial frame)
+        self._self_likelihood = 0.0
+        if self.lost_fraction > 0:
+            own = np.asarray(self._likelihood(frame, self.estimate[None, :]), dtype=float)
+            if own.size and np.isfinite(own).all():
+                self._self_likelihood = float(own.max())
 
     def _update(self, frame):
         resample = RESAMPLERS[self.params.resampler]
         idx = resample(self._weights, self.rng)
         particles = self._predict(self._particles[idx])
         particles = np.asarray(self._refine(frame, particles), dtype=float)
-        lik = np.asarray(self._likelihood(frame, particles), dtype=float)
+        if int(frame.max()) - int(frame.min()) <= self.flat_range:
+            lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
+        else:
+            lik = np.asarray(self._likelihood(frame, particles), dtype=float)
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
+            informative = False
+        best = float(lik.max()) if lik.size else 0.0
+        self.best_ratio = best / self._self_likelihood if self._self_likelihood > 0 else 1.0
+        if informative and self.best_ratio < self.lost_fraction:
             informative = False
         self._particles, self._likelihoods = particles, lik
         if not informative:
