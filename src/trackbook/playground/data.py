@@ -37,7 +37,7 @@ def clip_payload(clip, n: int) -> dict:
     for i, f in enumerate(clip.frames):
         if i >= n:
             break
-        ok, buf = cv2.imencode(".jpg", np.asarray(f)[..., ::-1] if f.ndim == 3 else f,
+        ok, buf = cv2.imencode(".jpg", np.asarray(f),   # clips are BGR, as cv2 wants
                                [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
         frames.append(base64.b64encode(buf.tobytes()).decode("ascii"))
     gt = np.asarray(clip.groundtruth[:len(frames)], dtype=float)

@@ -70,7 +70,7 @@ class Viewer {
     this.canvas = el("canvas", { class: "tb-canvas" }, root);
     this.ctx = this.canvas.getContext("2d");
     const tr = el("div", { class: "tb-row tb-transport" }, root);
-    this.playBtn = el("button", { "data-play": "", type: "button", text: "▶ play" }, tr);
+    this.playBtn = el("button", { "data-play": "", type: "button", text: "\u25b6 play" }, tr);
     this.slider = el("input", { type: "range", "data-frame": "", min: 0, max: 0, step: 1,
                                 value: 0, "aria-label": "frame" }, tr);
     this.frameLabel = el("span", { class: "tb-frame-label" }, tr);
@@ -225,7 +225,7 @@ class Viewer {
 
   togglePlay() {
     this.playing = !this.playing;
-    this.playBtn.textContent = this.playing ? "❚❚ pause" : "▶ play";
+    this.playBtn.textContent = this.playing ? "\u275a\u275a pause" : "\u25b6 play";
     if (!this.playing) return;
     if (this.frame >= this.nFrames() - 1) this.seek(0);
     let last = performance.now();
@@ -299,8 +299,8 @@ class Viewer {
     this.curve();
     const iou = r && r.iou ? r.iou[i] : null;
     this.frameLabel.textContent = `frame ${i} / ${Math.max(0, this.nFrames() - 1)}` +
-      (iou !== null && iou !== undefined ? ` · IoU ${iou.toFixed(2)}` : "") +
-      (r && r.ok ? (r.ok[i] ? "" : " · lost") : "");
+      (iou !== null && iou !== undefined ? ` \u00b7 IoU ${iou.toFixed(2)}` : "") +
+      (r && r.ok ? (r.ok[i] ? "" : " \u00b7 lost") : "");
   }
 
   legend() {
@@ -457,15 +457,15 @@ function render({ model, el: root }) {
     value: (name) => model.get("values")[name],
     sampled: () => true,
     note: () => "",
-    status: () => (model.get("busy") ? "running…" : model.get("error") ? "⚠ " + model.get("error") : ""),
+    status: () => (model.get("busy") ? "running\u2026" : model.get("error") ? "\u26a0 " + model.get("error") : ""),
     setClip(c) { model.set("clip", c); model.save_changes(); },
     setTracker(t) { model.set("tracker", t); model.save_changes(); },
     setKnob(name, v) {
       model.set("values", { ...model.get("values"), [name]: v });
       model.save_changes();
-      v_.status.textContent = "running…";
+      v_.status.textContent = "running\u2026";
     },
-    setBox(b) { model.set("init_box", b); model.save_changes(); v_.status.textContent = "running…"; },
+    setBox(b) { model.set("init_box", b); model.save_changes(); v_.status.textContent = "running\u2026"; },
   };
   const v_ = new Viewer(root, host);
   const up = () => v_.update();
