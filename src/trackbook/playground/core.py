@@ -48,6 +48,27 @@ def _cache_key(tracker, clip_name, n, seed, values, init_box):
             None if init_box is None else tuple(np.round(init_box, 2)))
 
 
+def _load_own(c):
+    """A clip by name or path; an image folder without ground truth (your own frames) loads
+    too, with no boxes: the student drags the target on its first frame."""
+    try:
+        return _clips.load(c)
+    except FileNotFoundError as e:
+        from pathlib import Path as _P
+
+        from ..clips.clip import Clip, ImageFiles
+        from ..clips.loaders import IMAGE_SUFFIXES
+
+        folder = _P(str(c))
+        d = folder / "img" if (folder / "img").is_dir() else folder
+        paths = sorted(p for p in d.iterdir() if p.suffix.lower() in IMAGE_SUFFIXES) \
+            if d.is_dir() else []
+        if "ground truth" not in str(e) or not paths:
+            raise
+        return Clip(folder.name, ImageFiles(paths), np.full((len(paths), 4), np.nan),
+                    source=str(folder))
+
+
 def _params_cls(name):
     cls = _trackers.get(name)
     return cls if dataclasses.is_dataclass(getattr(cls, "Params", None)) else None
@@ -105,8 +126,7 @@ class Playground(anywidget.AnyWidget):
         self._samples = dict(samples or {})
         self._clips = {}
         for c in clips:
-            clip = _clips.load(c)
-            self._clips[str(c)] = clip
+            self._clips[str(c)] = _load_own(c)
         self.result = None
         self.states: list[dict] = []
         self.runs = 0
