@@ -74,6 +74,20 @@ def _params_cls(name):
     return cls if dataclasses.is_dataclass(getattr(cls, "Params", None)) else None
 
 
+def page_html(payload: dict, png: bytes, alt: str) -> str:
+    """One self-contained fragment: root ``div.tb-playground``, the data as JSON in a
+    ``<script>`` (no fetch, so ``file://`` works), the viewer module inline and ``png`` in a
+    ``<noscript>`` (print, no JavaScript)."""
+    data = json.dumps(payload, separators=(",", ":")).replace("</", "<\\/")
+    b64 = base64.b64encode(png).decode("ascii")
+    js = VIEWER_JS.read_text(encoding="utf-8").replace("</script", "<\\/script")
+    css = VIEWER_CSS.read_text(encoding="utf-8")
+    return (f'<div class="tb-playground" data-tb-static="1">'
+            f'<script type="application/json" class="tb-data">{data}</script>'
+            f'<noscript><img alt="{html.escape(alt)}" src="data:image/png;base64,{b64}">'
+            f'</noscript></div><style>{css}</style><script type="module">{js}</script>')
+
+
 class Playground(anywidget.AnyWidget):
     """A clip x tracker x params panel drawn in the browser.
 
@@ -310,16 +324,8 @@ class Playground(anywidget.AnyWidget):
         """The panel as one self-contained HTML fragment: root ``div.tb-playground``, the data
         in a ``<script type="application/json">``, the viewer module inline (so ``file://``
         works) and a PNG of the first run in ``<noscript>`` for print and no-JavaScript."""
-        payload = json.dumps(self.static_payload(budget), separators=(",", ":"))
-        payload = payload.replace("</", "<\\/")
-        png = base64.b64encode(self._static_png()).decode("ascii")
-        js = self._esm.replace("</script", "<\\/script")
-        return (f'<div class="tb-playground" data-tb-static="1">'
-                f'<script type="application/json" class="tb-data">{payload}</script>'
-                f'<noscript><img alt="the playground\'s first run: frames and IoU" '
-                f'src="data:image/png;base64,{png}"></noscript></div>'
-                f'<style>{self._css}</style>'
-                f'<script type="module">{js}</script>')
+        return page_html(self.static_payload(budget), self._static_png(),
+                         "the playground's first run: frames and IoU")
 
     def _static_png(self) -> bytes:
         import matplotlib.pyplot as plt

@@ -114,7 +114,8 @@ class Viewer {
     this.slider.value = this.frame;
     const r = this.run || {};
     const clipHasGt = clip && clip.gt;
-    if (r.waiting) this.scores.textContent =
+    if (r.animation) this.scores.textContent = r.scores || "";
+    else if (r.waiting) this.scores.textContent =
       "No ground truth: drag the target's box on frame 0, the tracker starts from it.";
     else if (r.error) this.scores.textContent = "This setting was refused: " + r.error;
     else if (!clipHasGt) this.scores.textContent = (r.tracker || "") +
@@ -128,6 +129,7 @@ class Viewer {
   loadClip(clip, key) {
     this.clipKey = key;
     this.clipInfo = clip;
+    this.frameIndex = clip.index || null;  // animations: step -> image (steps share frames)
     this.images = clip.frames.map((b64) => {
       const im = new Image();
       im.onload = () => { if (this.images === imgs) this.draw(); };
@@ -257,11 +259,13 @@ class Viewer {
     if (!this.clipInfo) return;
     c.fillStyle = "#fff";
     c.fillRect(0, 0, this.cx0 + this.cw, this.fh);
-    const im = this.images[i];
+    const im = this.images[this.frameIndex ? this.frameIndex[i] : i];
     if (im && im.complete && im.naturalWidth) c.drawImage(im, 0, 0, this.fw, this.fh);
     else { c.fillStyle = "#222"; c.fillRect(0, 0, this.fw, this.fh); }
     const gt = this.clipInfo.gt;
     if (gt && gt[i]) this.box(gt[i], COLORS.gt, 2);
+    const extra = this.run && this.run.extra_boxes;   // animations: e.g. the measurement
+    if (extra) for (const e of extra) if (e.boxes[i]) this.box(e.boxes[i], e.color, 2, e.dash);
     const r = this.run, st = this.state || {};
     if (r && r.boxes) {
       if (st.search_window && st.search_window[i]) this.box(st.search_window[i], COLORS.window, 1.5, [5, 4]);
@@ -292,7 +296,7 @@ class Viewer {
         }
         c.restore();
       }
-      this.box(r.boxes[i], COLORS.est, 2.5);
+      if (r.boxes[i]) this.box(r.boxes[i], COLORS.est, 2.5);
     }
     if (this.drag && this.drag.b) this.box(this.drag.b, COLORS.est, 2, [4, 3]);
     this.legend();
@@ -300,15 +304,17 @@ class Viewer {
     const iou = r && r.iou ? r.iou[i] : null;
     this.frameLabel.textContent = `frame ${i} / ${Math.max(0, this.nFrames() - 1)}` +
       (iou !== null && iou !== undefined ? ` \u00b7 IoU ${iou.toFixed(2)}` : "") +
-      (r && r.ok ? (r.ok[i] ? "" : " \u00b7 lost") : "");
+      (r && r.ok ? (r.ok[i] ? "" : " \u00b7 lost") : "") +
+      (r && r.captions && r.captions[i] ? " \u00b7 " + r.captions[i] : "");
   }
 
   legend() {
     const c = this.ctx;
     c.font = "11px sans-serif";
     let x = 6;
-    const items = [["estimate", COLORS.est]];
+    const items = [[(this.run && this.run.est_label) || "estimate", COLORS.est]];
     if (this.clipInfo.gt) items.unshift(["ground truth", COLORS.gt]);
+    for (const e of (this.run && this.run.extra_boxes) || []) items.push([e.label, e.color]);
     for (const [name, col] of items) {
       const w = c.measureText(name).width + 18;
       c.fillStyle = "rgba(255,255,255,0.8)"; c.fillRect(x - 2, this.fh - 18, w, 15);
@@ -323,17 +329,19 @@ class Viewer {
     const r = this.run, n = this.nFrames();
     c.strokeStyle = "#000"; c.lineWidth = 1; c.strokeRect(x0, y0, w, h);
     c.fillStyle = "#000"; c.font = "11px sans-serif";
-    const useIou = r && r.iou;
+    const custom = r && r.curve;          // animations: any per-step series, 0..1
+    const useIou = !custom && r && r.iou;
     c.save(); c.translate(this.cx0 + 10, y0 + h / 2); c.rotate(-Math.PI / 2);
-    c.textAlign = "center"; c.fillText(useIou ? "IoU with ground truth" : "tracker ok", 0, 0);
+    c.textAlign = "center";
+    c.fillText(custom ? custom.label : useIou ? "IoU with ground truth" : "tracker ok", 0, 0);
     c.restore();
-    c.fillText("frame", x0 + w / 2 - 14, y0 + h + 24);
+    c.fillText(custom && custom.x ? custom.x : "frame", x0 + w / 2 - 14, y0 + h + 24);
     c.fillText("0", x0 - 3, y0 + h + 12); c.fillText(String(n - 1), x0 + w - 12, y0 + h + 12);
     c.fillText("1", x0 - 10, y0 + 8); c.fillText("0", x0 - 10, y0 + h);
     const X = (k) => x0 + (n > 1 ? k / (n - 1) : 0) * w, Y = (v) => y0 + h - v * h;
     c.strokeStyle = COLORS.grid; c.setLineDash([4, 3]);
     c.beginPath(); c.moveTo(x0, Y(0.5)); c.lineTo(x0 + w, Y(0.5)); c.stroke(); c.setLineDash([]);
-    const ys = useIou ? r.iou : (r && r.ok ? r.ok : null);
+    const ys = custom ? custom.values : useIou ? r.iou : (r && r.ok ? r.ok : null);
     if (ys) {
       c.strokeStyle = COLORS.curve; c.lineWidth = 1.5; c.beginPath();
       let pen = false;
@@ -401,7 +409,7 @@ function staticHost(data) {
     knobs,
     value: (name) => values[name],
     sampled: (k) => k.samples.some((v, i) => `${clipKey}|${tracker}|${k.name}#${i}` in data.runs),
-    note: () => "This page holds runs for a few sampled values of each knob, one knob at a " +
+    note: () => data.note !== undefined ? data.note : "This page holds runs for a few sampled values of each knob, one knob at a " +
       "time around the default (the others return to their defaults); in Jupyter the " +
       "playground re-runs the tracker for any value." +
       (knobs().some((k) => !host.sampled(k)) ? " Greyed knobs: Jupyter only." : ""),
@@ -445,6 +453,14 @@ if (typeof document !== "undefined") {
 
 // ---- Jupyter (anywidget): the kernel re-runs on a knob change ------------------------------
 function render({ model, el: root }) {
+  const fixed = model.get("static_data");
+  if (fixed && fixed.runs) {              // an animation: everything precomputed, no kernel
+    const { host, attach } = staticHost(fixed);
+    const v = new Viewer(root, host);
+    attach(v);
+    v.update();
+    return () => { v.playing = false; };
+  }
   const cfg = () => model.get("config");
   const host = {
     live: true,
