@@ -1,7 +1,10 @@
 """The built HTML book as a reader meets it, in a real headless Chromium.
 
 Runs after the book is built (``jupyter-book build .``); skips when there is no
-``_build/html`` or no Chromium. Pages are served from 127.0.0.1 (MathJax and the theme load
+``_build/html`` or no Chromium. ``TRACKBOOK_BOOK_HTML=/path/to/_build/html`` points the
+playground and offline checks at another build (e.g. a one-page throwaway book); the checks of
+the book's own pages then skip. The playground's static page is also checked without any book
+build (``test_static_playground_*``). Pages are served from 127.0.0.1 (MathJax and the theme load
 their files by script, which ``file://`` pages may block). Screenshots of every page are kept in
 ``_build/screenshots/`` as test artifacts (never committed).
 """
@@ -10,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import http.server
+import os
 import re
 import shutil
 import subprocess
@@ -20,15 +24,19 @@ from pathlib import Path
 
 import pytest
 
+from ._playground_browser import CHROMIUM, exercise, local_only, watch_errors
+
 ROOT = Path(__file__).resolve().parents[1]
-HTML = ROOT / "_build" / "html"
+OTHER_HTML = os.environ.get("TRACKBOOK_BOOK_HTML")
+HTML = Path(OTHER_HTML) if OTHER_HTML else ROOT / "_build" / "html"
 SHOTS = ROOT / "_build" / "screenshots"
-CHROMIUM = next((shutil.which(c) for c in ("chromium", "chromium-browser", "google-chrome")
-                 if shutil.which(c)), None)
+BUILT = (HTML / "index.html").is_file()
+needs_build = pytest.mark.skipif(not BUILT, reason="book not built")
+own_book = pytest.mark.skipif(not BUILT or bool(OTHER_HTML),
+                              reason="book not built (or another build was given)")
 
 pytestmark = [
     pytest.mark.browser,
-    pytest.mark.skipif(not (HTML / "index.html").is_file(), reason="book not built"),
     pytest.mark.skipif(CHROMIUM is None, reason="no Chromium (apt-get install chromium)"),
 ]
 
@@ -37,14 +45,19 @@ def _toc_pages():
     return re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())
 
 
-@pytest.fixture(scope="module")
-def server():
-    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(HTML))
+def _serve(directory):
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(directory))
     handler.log_message = lambda *a, **k: None
     httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
     t = threading.Thread(target=httpd.serve_forever, daemon=True)
     t.start()
-    yield f"http://127.0.0.1:{httpd.server_address[1]}"
+    return httpd, f"http://127.0.0.1:{httpd.server_address[1]}"
+
+
+@pytest.fixture(scope="module")
+def server():
+    httpd, url = _serve(HTML)
+    yield url
     httpd.shutdown()
 
 
@@ -127,6 +140,7 @@ def _render(server, page):
     return p, dom
 
 
+@own_book
 @pytest.mark.parametrize("page", _toc_pages())
 def test_page_renders(server, page):
     p, dom = _render(server, page)
@@ -149,6 +163,7 @@ def test_page_renders(server, page):
     assert (SHOTS / (Path(page).name + ".png")).stat().st_size > 10_000
 
 
+@own_book
 def test_navigation_lists_chapters_in_order(server):
     p, _ = _render(server, "book/00_introduction")
     listed = [re.sub(r"(\.html)?(#.*)?$", "", h).split("/")[-1] for h in p.nav]
@@ -158,3 +173,90 @@ def test_navigation_lists_chapters_in_order(server):
     assert order == sorted(order), "navigation is not in the order of _toc.yml"
     chapters = [n for n in pages if re.match(r"\d\d_", n)]
     assert chapters == sorted(chapters), "chapters are not numbered in order"
+
+
+# ---- the playgrounds: live offline, from disk and over http ---------------------------------
+
+@pytest.fixture(scope="module")
+def browser():
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+        yield b
+        b.close()
+
+
+def _pages_of(html_dir: Path):
+    return sorted(str(p.relative_to(html_dir)) for p in html_dir.rglob("*.html")
+                  if "_static" not in p.parts and "_sources" not in p.parts
+                  and p.name not in ("genindex.html", "search.html"))
+
+
+def _check_page(browser, url):
+    """Open ``url``; every playground answers its knobs, frame slider and play button; no
+    request leaves the machine; no script error."""
+    page = browser.new_page()
+    errors, blocked = [], []
+    watch_errors(page, errors)
+    local_only(page, blocked)
+    page.goto(url, wait_until="load")
+    page.wait_for_timeout(300)
+    fails = []
+    for i, root in enumerate(page.query_selector_all(".tb-playground")):
+        fails += [f"playground {i}: {f}" for f in exercise(page, root)]
+    n = len(page.query_selector_all(".tb-playground"))
+    page.close()
+    assert not blocked, f"{url} requested off-machine: {blocked[:5]}"
+    assert not errors, f"{url} raised: {errors[:5]}"
+    assert not fails, f"{url}: {fails}"
+    return n
+
+
+@needs_build
+@pytest.mark.parametrize("scheme", ["file", "http"])
+def test_built_pages_offline_and_playgrounds_live(browser, scheme):
+    httpd, base = _serve(HTML)
+    try:
+        seen = 0
+        for rel in _pages_of(HTML):
+            url = (HTML / rel).as_uri() if scheme == "file" else f"{base}/{rel}"
+            seen += _check_page(browser, url)
+        if not OTHER_HTML and any("Playground(" in p.read_text()
+                                  for p in (ROOT / "book").glob("*.md")):
+            assert seen > 0, "the chapters call Playground but no page has a .tb-playground"
+    finally:
+        httpd.shutdown()
+
+
+@pytest.fixture(scope="module")
+def static_page(tmp_path_factory):
+    """One small playground's static page (as the book embeds it), without a book build."""
+    from trackbook.widgets import Playground
+
+    pg = Playground(clips=["red-cube", "yellow-ball"], trackers=["color-pf"],
+                    params=["n_particles", "resampler"], n_frames=20,
+                    samples={"n_particles": [10, 100, 300]})
+    d = tmp_path_factory.mktemp("static")
+    (d / "index.html").write_text('<!doctype html><html><head><meta charset="utf-8"></head>'
+                                  f"<body>{pg.static_html()}</body></html>", encoding="utf-8")
+    return d
+
+
+@pytest.mark.parametrize("scheme", ["file", "http"])
+def test_static_playground_answers(browser, static_page, scheme):
+    httpd, base = _serve(static_page)
+    try:
+        url = (static_page / "index.html").as_uri() if scheme == "file" else f"{base}/index.html"
+        assert _check_page(browser, url) == 1
+    finally:
+        httpd.shutdown()
+
+
+def test_static_playground_ships_the_widget_module(static_page):
+    from trackbook.playground import VIEWER_JS, Playground
+
+    html = (static_page / "index.html").read_text(encoding="utf-8")
+    js = re.search(r'<script type="module">(.*?)</script>', html, re.S).group(1)
+    assert js.replace("<\\/script", "</script") == VIEWER_JS.read_text(encoding="utf-8")
+    assert Playground._esm.default_value == js
+    assert len(html.encode()) < 3_000_000

@@ -1,14 +1,19 @@
-"""The playground driven as a student would: set a value, check what is shown changed."""
+"""The playground driven as the front-end drives it: a trait changes, the kernel re-runs, and
+what it sends to the viewer changes."""
+import base64
 import dataclasses
+import json
+import shutil
 
-import ipywidgets as W
 import numpy as np
 import pytest
 
 from trackbook.params import param
+from trackbook.playground import BOOK_ENV, VIEWER_JS
+from trackbook.playground.data import MAX_PARTICLES, knob_spec, sample_values
 from trackbook.trackers import registry
 from trackbook.trackers.base import Tracker
-from trackbook.widgets import Playground, slider_for
+from trackbook.widgets import Playground
 
 from .test_bench_cli import tiny_folder  # noqa: F401  (fixture)
 
@@ -17,7 +22,8 @@ from .test_bench_cli import tiny_folder  # noqa: F401  (fixture)
 class _P:
     speed: float = param(4.0, 0.0, 8.0, 0.5, "px per frame")
     n_particles: int = param(20, 5, 100, 5, "particles")
-    window: tuple = param((0.8, 1.2), 0.5, 1.5, 0.05, "ratio window")
+    window: tuple = param((0.8, 1.2), 0.5, 2.0, 0.05, "ratio window")
+    mode: str = param("a", doc="a choice", choices=("a", "b"))
 
 
 class _Slider(Tracker):
@@ -41,33 +47,104 @@ def registered():
     del registry._REGISTRY[_Slider.name]
 
 
-def test_sliders_come_from_params_metadata():
-    f = {x.name: x for x in dataclasses.fields(_P)}
-    s = slider_for(f["speed"])
-    assert isinstance(s, W.FloatSlider) and (s.min, s.max, s.value) == (0.0, 8.0, 4.0)
-    assert s.continuous_update is False
-    assert isinstance(slider_for(f["n_particles"]), W.IntSlider)
-    assert isinstance(slider_for(f["window"]), W.FloatRangeSlider)
+def _particles(run, i):
+    """Frame i's particles as the viewer decodes them (x, y in pixels)."""
+    st = run["state"]
+    a = np.frombuffer(base64.b64decode(st["particles"]), dtype="<i2").reshape(-1, 3)
+    start = sum(st["pcount"][:i])
+    return a[start:start + st["pcount"][i], :2] / 2
 
 
-def test_playground_reacts_to_frame_and_param_changes(registered, tiny_folder):  # noqa: F811
+def test_knobs_come_from_params_metadata():
+    f = knob_spec(_Slider, "speed")
+    assert (f["kind"], f["lo"], f["hi"], f["default"]) == ("float", 0.0, 8.0, 4.0)
+    assert knob_spec(_Slider, "n_particles")["kind"] == "int"
+    assert knob_spec(_Slider, "window")["kind"] == "pair"
+    assert knob_spec(_Slider, "mode")["choices"] == ["a", "b"]
+    assert knob_spec(_Slider, "nope") is None
+    s = sample_values(f)
+    assert min(s) == 0.0 and max(s) == 8.0 and 4.0 in s and s == sorted(s)
+    n = sample_values(knob_spec(_Slider, "n_particles"))
+    assert n == [10, 20, 30, 100]            # the book's 10/30/100/300/1000 within 5..100
+    w = sample_values(knob_spec(_Slider, "window"))
+    assert [0.95, 1.05] in w and [0.5, 2.0] in w and [0.8, 1.2] in w
+
+
+def test_set_reruns_and_the_state_sent_changes(registered, tiny_folder):  # noqa: F811
     pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider", "opencv-mil"],
                     params=["speed", "n_particles"])
-    assert set(pg.param_ws) == {"speed", "n_particles"}
-    renders, first, png = pg.renders, pg.result.boxes.copy(), pg.image_w.value
-    pg.frame_w.value = 5
-    assert pg.frame == 5 and pg.renders == renders + 1
-    assert pg.image_w.value[:4] == b"\x89PNG" and pg.image_w.value != png
-    pg.param_ws["speed"].value = 0.0              # the student drags the slider
-    assert pg.result.params["speed"] == 0.0
-    assert not np.allclose(pg.result.boxes, first)
-    np.testing.assert_allclose(pg.result.boxes[5], pg.result.boxes[0])  # box no longer moves
-    assert "AUC" in pg.scores_w.value
-    assert len(pg.states[5]["particles"]) == 20
-    pg.tracker_w.value = "opencv-mil"             # MIL has no such params: sliders go away
-    assert pg.param_ws == {} and pg.result.tracker == "opencv-mil"
-    fig = pg.static_figure()
-    assert len(fig.axes) == 4
+    assert [k["name"] for k in pg.config["knobs"]["test-slider"]] == ["speed", "n_particles"]
+    assert len(pg.clip_data["frames"]) == 12 and pg.clip_data["gt"] is not None
+    first = dict(pg.run_data)
+    r = pg.set(speed=0.0)
+    assert r is pg.result and r.params["speed"] == 0.0 and pg.runs == 2
+    boxes = np.array(pg.run_data["boxes"])
+    np.testing.assert_allclose(boxes[5], boxes[0])              # the box no longer moves
+    assert pg.run_data["boxes"] != first["boxes"] and pg.run_data["iou"] != first["iou"]
+    assert pg.run_data["scores"].startswith("test-slider on tiny: AUC")
+    # the front-end's path: a knob input sends {"values": ...} over the comm
+    pg.set_state({"values": {"speed": 0.0, "n_particles": 60}})
+    assert pg.result.params["n_particles"] == 60 and pg.runs == 3
+    assert pg.run_data["state"]["pcount"][3] == min(60, MAX_PARTICLES)
+    p = _particles(pg.run_data, 3)               # quantised to half pixels, near the box corner
+    assert np.abs(p - boxes[3][:2]).max() < 6
+    with pytest.raises(ValueError, match="not knobs"):
+        pg.set(alpha=0.5)
+
+
+def test_tracker_and_clip_choice(registered, tiny_folder):  # noqa: F811
+    pg = Playground(clips=[str(tiny_folder), "red-cube"], trackers=["test-slider", "opencv-mil"],
+                    params=["speed"], n_frames=10, values={"speed": 2.0})
+    assert pg.values == {"speed": 2.0}
+    pg.set_state({"tracker": "opencv-mil"})       # MIL has none of these knobs
+    assert pg.values == {} and pg.result.tracker == "opencv-mil"
+    assert "state" in pg.run_data and "particles" not in pg.run_data["state"]
+    pg.set_state({"clip": "red-cube"})
+    assert pg.clip_data["name"] == "red-cube" and len(pg.clip_data["frames"]) == 10
+    assert pg.run_data["clip"] == "red-cube"
+
+
+def test_your_own_video_waits_for_the_dragged_box(registered, tiny_folder, tmp_path):  # noqa: F811
+    own = tmp_path / "own"
+    shutil.copytree(tiny_folder / "img", own / "img")    # frames, no ground truth
+    pg = Playground(clips=[str(own)], trackers=["test-slider"], params=["speed"])
+    assert pg.run_data.get("waiting") and pg.result is None and pg.clip_data["gt"] is None
+    pg.set_state({"init_box": [20, 40, 30, 30]})          # the student's drag on frame 0
+    assert pg.result is not None and pg.run_data["iou"] is None
+    assert "no ground truth" in pg.run_data["scores"]
+    np.testing.assert_allclose(pg.run_data["boxes"][0], [20, 40, 30, 30])
+
+
+def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monkeypatch):  # noqa: F811
+    pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
+                    params=["speed", "n_particles", "window"], n_frames=8,
+                    samples={"speed": [0.0, 8.0]})
+    assert pg._esm == VIEWER_JS.read_text(encoding="utf-8")
+    assert "application/vnd.jupyter.widget-view+json" in pg._repr_mimebundle_()[0]
+    monkeypatch.setenv(BOOK_ENV, "1")
+    bundle = pg._repr_mimebundle_()
+    html = bundle["text/html"]
+    assert html.startswith('<div class="tb-playground"') and "<noscript><img" in html
+    assert pg._esm.replace("</script", "<\\/script") in html
+    data = json.loads(html.split('class="tb-data">')[1].split("</script>")[0]
+                      .replace("<\\/", "</"))
+    keys = set(data["runs"])
+    tiny = str(tiny_folder)
+    # defaults, then each knob's other samples one at a time (speed: the samples given)
+    assert f"{tiny}|test-slider|" in keys
+    assert {f"{tiny}|test-slider|speed#0", f"{tiny}|test-slider|speed#1"} <= keys
+    assert data["config"]["knobs"]["test-slider"][0]["samples"] == [0.0, 8.0, 4.0]
+    assert data["runs"][f"{tiny}|test-slider|speed#0"]["values"]["speed"] == 0.0
+    assert all(r["values"]["n_particles"] == 20 for k, r in data["runs"].items()
+               if "n_particles" not in k)
+
+
+def test_static_budget_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa: F811
+    pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
+                    params=["n_particles", "speed"], n_frames=10)
+    runs = pg.static_runs(budget=10 + 4 * 10)     # defaults + speed's four other samples
+    assert not any("n_particles#" in k for k in runs)   # 10..100 particles cost too much
+    assert sum("speed#" in k for k in runs) == 4
 
 
 def test_playground_rejects_unknown_tracker(tiny_folder):  # noqa: F811

@@ -4,6 +4,7 @@
     trackbook clips export red-cube out/red-cube.mp4
     trackbook track kalman-covariance red-cube --out out/
     trackbook track condensation-mean-shift two-faces --all-targets --out out/
+    trackbook track color-pf my_video.mp4 --box 120,80,40,60   your own video, no ground truth
     trackbook bench --trackers color-pf,kalman-covariance --clips samples --out bench-results/
     trackbook notebooks --out notebooks/  export the book's chapters to .ipynb for class
 """
@@ -115,6 +116,20 @@ def annotate(frame, boxes: dict, gt=None):
     return img
 
 
+def _parse_box(text: str, clip) -> tuple:
+    """``--box x,y,w,h`` (pixels of the first frame) -> a float tuple, checked against the
+    frame size so a typo fails with a clear message rather than a lost tracker."""
+    try:
+        x, y, w, h = (float(v) for v in text.replace(" ", "").split(","))
+    except ValueError:
+        raise SystemExit(f"--box {text!r}: expected four numbers x,y,w,h, e.g. --box 40,30,24,24")
+    width, height = clip.size
+    if w <= 0 or h <= 0 or x < 0 or y < 0 or x + w > width or y + h > height:
+        raise SystemExit(f"--box {text!r} is not a box inside the {width}x{height} first frame; "
+                         "give x,y of its top-left corner and a positive width and height.")
+    return (x, y, w, h)
+
+
 def cmd_track(args) -> int:
     import csv
 
@@ -132,10 +147,14 @@ def cmd_track(args) -> int:
     params = _track_params(args.tracker, args.param)
     clip = clips.load(args.clip)
     out = _out_dir(args.out)
+    init_box = _parse_box(args.box, clip) if args.box else None
     if args.all_targets:
+        if init_box is not None:
+            raise ValueError("--box starts one target; it cannot be combined with --all-targets.")
         return _track_all_targets(args, clip, params, out)
     stem = f"{args.tracker}_{clip.name}"
-    r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames, **params)
+    r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
+                 init_box=init_box, **params)
     with open(out / f"{stem}.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
@@ -279,6 +298,8 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--max-frames", type=int)
     t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
+    t.add_argument("--box", help="x,y,w,h: the target on the first frame, for a video without "
+                   "ground truth (your own video); scores are then left out")
     t.add_argument("--all-targets", action="store_true",
                    help="track every annotated target of the clip at once (one tracker each): "
                         "one CSV per target, one video with all boxes")

@@ -1,0 +1,95 @@
+"""Drive every ``.tb-playground`` of a page in Chromium as a reader would (shared by the
+browser test, the JupyterLab test and benchmarks/playground_speed.py)."""
+
+from __future__ import annotations
+
+import shutil
+from urllib.parse import urlparse
+
+CHROMIUM = next((shutil.which(c) for c in ("chromium", "chromium-browser", "google-chrome")
+                 if shutil.which(c)), None)
+
+#: the canvas as a short fingerprint (sum of sampled pixels), to see that the picture changed
+CANVAS_SIG = """(root) => {
+  const c = root.querySelector('canvas');
+  const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+  let s = 0; for (let i = 0; i < d.length; i += 97) s = (s * 31 + d[i]) % 1000000007;
+  return s;
+}"""
+
+
+def local_only(page, blocked: list):
+    """Fail any request that would leave the machine (only file: and 127.0.0.1 pass)."""
+    def route(r):
+        u = urlparse(r.request.url)
+        if u.scheme in ("file", "data", "blob") or u.hostname in ("127.0.0.1", "localhost"):
+            r.continue_()
+        else:
+            blocked.append(r.request.url)
+            r.abort()
+    page.route("**/*", route)
+
+
+def watch_errors(page, errors: list):
+    page.on("pageerror", lambda e: errors.append(f"pageerror: {e}"))
+    page.on("console", lambda m: errors.append(f"console: {m.text}") if m.type == "error"
+            else None)
+
+
+def set_input(handle, value):
+    """Set an input/select's value and fire input + change, as a user's drag does."""
+    handle.evaluate("""(e, v) => { if (e.type === 'checkbox') e.checked = !e.checked;
+        else e.value = v; e.dispatchEvent(new Event('input', {bubbles: true}));
+        e.dispatchEvent(new Event('change', {bubbles: true})); }""", str(value))
+
+
+def other_value(handle):
+    """A value of the knob input other than its current one."""
+    return handle.evaluate("""(e) => {
+      if (e.tagName === 'SELECT') { const o = [...e.options].map(x => x.value);
+        return o[(o.indexOf(e.value) + 1) % o.length]; }
+      if (e.type === 'range') { const lo = +e.min, hi = +e.max, v = +e.value;
+        return String(v === lo ? hi : lo); }
+      if (e.type === 'checkbox') return 'toggle';
+      if (e.type === 'text') { const p = e.value.split(',').map(Number);
+        return p.map((x, i) => i === 0 ? x * 0.9 : x * 1.1).join(', '); }
+      return e.value; }""")
+
+
+def exercise(page, root, wait_run=None, timeout=60_000):
+    """Move each enabled knob, the frame slider and press play on one playground; return a
+    list of failures (empty when everything answered)."""
+    fails = []
+    root.scroll_into_view_if_needed()
+    page.wait_for_function("(r) => { const c = r.querySelector('canvas'); return c && c.width > 0 }",
+                           arg=root, timeout=timeout)
+    page.wait_for_timeout(300)       # the JPEGs decode
+    scores = root.query_selector(".tb-scores")
+    all_knobs = root.query_selector_all("[data-knob]")
+    knobs = [k for k in all_knobs if k.is_enabled()]
+    if all_knobs and not knobs:
+        fails.append("no enabled knob")
+    for k in knobs:
+        name = k.get_attribute("data-knob")
+        before_sig, before_txt = page.evaluate(CANVAS_SIG, root), scores.inner_text()
+        set_input(k, other_value(k))
+        if wait_run:
+            wait_run(before_txt)
+        page.wait_for_timeout(50)
+        if scores.inner_text() == before_txt:
+            fails.append(f"knob {name}: scores did not change")
+        if page.evaluate(CANVAS_SIG, root) == before_sig:
+            fails.append(f"knob {name}: picture did not change")
+    fr = root.query_selector("[data-frame]")
+    before = page.evaluate(CANVAS_SIG, root)
+    set_input(fr, int(fr.get_attribute("max") or fr.evaluate("e => e.max")) // 2)
+    if page.evaluate(CANVAS_SIG, root) == before:
+        fails.append("frame slider: picture did not change")
+    set_input(fr, 0)
+    before = page.evaluate(CANVAS_SIG, root)
+    root.query_selector("[data-play]").click()
+    page.wait_for_timeout(600)
+    if fr.evaluate("e => +e.value") == 0 or page.evaluate(CANVAS_SIG, root) == before:
+        fails.append("play: frames did not advance")
+    root.query_selector("[data-play]").click()
+    return fails
