@@ -63,12 +63,8 @@ def test_export_writes_every_page(exported):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("page", _pages())
-def test_exported_notebook_runs(exported, page, monkeypatch):
-    """Each exported notebook runs end to end in a plain kernel from its own folder.
-
-    The playgrounds precompute only their default runs here (the book build precomputes the
-    knobs, and tests/test_playground.py checks that path), so the suite does not pay twice."""
-    monkeypatch.setenv("TRACKBOOK_PLAYGROUND_KNOBS", "0")
+def test_exported_notebook_runs(exported, page):
+    """Each exported notebook runs end to end in a plain kernel from its own folder."""
     jupytext = pytest.importorskip("jupytext")
     nbclient = pytest.importorskip("nbclient")
     nb = jupytext.read(exported / f"{page}.ipynb")
