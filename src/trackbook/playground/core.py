@@ -243,6 +243,9 @@ class Playground(anywidget.AnyWidget):
             self.busy = False
         self.result, self.states = r, states
         self.runs += 1
+        # the book's precompute starts with this very run (same tracker, clip, values, frames)
+        _RUN_CACHE.setdefault(_cache_key(self.tracker, clip.name, self._n(clip), self.seed,
+                                         self.values, box), payload)
         self.run_data = payload
         return r
 
