@@ -150,3 +150,30 @@ def test_static_budget_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa
 def test_playground_rejects_unknown_tracker(tiny_folder):  # noqa: F811
     with pytest.raises(ValueError, match="unknown tracker"):
         Playground(clips=[str(tiny_folder)], trackers=["nope"])
+
+
+@pytest.mark.parametrize("make", ["sir_cycle", "kalman_ball", "mean_shift_climb",
+                                  "subspace_drift"])
+def test_animations_use_the_viewer(make, monkeypatch):
+    from trackbook.viz import animations
+
+    kw = {"kalman_ball": {"n_frames": 8}, "subspace_drift": {"n_frames": 12},
+          "sir_cycle": {"frames": [1, 2]}}.get(make, {})
+    a = getattr(animations, make)(**kw)
+    assert a._esm == VIEWER_JS.read_text(encoding="utf-8")
+    d = a.static_data
+    (run,) = d["runs"].values()
+    clip = d["clips"][run["clip"]]
+    n = len(run["boxes"])
+    assert n >= 2 and len(run["curve"]["values"]) == n and len(run["captions"]) == n
+    assert len(clip["index"] or clip["frames"]) == n
+    if make == "sir_cycle":     # three steps per frame; resample/predict equal, weigh varies
+        assert n == 6 and [c.split(" \u00b7 ")[1].split(":")[0] for c in run["captions"][:3]] \
+            == ["resample", "predict", "weigh"]
+        ess = run["curve"]["values"]
+        assert ess[1] == 1.0 and ess[2] < 1.0
+    if make == "mean_shift_climb":   # an accepted mean-shift step never lowers rho (eq. 13)
+        rho = run["curve"]["values"]
+        assert all(b >= a - 1e-4 for a, b in zip(rho, rho[1:])) and rho[-1] > rho[0]
+    monkeypatch.setenv(BOOK_ENV, "1")
+    assert a._repr_mimebundle_()["text/html"].startswith('<div class="tb-playground"')

@@ -37,6 +37,8 @@ VIEWER_CSS = HERE / "viewer.css"
 BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
 #: longest clip the HTML book precomputes (frames), whatever ``n_frames`` says
 STATIC_MAX_FRAMES = 80
+#: most bytes of one playground in the HTML book (the issue's budget is 3 MB)
+MAX_PAGE_BYTES = 2_900_000
 #: the knobs the book's promise names, precomputed first
 _FIRST = ("n_particles", "alpha", "ratio_low", "ratio_high", "ratio_window")
 
@@ -243,6 +245,9 @@ class Playground(anywidget.AnyWidget):
             self.busy = False
         self.result, self.states = r, states
         self.runs += 1
+        # the book's precompute starts with this very run (same tracker, clip, values, frames)
+        _RUN_CACHE.setdefault(_cache_key(self.tracker, clip.name, self._n(clip), self.seed,
+                                         self.values, box), payload)
         self.run_data = payload
         return r
 
@@ -276,16 +281,17 @@ class Playground(anywidget.AnyWidget):
                 _RUN_CACHE[ck] = {"error": str(e)}
         return _RUN_CACHE[ck]
 
-    def static_runs(self, budget: int = 1200) -> dict:
+    def static_runs(self, budget: int = 2000, room: int = MAX_PAGE_BYTES) -> dict:
         """The runs the HTML book embeds, keyed ``clip|tracker|`` (defaults) and
         ``clip|tracker|knob#i`` (knob at its i-th sample, the others at their defaults).
 
         Every clip x tracker at defaults first; then, on the first clip and tracker, each knob's
         samples (the promised knobs first) while the cost stays under ``budget`` tracker-frames
         (a run of n frames with P particles costs n * max(1, P / default P)): the build stays
-        quick and the page under 3 MB. Knobs left out are marked "Jupyter only" in the page.
+        quick; and while the runs' JSON stays under ``room`` bytes (the page under 3 MB). Knobs
+        left out are marked "Jupyter only" in the page.
         """
-        runs, cost = {}, 0
+        runs, cost, size = {}, 0, 0
         t0, c0 = self.config["trackers"][0], self.config["clips"][0]["key"]
         for t in self.config["trackers"]:
             for c in self._clips:
@@ -294,6 +300,7 @@ class Playground(anywidget.AnyWidget):
                 if r is not None:
                     runs[f"{c}|{t}|"] = r
                     cost += n
+                    size += len(json.dumps(r))
         knobs = sorted(self.config["knobs"][t0],
                        key=lambda k: (k["name"] not in _FIRST, self.param_names.index(k["name"])))
         n = self._n(self._clips[c0], STATIC_MAX_FRAMES)
@@ -303,24 +310,30 @@ class Playground(anywidget.AnyWidget):
             todo = [(i, v) for i, v in enumerate(k["samples"]) if v != k["default"]]
             need = sum(n * max(1.0, (v if k["name"] == "n_particles" else p0) / p0)
                        for _, v in todo)
-            if cost + need > budget:
+            typical = size / max(len(runs), 1)
+            if cost + need > budget or size + typical * len(todo) > room:
                 continue
             for i, v in todo:
                 r = self._cached_run(t0, c0, {**defaults, k["name"]: v}, n)
                 if r is not None:
                     runs[f"{c0}|{t0}|{k['name']}#{i}"] = r
+                    size += len(json.dumps(r))
             cost += need
         return runs
 
-    def static_payload(self, budget: int = 1200) -> dict:
-        runs = self.static_runs(budget)
-        clip_data = {}
-        for c, clip in self._clips.items():
-            clip_data[c] = D.clip_payload(clip, self._n(clip, STATIC_MAX_FRAMES))
+    def static_payload(self, budget: int = 2000) -> dict:
+        # the frames take most of the page: lower the JPEG quality until they fit in 2 MB
+        for quality in (D.JPEG_QUALITY, 60, 50, 40, 30):
+            clip_data = {c: D.clip_payload(clip, self._n(clip, STATIC_MAX_FRAMES), quality)
+                         for c, clip in self._clips.items()}
+            if len(json.dumps(clip_data)) <= 2_000_000:
+                break
+        room = MAX_PAGE_BYTES - len(json.dumps(clip_data)) - 150_000   # viewer, PNG, config
+        runs = self.static_runs(budget, room)
         return {"config": self.config, "clips": clip_data, "runs": runs,
                 "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
 
-    def static_html(self, budget: int = 1200) -> str:
+    def static_html(self, budget: int = 2000) -> str:
         """The panel as one self-contained HTML fragment: root ``div.tb-playground``, the data
         in a ``<script type="application/json">``, the viewer module inline (so ``file://``
         works) and a PNG of the first run in ``<noscript>`` for print and no-JavaScript."""

@@ -31,14 +31,14 @@ def _b64(a: np.ndarray) -> str:
     return base64.b64encode(np.ascontiguousarray(a).tobytes()).decode("ascii")
 
 
-def clip_payload(clip, n: int) -> dict:
+def clip_payload(clip, n: int, quality: int = JPEG_QUALITY) -> dict:
     """The first ``n`` frames of ``clip`` as JPEG (encoded once) and their ground truth."""
     frames = []
     for i, f in enumerate(clip.frames):
         if i >= n:
             break
         ok, buf = cv2.imencode(".jpg", np.asarray(f),   # clips are BGR, as cv2 wants
-                               [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY])
+                               [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
         frames.append(base64.b64encode(buf.tobytes()).decode("ascii"))
     gt = np.asarray(clip.groundtruth[:len(frames)], dtype=float)
     has_gt = bool(np.isfinite(gt).all(axis=1).any())

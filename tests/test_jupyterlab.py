@@ -1,0 +1,119 @@
+"""The playground in a real JupyterLab (started on 127.0.0.1, driven by headless Chromium):
+the notebook's cells run, the panel renders and answers a knob (the kernel re-runs) and the
+frame slider. ``TRACKBOOK_LAB_NOTEBOOK=book/02_particle_filters.md`` runs a whole chapter
+exported by ``trackbook notebooks`` instead of the small notebook."""
+
+from __future__ import annotations
+
+import json
+import os
+import secrets
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+import pytest
+
+from ._playground_browser import CANVAS_SIG, CHROMIUM, other_value, set_input, watch_errors
+
+ROOT = Path(__file__).resolve().parents[1]
+
+pytestmark = [
+    pytest.mark.jupyterlab,
+    pytest.mark.slow,
+    pytest.mark.skipif(CHROMIUM is None, reason="no Chromium"),
+]
+
+SMALL = [
+    "from trackbook.widgets import Playground",
+    "pg = Playground(clips=['red-cube'], trackers=['color-pf'], "
+    "params=['n_particles', 'sigma_color'], n_frames=20)\npg",
+]
+
+
+def _notebook(tmp: Path) -> Path:
+    chapter = os.environ.get("TRACKBOOK_LAB_NOTEBOOK")
+    if chapter:
+        subprocess.run([sys.executable, "-m", "trackbook", "notebooks", "--out", str(tmp)],
+                       check=True, cwd=ROOT, capture_output=True)
+        return next(tmp.rglob(Path(chapter).stem + ".ipynb"))
+    nb = {"cells": [{"cell_type": "code", "metadata": {}, "execution_count": None,
+                     "outputs": [], "source": s} for s in SMALL],
+          "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3",
+                                      "language": "python"}},
+          "nbformat": 4, "nbformat_minor": 5}
+    p = tmp / "playground.ipynb"
+    p.write_text(json.dumps(nb))
+    return p
+
+
+@pytest.fixture
+def lab(tmp_path):
+    pytest.importorskip("jupyterlab")
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    token = secrets.token_hex(16)
+    env = {**os.environ, "PYTHONPATH": f"{ROOT / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
+           "JUPYTER_CONFIG_DIR": str(tmp_path / "cfg"), "JUPYTER_RUNTIME_DIR": str(tmp_path / "rt")}
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "jupyter", "lab", "--no-browser", "--ip=127.0.0.1",
+         f"--port={port}", f"--IdentityProvider.token={token}", f"--ServerApp.root_dir={tmp_path}",
+         "--allow-root", "--LabApp.news_url=", "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate"],
+        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    url = f"http://127.0.0.1:{port}"
+    for _ in range(120):
+        try:
+            urllib.request.urlopen(f"{url}/api/status?token={token}", timeout=2)
+            break
+        except OSError:
+            time.sleep(0.5)
+    else:
+        proc.terminate()
+        pytest.skip("jupyter lab did not start")
+    yield url, token, tmp_path
+    proc.terminate()
+    proc.wait(timeout=20)
+
+
+def test_playground_in_jupyterlab(lab):
+    sync_api = pytest.importorskip("playwright.sync_api")
+    url, token, tmp = lab
+    nb = _notebook(tmp)
+    rel = nb.relative_to(tmp).as_posix()
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+        page = b.new_page(viewport={"width": 1400, "height": 1000})
+        errors = []
+        watch_errors(page, errors)
+        page.goto(f"{url}/lab/tree/{rel}?token={token}")
+        page.wait_for_selector(".jp-Notebook", timeout=120_000)
+        page.wait_for_selector(".jp-Notebook-ExecutionIndicator[data-status='idle']",
+                               timeout=120_000)
+        page.click(".jp-Notebook .jp-Cell >> nth=0")
+        page.keyboard.press("Escape")
+        page.click("text=Run", timeout=10_000)
+        page.click("text=Run All Cells", timeout=10_000)
+        root = page.wait_for_selector(".tb-playground canvas", timeout=300_000)
+        root = page.query_selector(".tb-playground")
+        page.wait_for_function("(r) => r.querySelector('.tb-scores').textContent.includes('AUC')",
+                               arg=root, timeout=120_000)
+        page.wait_for_timeout(500)
+        scores = root.query_selector(".tb-scores")
+        knob = root.query_selector("[data-knob]")
+        before_txt, before_sig = scores.inner_text(), page.evaluate(CANVAS_SIG, root)
+        set_input(knob, other_value(knob))
+        page.wait_for_function("([r, t]) => r.querySelector('.tb-scores').textContent !== t",
+                               arg=[root, before_txt], timeout=120_000)
+        page.wait_for_timeout(200)
+        assert page.evaluate(CANVAS_SIG, root) != before_sig, "knob: picture did not change"
+        fr = root.query_selector("[data-frame]")
+        before = page.evaluate(CANVAS_SIG, root)
+        set_input(fr, 10)
+        assert page.evaluate(CANVAS_SIG, root) != before, "frame slider: picture did not change"
+        b.close()
+    real = [e for e in errors if "tb-" in e or "viewer" in e or "anywidget" in e.lower()]
+    assert not real, real
