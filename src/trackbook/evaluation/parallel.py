@@ -50,16 +50,42 @@ def groups(tasks, workers: int = 1) -> list[list]:
     return out
 
 
-def _ignore_sigint():
+#: Set in a worker's environment so that its OpenCV MIL child runs one thread too.
+ENV_CV_THREADS = "TRACKBOOK_CV_THREADS"
+
+
+def one_thread_per_worker():
+    """Make OpenCV in this process (and the MIL children it starts) use one thread.
+
+    With N workers on N cores, OpenCV's own thread pool (one thread per core in every worker)
+    oversubscribes the cores: the workers' threads preempt each other. One thread per worker
+    is the usual rule for process-parallel OpenCV. A single-process bench keeps OpenCV's
+    threads, since nothing else competes for the cores. The boxes do not change: the
+    trackers' OpenCV calls are deterministic whatever the number of threads
+    (tests/test_bench_parallel.py compares 1 and 2 workers)."""
+    import cv2
+
+    cv2.setNumThreads(1)
+    os.environ[ENV_CV_THREADS] = "1"
+
+
+def _worker_init():
     # Ctrl-C is the parent's to handle (one line, then it stops the workers): a worker that
     # also caught it would print its own traceback.
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    one_thread_per_worker()
 
 
 def _work(group, out, multi_seed):
     return _bench.run_group(group, out, multi_seed)
+
+
+def _work_dask(group, multi_seed):
+    # a Dask worker is a process of its own on a core of its own, like a local worker
+    one_thread_per_worker()
+    return _bench.run_group(group, None, multi_seed)
 
 
 def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None,
@@ -84,7 +110,7 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
 
     # spawn: a worker must not inherit this process's threads (a notebook's, tqdm's) or state.
     pool = ProcessPoolExecutor(max_workers=min(workers, len(gs)),
-                               mp_context=mp.get_context("spawn"), initializer=_ignore_sigint)
+                               mp_context=mp.get_context("spawn"), initializer=_worker_init)
     try:
         pending = {pool.submit(_work, g, str(out), multi_seed): g for g in gs}
         while pending:
@@ -114,7 +140,7 @@ def _execute_dask(tasks, out, finished, scheduler, multi_seed):
     try:
         n = max(1, len(client.scheduler_info().get("workers", {})))
         gs = groups(tasks, n)
-        futs = {client.submit(_bench.run_group, g, None, multi_seed, pure=False): i
+        futs = {client.submit(_work_dask, g, multi_seed, pure=False): i
                 for i, g in enumerate(gs)}
         try:
             for f in as_completed(list(futs)):

@@ -6,11 +6,16 @@ then for ``I``/``U`` a frame header ``<iii`` (h, w, channels) and its uint8 byte
 box ``<4i``. The answer is ``<?4d`` (ok, x, y, w, h).
 """
 
+import os
 import struct
 import sys
 
 import cv2
 import numpy as np
+
+# A bench worker asks its MIL child for one OpenCV thread (see evaluation.parallel).
+if os.environ.get("TRACKBOOK_CV_THREADS"):
+    cv2.setNumThreads(int(os.environ["TRACKBOOK_CV_THREADS"]))
 
 
 def _read(f, n):
