@@ -54,10 +54,10 @@ def configs(prefixes=()):
 
 
 def knob_moves(pg, k=3):
-    """A few values for each knob: its samples other than the current value."""
+    """A few values for each knob: its samples other than the default, with the default."""
     for spec in pg.config["knobs"][pg.tracker]:
         for v in [s for s in spec["samples"] if s != spec["default"]][:k]:
-            yield spec["name"], v
+            yield spec["name"], v, spec["default"]
 
 
 def frame_step_ms(html: str, steps: int = 40) -> float:
@@ -98,10 +98,13 @@ def main(argv):
         pg = Playground(**kw)
         first = time.perf_counter() - t0
         times = []
-        for name, v in knob_moves(pg):
+        for name, v, default in knob_moves(pg):
             t = time.perf_counter()
             pg.set(**{name: v})
             times.append(time.perf_counter() - t)
+            # back to the default, untimed: every move is one knob away from the defaults (as
+            # the HTML book samples them), not a drift that leaves e.g. 1000 particles behind
+            pg.set(**{name: default})
         t = time.perf_counter()
         html = pg.static_html()
         pre = time.perf_counter() - t
