@@ -168,3 +168,22 @@ def test_orientation_bin_other_bin_counts_and_tiny_negative_angles():
         expected = np.minimum(np.floor(theta * bins / (2 * np.pi)).astype(int), bins - 1)
         np.testing.assert_array_equal(orientation_bin(gx, gy, bins), expected)
     assert orientation_bin(np.array([1.0]), np.array([-1e-9]))[0] == 7
+
+
+def test_octant_bins_match_a_slow_arctangent_loop_on_an_integer_grid():
+    """The 8-bin octant rule (signs and the diagonal) against math.atan2 pixel by pixel on
+    every integer gradient in [-20, 20]^2: axes, diagonals and all angles between. An integer
+    angle off an edge is at least 1 / (2 * 20^2) rad from it, so the slow loop's 1e-9 nudge
+    only moves angles that lie on an edge (which atan2 may round just below it)."""
+    import math
+
+    from trackbook.features.hog import orientation_bin
+    v = np.arange(-20, 21, dtype=float)
+    gx, gy = np.meshgrid(v, v)
+    slow = np.empty(gx.shape, dtype=int)
+    for i in range(gx.shape[0]):
+        for j in range(gx.shape[1]):
+            theta = math.atan2(gy[i, j], gx[i, j]) % (2 * math.pi)
+            slow[i, j] = int(math.floor(theta * 8 / (2 * math.pi) + 1e-9)) % 8
+    np.testing.assert_array_equal(orientation_bin(gx, gy), slow)
+    np.testing.assert_array_equal(orientation_bin(gx / 256, gy / 256), slow)   # blurred scale

@@ -144,18 +144,49 @@ def magnitude_angle(gx: np.ndarray, gy: np.ndarray) -> tuple[np.ndarray, np.ndar
     return m, theta
 
 
-def orientation_bin(gx: np.ndarray, gy: np.ndarray, bins: int = HOG_BINS) -> np.ndarray:
-    """Index u of the 45-degree bin [u 2pi/8, (u+1) 2pi/8) holding eq. 4's angle.
+#: The bin of eq. 4's angle for 8 bins, by octant: key 9 sign(g_y) + 3 sign(g_x) +
+#: sign(|g_y| - |g_x|) + 13. The octants' edges are the bins' edges (multiples of 45 degrees),
+#: so signs and the diagonal decide the bin exactly; an edge starts its bin (0 deg -> 0,
+#: 45 -> 1, 90 -> 2, ..., 315 -> 7). Keys no (g_x, g_y) can give (e.g. both signs 0 and
+#: |g_y| > |g_x|) hold 0. atan2(0, 0) = 0, so a zero gradient is in bin 0, as np.arctan2 says.
+_OCTANT_BIN = np.zeros(27, dtype=np.intp)
+for _sy, _sx, _d, _b in [(0, 0, 0, 0), (0, 1, -1, 0), (0, -1, -1, 4), (1, 0, 1, 2),
+                         (-1, 0, 1, 6), (1, 1, -1, 0), (1, 1, 0, 1), (1, 1, 1, 1),
+                         (1, -1, 1, 2), (1, -1, 0, 3), (1, -1, -1, 3), (-1, -1, -1, 4),
+                         (-1, -1, 0, 5), (-1, -1, 1, 5), (-1, 1, 1, 6), (-1, 1, 0, 7),
+                         (-1, 1, -1, 7)]:
+    _OCTANT_BIN[9 * _sy + 3 * _sx + _d + 13] = _b
 
-    Computed as floor(atan2(g_y, g_x) * bins / 2pi + bins) mod bins, the same bin as eq. 4's
-    theta + 2pi. The shift by ``bins`` (not 2pi) makes every value positive, so the floor is a
-    plain integer cast, and an angle just below 0 lands in bin 7 and never in a bin 8.
-    Only an angle within ~1e-15 of a bin edge can be rounded onto the edge (and so into the
-    upper bin); the blurred uint8 patches of the trackers have integer-over-256 gradients,
-    whose angles are never that close to an edge without being on it.
-    (A sign-and-diagonal table avoids the arctangent but measured twice as slow in NumPy;
-    ``np.floor`` + ``np.mod`` measured five times slower than this cast and mask.)
+
+def _sign_i8(a: np.ndarray) -> np.ndarray:
+    # -1, 0, 1 as int8 (a quarter of the memory traffic of np.sign's float64)
+    return (a > 0).view(np.int8) - (a < 0).view(np.int8)
+
+
+def orientation_bin(gx: np.ndarray, gy: np.ndarray, bins: int = HOG_BINS) -> np.ndarray:
+    """Index u of the bin [u 2pi/bins, (u+1) 2pi/bins) holding eq. 4's angle (Lee et al. 2012).
+
+    For the paper's 8 bins of 45 degrees the bin is the octant of (g_x, g_y): the signs of
+    g_x and g_y and whether |g_y| exceeds |g_x| (``_OCTANT_BIN``). That is exact, with no
+    arctangent and no rounding at the edges, and about five times faster than
+    ``np.arctan2`` (the HOG trackers' largest single cost per frame, measured on 100 patches
+    of 24 x 16 px). For other bin counts it is floor(atan2(g_y, g_x) * bins / 2pi + bins) mod
+    bins, the same bin as eq. 4's theta + 2pi: the shift by ``bins`` (not 2pi) makes every
+    value positive, so the floor is a plain integer cast, and an angle just below 0 lands in
+    the last bin and never in a bin ``bins``. (The two agree on every (g_x, g_y) except
+    (-0.0, -0.0), which np.arctan2 puts at -pi; a zero gradient votes nothing, so its bin
+    never matters. ``tests/test_hog.py`` compares them on random and edge angles.)
     """
+    gx = np.asarray(gx)
+    gy = np.asarray(gy)
+    if bins == 8:
+        ax, ay = np.abs(gx), np.abs(gy)
+        key = _sign_i8(gy) * np.int8(9)
+        key += _sign_i8(gx) * np.int8(3)
+        key += (ay > ax).view(np.int8)
+        key -= (ay < ax).view(np.int8)
+        key += np.int8(13)
+        return _OCTANT_BIN[key]
     t = np.arctan2(gy, gx)
     t *= bins / (2 * np.pi)
     t += bins                                   # (-pi, pi] -> (bins / 2, 3 bins / 2]
