@@ -1,11 +1,11 @@
-"""Table 1 of Lee 2015 (seed 002): misses, detection rate, averaging search rate, ms/frame.
+"""Table 1 of Lee 2015: misses, detection rate, averaging search rate, ms/frame.
 
 The paper's detection rate (eq. 14) is "frames where the region was detected / all frames";
 the book counts a frame as detected when IoU > 0.5 (:func:`trackbook.metrics.tracking_rate`),
 and a miss is any other scored frame. The averaging search rate is the mean over frames of
 evaluated candidate windows / all windows in the frame (the trackers' ``frame_report``).
 
-Regenerate the committed real-sequence table of chapter 04/05 with::
+Regenerate the committed real-sequence table of chapter 7 and its lab notes with::
 
     PYTHONPATH=src python -m trackbook.evaluation.table_seed002 book/results/seed002_real.csv
 
@@ -79,7 +79,7 @@ REAL_CSV = os.path.join("book", "results", "seed002_real.csv")
 
 
 def read_real_table(path=None) -> list[dict]:
-    """The committed real-sequence Table-1 rows (numbers as floats) for chapters 04/05.
+    """The committed real-sequence Table-1 rows (numbers as floats) for chapter 7 and its lab notes.
 
     Looked up as ``path`` if given, else by :func:`trackbook.evaluation.results.path`, so the
     book never needs the sequences themselves.

@@ -15,7 +15,7 @@
     fallback of the book default (``fallback="frame"``).
     Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
     target has probably changed velocity (a bounce); the window is searched again as if the
-    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 6, "The bounce").
+    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 7, "The bounce").
 
 Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
 ``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
@@ -64,16 +64,16 @@ class CovarianceParams:
     search_radius: int = param(
         8, 1, 64, 1, doc="candidates' centres within ±radius px of the last position",
         paper=NOT_PRINTED,   # sec. 2.3 names a "search range" with no size
-        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (chapter 6 "
+        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (chapter 7 "
             "compares the search rates)")
     threshold: float = param(
-        3.0, 0.1, 20.0, 0.1, doc="ρ (eq. 5) above which the match is poor: the target is "
+        3.0, 0.1, 20.0, 0.1, doc="d_F (eq. 5) above which the match is poor: the target is "
         "lost and `fallback` says where to search again",
         paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
-        why="on RedCube the tracked cube scores ρ ≈ 0.5 and background windows above 4; 3 lies "
+        why="on RedCube the tracked cube scores d_F ≈ 0.5 and background windows above 4; 3 lies "
             "between (chapter 7 measures it)")
     fallback: str = param(
-        "frame", doc="where to search again when the best ρ is above `threshold`: the whole "
+        "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
         "frame ('frame') or nowhere else, keeping the prediction ('window')",
         choices=("frame", "window"),
         paper="frame")     # sec. 3, Fig. 3, frame 160: covariance alone searches the whole frame
@@ -96,12 +96,12 @@ class CovarianceParams:
 @dataclasses.dataclass(frozen=True)
 class KalmanCovarianceParams(CovarianceParams):
     fallback: str = param(
-        "frame", doc="where to search again when the best ρ is above `threshold`: the whole "
+        "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
         "frame ('frame') or only the next, larger Kalman window ('window')",
         choices=("frame", "window"),
         paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
         why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
-            "the yellow ball again after its first bounce; 'window' is the paper's (chapter 6)")
+            "the yellow ball again after its first bounce; 'window' is the paper's (chapter 7)")
     q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
                      paper=1.0)   # sec. 2.2: Q = I_4 printed
     r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
@@ -121,11 +121,11 @@ class KalmanCovarianceParams(CovarianceParams):
         why="a floor under the gate (with Q = R = I, 3σ of S settles near ±7 px); 4 px keeps a "
             "search area if q, r are set small")
     manoeuvre_gate: float = param(
-        3.0, 0.0, 10.0, 0.5, doc="κ: a best ρ above κ·(median ρ of the last accepted "
+        3.0, 0.0, 10.0, 0.5, doc="κ: a best d_F above κ·(median d_F of the last accepted "
         "frames) signals a manoeuvre; 0 = never",
         paper=NOT_PRINTED, paper_value=0.0,   # not in the paper; 0 switches it off
-        why="the book's addition: a ball's bounce leaves the constant-velocity window while ρ "
-            "stays below `threshold` (chapter 6, the bounce)")
+        why="the book's addition: a ball's bounce leaves the constant-velocity window while d_F "
+            "stays below `threshold` (chapter 7, the bounce)")
     manoeuvre_sigma: float = param(
         8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity change allowed on a "
         "manoeuvre: the second, larger window",

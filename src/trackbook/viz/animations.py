@@ -99,10 +99,26 @@ class _Snap:
         self.particles, self.weights = particles, weights
 
 
-def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, **params) -> Animation:
-    """The Kalman filter on the bouncing ball, two steps per frame: predict (the search
-    window from the innovation covariance S, eq. 9-10 of Lee 2015) and update (the
-    measurement, the best covariance match, pulls the estimate; eq. 11-13)."""
+def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
+                qs=(0.01, 1.0, 100.0), noise_sd=4.0, **params) -> Animation:
+    """The Kalman filter on the bouncing ball, two steps per frame: predict (the 3-sigma
+    window of the innovation covariance S, eq. 9-10 of Lee 2015) and update (the measurement
+    pulls the estimate; eq. 11-13).
+
+    Parameters
+    ----------
+    sensor : {"noisy-truth", "covariance"}
+        ``"noisy-truth"`` (chapter 6): the measurement is the ground-truth centre plus Gaussian
+        noise of standard deviation ``noise_sd`` px, filtered by the constant-velocity model
+        with ``R = noise_sd**2 I`` and one run per process-noise scale in ``qs`` (the viewer
+        offers them as a choice). ``"covariance"`` (chapter 7): the measurement is the best
+        covariance match of the ``kalman-covariance`` tracker (``params`` go to it).
+    """
+    if sensor == "noisy-truth":
+        return _kalman_noisy_truth(clip, n_frames, seed, qs, noise_sd)
+    if sensor != "covariance":
+        raise ValueError(f"sensor={sensor!r}: use 'noisy-truth' (a simulated sensor) or "
+                         "'covariance' (the kalman-covariance tracker's measurements)")
     from .. import trackers as _trackers
 
     clip = _clips.load(clip)
@@ -148,6 +164,61 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, **params) -> Animation:
                            "measurement (purple), update (vermillion)")
     return Animation(clip.name, images, {"kalman": run}, index=index, gt=gts,
                      note="Two steps per frame: predict, then update with the measurement.")
+
+
+def _kalman_noisy_truth(clip, n_frames, seed, qs, noise_sd) -> Animation:
+    """Chapter 6's view: a simulated sensor (true centre + N(0, noise_sd^2)) and one Kalman
+    run per Q scale, on the same frames and the same noisy measurements."""
+    from ..filters.kalman import constant_velocity
+
+    if noise_sd <= 0:
+        raise ValueError(f"noise_sd={noise_sd}: the simulated sensor needs a positive "
+                         "standard deviation in pixels (e.g. 4.0)")
+    clip = _clips.load(clip)
+    n = min(n_frames, len(clip))
+    gt = np.asarray(clip.groundtruth[:n], dtype=float)
+    centres = gt[:, :2] + gt[:, 2:] / 2
+    rng = np.random.default_rng(seed)
+    z = centres + rng.normal(0.0, noise_sd, size=centres.shape)
+    w, h = gt[0, 2:]
+    index, gts = [], []
+    for k in range(1, n):
+        index += [k - 1, k - 1]
+        gts += [clip.groundtruth[k], clip.groundtruth[k]]
+    runs = {}
+    for q in qs:
+        kf = constant_velocity(x0=tuple(z[0]), q=q, r=noise_sd ** 2)
+        boxes, meas, windows, captions, err = [], [], [], [], []
+        for k in range(1, n):
+            kf.predict()
+            S = kf.innovation_covariance()
+            hx, hy = 3 * np.sqrt(S[0, 0]), 3 * np.sqrt(S[1, 1])
+            sw = [kf.x[0] - hx, kf.x[1] - hy, 2 * hx, 2 * hy]
+            pred_box = [kf.x[0] - w / 2, kf.x[1] - h / 2, w, h]
+            kf.update(z[k])
+            upd_box = [kf.x[0] - w / 2, kf.x[1] - h / 2, w, h]
+            z_box = [z[k, 0] - w / 2, z[k, 1] - h / 2, w, h]
+            for step, b in (("predict", pred_box), ("update", upd_box)):
+                boxes.append(b)
+                windows.append({"search_window": sw})
+                meas.append(z_box if step == "update" else None)
+                captions.append(f"frame {k} \u00b7 Q = {q:g}\u00b7I \u00b7 " +
+                                ("predict: 3\u03c3 of S" if step == "predict"
+                                 else "update with the noisy measurement"))
+                err.append(float(np.hypot(b[0] + w / 2 - centres[k, 0],
+                                          b[1] + h / 2 - centres[k, 1])))
+        curve = np.minimum(np.asarray(err) / 40.0, 1.0)
+        runs[f"Q = {q:g}\u00b7I"] = run_entry(
+            f"Kalman, Q = {q:g}\u00b7I", boxes, captions=captions, states=windows, curve=curve,
+            curve_label="centre error / 40 px", extra_boxes=[("measurement", PURPLE, meas)],
+            est_label="Kalman estimate",
+            scores=f"simulated sensor (true centre + {noise_sd:g} px noise), R = "
+                   f"{noise_sd ** 2:g}\u00b7I, Q = {q:g}\u00b7I: prediction window "
+                   "(dashed), measurement (purple), estimate (vermillion)")
+    return Animation(clip.name, [clip.frames[k] for k in range(1, n)], runs, index=index,
+                     gt=gts, note="Two steps per frame: predict, then update with the "
+                                  "measurement. Choose Q to see how much the filter trusts "
+                                  "its constant-velocity model.")
 
 
 def mean_shift_climb(clip="occluder", frame=8, start_offset=(-25, 10), max_iter=20) -> Animation:

@@ -37,23 +37,25 @@ def draw_integral_image(ax=None, values=None):
 
 
 def rho_map(frame, tracker, ax=None, title=None):
-    """The last frame's candidates coloured by their Förstner distance ρ (eq. 5)."""
+    """The last frame's candidates coloured by their Förstner distance d_F (eq. 5 of Lee 2015)."""
     ax = show_frame(frame, ax=ax, title=title)
     b = np.asarray(tracker.candidates, dtype=float)
     if len(b):
         cx, cy = b[:, 0] + b[:, 2] / 2, b[:, 1] + b[:, 3] / 2
         sc = ax.scatter(cx, cy, c=tracker.distances, s=6, cmap="viridis_r")
-        plt.colorbar(sc, ax=ax, fraction=0.035, label="ρ")
+        plt.colorbar(sc, ax=ax, fraction=0.035, label="$d_F$")
     draw_search_window(ax, tracker.search_window)
     draw_box(ax, tracker.bbox, label="best window")
     return ax
 
 
-def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True):
-    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse.
+def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
+    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (chapter 7).
 
     ``states`` is a list (per frame) of dicts with ``search_window``, ``ellipse`` and
     ``center`` (the posterior centre), as recorded by ``evaluate(..., on_frame=...)``.
+    ``zoom`` (px): crop each frame to ±zoom around the ground-truth centre, so a window of a
+    few pixels stays visible in a column-wide strip (use at most three frames).
     """
     frames = list(frames)
     fig, axes = plt.subplots(1, len(frames), figsize=(size * len(frames), size * 0.85),
@@ -68,13 +70,18 @@ def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True):
             draw_ellipse(ax, *s["ellipse"], color="#ffffff", lw=1.0)
         if s.get("center") is not None:
             ax.plot(*s["center"], "w.", ms=5)
-        draw_box(ax, boxes[i], color="#d62728")
+        draw_box(ax, boxes[i], color="#D55E00")      # Okabe-Ito vermillion
+        if zoom:
+            g = np.asarray(clip.groundtruth[i], dtype=float)
+            cx, cy = g[0] + g[2] / 2, g[1] + g[3] / 2
+            ax.set_xlim(cx - zoom, cx + zoom)
+            ax.set_ylim(cy + zoom, cy - zoom)
     fig.tight_layout()
     return fig
 
 
 def recorder(states: list):
-    """An ``on_frame`` callback that appends what chapter 05 draws to ``states``."""
+    """An ``on_frame`` callback that appends what chapter 7 draws to ``states``."""
     def record(i, tracker, frame, box):
         sw = getattr(tracker, "search_window", None)
         el = getattr(tracker, "ellipse", None) if hasattr(tracker, "prediction") else None
