@@ -147,6 +147,14 @@ def test_static_budget_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa
     assert sum("speed#" in k for k in runs) == 3
 
 
+def test_samples_stay_within_the_range():
+    """lo 0.01 on a 0.5 grid: the top sample is the maximum 100, not 100.01 (a value the
+    params refuse, so the page showed "This setting was refused")."""
+    spec = {"name": "q", "kind": "float", "lo": 0.01, "hi": 100.0, "step": 0.5, "default": 1.0}
+    s = sample_values(spec)
+    assert max(s) == 100.0 and min(s) == 0.01 and 1.0 in s
+
+
 def test_static_page_has_runs_for_every_knob(registered, tiny_folder):  # noqa: F811
     """Issue 15: the HTML book moves EVERY knob; a knob the mission does not name keeps its
     default and at most three other samples (nearest below, nearest above, an end)."""

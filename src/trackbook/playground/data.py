@@ -200,7 +200,9 @@ def sample_values(spec: dict, k: int = 5) -> list:
         else:
             vals = list(np.linspace(lo, hi, k))
             step = spec["step"]
-            vals = [lo + round((v - lo) / step) * step for v in vals]
+            # on the step grid, but never past the field's range (0.01 + 200 * 0.5 = 100.01
+            # would be refused by a q whose maximum is 100)
+            vals = [min(hi, max(lo, lo + round((v - lo) / step) * step)) for v in vals]
         vals = [int(round(v)) if kind == "int" else round(float(v), 6) for v in vals]
     else:
         return [d]
