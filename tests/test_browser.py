@@ -217,10 +217,14 @@ def _check_page(browser, url):
 def test_built_pages_offline_and_playgrounds_live(browser, scheme):
     httpd, base = _serve(HTML)
     try:
-        seen = 0
-        for rel in _pages_of(HTML):
+        seen, problems = 0, []
+        for rel in _pages_of(HTML):           # every page, so one report names them all
             url = (HTML / rel).as_uri() if scheme == "file" else f"{base}/{rel}"
-            seen += _check_page(browser, url)
+            try:
+                seen += _check_page(browser, url)
+            except AssertionError as e:
+                problems.append(str(e).split("\n")[0])
+        assert not problems, "\n".join(problems)
         if not OTHER_HTML and any("Playground(" in p.read_text()
                                   for p in (ROOT / "book").glob("*.md")):
             assert seen > 0, "the chapters call Playground but no page has a .tb-playground"

@@ -1,7 +1,9 @@
-"""The playground in a real JupyterLab (started on 127.0.0.1, driven by headless Chromium):
-the notebook's cells run, the panel renders and answers a knob (the kernel re-runs) and the
-frame slider. ``TRACKBOOK_LAB_NOTEBOOK=book/02_particle_filters.md`` runs a whole chapter
-exported by ``trackbook notebooks`` instead of the small notebook."""
+"""The playground in a real JupyterLab (started on 127.0.0.1, driven by headless Chromium)
+(issue 15, "done when"): a chapter exported by ``trackbook notebooks`` runs ALL its cells (a
+last cell appended by the test writes a marker file, and the kernel stops a Run All at the
+first error), its first playground renders and answers a knob (the kernel re-runs) and the
+frame slider. ``TRACKBOOK_LAB_NOTEBOOK=book/NN_name.md`` picks another chapter;
+``TRACKBOOK_LAB_NOTEBOOK=small`` runs a two-cell notebook instead (quick, for the viewer only)."""
 
 from __future__ import annotations
 
@@ -34,18 +36,29 @@ SMALL = [
 ]
 
 
+CHAPTER = "book/02_particle_filters.md"
+MARKER = "all_cells_ran.ok"
+
+
 def _notebook(tmp: Path) -> Path:
-    chapter = os.environ.get("TRACKBOOK_LAB_NOTEBOOK")
-    if chapter:
+    chapter = os.environ.get("TRACKBOOK_LAB_NOTEBOOK", CHAPTER)
+    if chapter != "small":
         subprocess.run([sys.executable, "-m", "trackbook", "notebooks", "--out", str(tmp)],
-                       check=True, cwd=ROOT, capture_output=True)
-        return next(tmp.rglob(Path(chapter).stem + ".ipynb"))
-    nb = {"cells": [{"cell_type": "code", "metadata": {}, "execution_count": None,
-                     "outputs": [], "source": s} for s in SMALL],
-          "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3",
-                                      "language": "python"}},
-          "nbformat": 4, "nbformat_minor": 5}
-    p = tmp / "playground.ipynb"
+                       check=True, cwd=ROOT, capture_output=True,
+                       env={**os.environ, "PYTHONPATH": str(ROOT / "src")})
+        p = next(tmp.rglob(Path(chapter).stem + ".ipynb"))
+        nb = json.loads(p.read_text())
+    else:
+        nb = {"cells": [{"cell_type": "code", "metadata": {}, "execution_count": None,
+                         "outputs": [], "source": s} for s in SMALL],
+              "metadata": {"kernelspec": {"name": "python3", "display_name": "Python 3",
+                                          "language": "python"}},
+              "nbformat": 4, "nbformat_minor": 5}
+        p = tmp / "playground.ipynb"
+    # the last cell runs only if every cell before it ran without an error
+    nb["cells"].append({"cell_type": "code", "metadata": {}, "execution_count": None,
+                        "outputs": [], "source": "import pathlib\n"
+                        f"pathlib.Path({str(tmp / MARKER)!r}).write_text('ok')"})
     p.write_text(json.dumps(nb))
     return p
 
@@ -98,6 +111,13 @@ def test_playground_in_jupyterlab(lab):
         page.click("text=Run", timeout=10_000)
         page.click("text=Run All Cells", timeout=10_000)
         root = page.wait_for_selector(".tb-playground canvas", timeout=300_000)
+        for _ in range(600):                      # Run All finishes (or stops at an error)
+            if (tmp / MARKER).exists() or page.query_selector("text=Traceback"):
+                break
+            page.wait_for_timeout(500)
+        tb = page.query_selector("text=Traceback")
+        assert tb is None, f"a cell raised: {tb.inner_text()[:800] if tb else ''}"
+        assert (tmp / MARKER).exists(), "Run All did not reach the notebook's last cell"
         root = page.query_selector(".tb-playground")
         page.wait_for_function("(r) => r.querySelector('.tb-scores').textContent.includes('AUC')",
                                arg=root, timeout=120_000)

@@ -142,9 +142,36 @@ def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monke
 def test_static_budget_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa: F811
     pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
                     params=["n_particles", "speed"], n_frames=10)
-    runs = pg.static_runs(budget=10 + 4 * 10)     # defaults + speed's four other samples
+    runs = pg.static_runs(budget=10 + 3 * 10)     # defaults + speed's three other samples
     assert not any("n_particles#" in k for k in runs)   # 10..100 particles cost too much
-    assert sum("speed#" in k for k in runs) == 4
+    assert sum("speed#" in k for k in runs) == 3
+
+
+def test_samples_stay_within_the_range():
+    """lo 0.01 on a 0.5 grid: the top sample is the maximum 100, not 100.01 (a value the
+    params refuse, so the page showed "This setting was refused")."""
+    spec = {"name": "q", "kind": "float", "lo": 0.01, "hi": 100.0, "step": 0.5, "default": 1.0}
+    s = sample_values(spec)
+    assert max(s) == 100.0 and min(s) == 0.01 and 1.0 in s
+
+
+def test_static_page_has_runs_for_every_knob(registered, tiny_folder):  # noqa: F811
+    """Issue 15: the HTML book moves EVERY knob; a knob the mission does not name keeps its
+    default and at most three other samples (nearest below, nearest above, an end)."""
+    pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
+                    params=["speed", "n_particles", "mode"], n_frames=8)
+    data = pg.static_payload()
+    tiny = str(tiny_folder)
+    knobs = {k["name"]: k for k in data["config"]["knobs"]["test-slider"]}
+    assert knobs["speed"]["samples"] == [0.0, 2.0, 4.0, 6.0]      # 0..8 by 2, default 4
+    assert knobs["n_particles"]["samples"] == sample_values(knob_spec(_Slider, "n_particles"))
+    for name, k in knobs.items():
+        for i, v in enumerate(k["samples"]):
+            key = f"{tiny}|test-slider|" + ("" if v == k["default"] else f"{name}#{i}")
+            assert key in data["runs"], f"{name}={v}: no run in the page"
+            assert data["runs"][key]["values"][name] == v
+    # the live widget keeps the whole range (Jupyter takes any value)
+    assert len(pg.config["knobs"]["test-slider"][0]["samples"]) == 5
 
 
 def test_playground_rejects_unknown_tracker(tiny_folder):  # noqa: F811

@@ -32,8 +32,13 @@ def _configure(app, config):
                     "ignoreClass": "tex2jax_ignore|mathjax_ignore|document"},
         "TeX": {"extensions": ["AMSmath.js", "AMSsymbols.js"]},
         # the package ships the STIX-Web fonts only (not MathJax's TeX fonts)
+        # MathJax 2 probes web fonts against a "MathJax_Blank" face whose src is
+        # url('about:blank'): from file:// Chromium refuses it (a CORS console error on every
+        # page); local() asks for no file at all and falls back the same way
         "HTML-CSS": {"availableFonts": [], "preferredFont": None, "webFont": "STIX-Web",
-                     "imageFont": None},
+                     "imageFont": None,
+                     "styles": {"@font-face": {"font-family": "MathJax_Blank",
+                                               "src": "local('MathJax_Blank')"}}},
         "SVG": {"font": "STIX-Web"},
         "showMathMenu": False,
         "messageStyle": "none",

@@ -37,6 +37,8 @@ VIEWER_CSS = HERE / "viewer.css"
 BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
 #: longest clip the HTML book precomputes (frames), whatever ``n_frames`` says
 STATIC_MAX_FRAMES = 80
+#: the HTML book's samples of a knob the mission does not name, besides its default
+STATIC_OTHER_SAMPLES = 3
 #: most bytes of one playground in the HTML book (the issue's budget is 3 MB)
 MAX_PAGE_BYTES = 2_900_000
 #: the knobs the book's promise names, precomputed first
@@ -281,9 +283,10 @@ class Playground(anywidget.AnyWidget):
                 _RUN_CACHE[ck] = {"error": str(e)}
         return _RUN_CACHE[ck]
 
-    def static_runs(self, budget: int = 2000, room: int = MAX_PAGE_BYTES) -> dict:
+    def static_runs(self, budget: int = 2400, room: int = MAX_PAGE_BYTES) -> dict:
         """The runs the HTML book embeds, keyed ``clip|tracker|`` (defaults) and
-        ``clip|tracker|knob#i`` (knob at its i-th sample, the others at their defaults).
+        ``clip|tracker|knob#i`` (knob at its i-th sample in :meth:`static_knobs`, the others
+        at their defaults).
 
         Every clip x tracker at defaults first; then, on the first clip and tracker, each knob's
         samples (the promised knobs first) while the cost stays under ``budget`` tracker-frames
@@ -301,7 +304,7 @@ class Playground(anywidget.AnyWidget):
                     runs[f"{c}|{t}|"] = r
                     cost += n
                     size += len(json.dumps(r))
-        knobs = sorted(self.config["knobs"][t0],
+        knobs = sorted(self.static_knobs(t0),
                        key=lambda k: (k["name"] not in _FIRST, self.param_names.index(k["name"])))
         n = self._n(self._clips[c0], STATIC_MAX_FRAMES)
         defaults = self._defaults(t0)
@@ -321,7 +324,30 @@ class Playground(anywidget.AnyWidget):
             cost += need
         return runs
 
-    def static_payload(self, budget: int = 2000) -> dict:
+    def static_knobs(self, tracker) -> list:
+        """The knobs of ``tracker`` as the HTML book offers them: the knobs the mission names
+        (particles, alpha, the ratio window) and those given ``samples=`` keep all their
+        samples; every other knob keeps its default and at most ``STATIC_OTHER_SAMPLES``
+        others (the nearest below and above the default, then the range's ends), so that
+        every knob has runs in the page while the build stays quick."""
+        out = []
+        for k in self.config["knobs"][tracker]:
+            k = {**k, "samples": list(k["samples"])}
+            if k["name"] not in _FIRST and k["name"] not in self._samples:
+                others = [v for v in k["samples"] if v != k["default"]]
+                if len(others) > STATIC_OTHER_SAMPLES and k["kind"] in ("int", "float"):
+                    below = [v for v in others if v < k["default"]]
+                    above = [v for v in others if v > k["default"]]
+                    pick = []
+                    for v in ([below[-1]] if below else []) + ([above[0]] if above else []) \
+                            + [others[0], others[-1]] + others:
+                        if v not in pick and len(pick) < STATIC_OTHER_SAMPLES:
+                            pick.append(v)
+                    k["samples"] = sorted(pick + [k["default"]])
+            out.append(k)
+        return out
+
+    def static_payload(self, budget: int = 2400) -> dict:
         # the frames take most of the page: lower the JPEG quality until they fit in 2 MB
         for quality in (D.JPEG_QUALITY, 60, 50, 40, 30):
             clip_data = {c: D.clip_payload(clip, self._n(clip, STATIC_MAX_FRAMES), quality)
@@ -330,10 +356,12 @@ class Playground(anywidget.AnyWidget):
                 break
         room = MAX_PAGE_BYTES - len(json.dumps(clip_data)) - 150_000   # viewer, PNG, config
         runs = self.static_runs(budget, room)
-        return {"config": self.config, "clips": clip_data, "runs": runs,
+        t0 = self.config["trackers"][0]
+        config = {**self.config, "knobs": {**self.config["knobs"], t0: self.static_knobs(t0)}}
+        return {"config": config, "clips": clip_data, "runs": runs,
                 "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
 
-    def static_html(self, budget: int = 2000) -> str:
+    def static_html(self, budget: int = 2400) -> str:
         """The panel as one self-contained HTML fragment: root ``div.tb-playground``, the data
         in a ``<script type="application/json">``, the viewer module inline (so ``file://``
         works) and a PNG of the first run in ``<noscript>`` for print and no-JavaScript."""

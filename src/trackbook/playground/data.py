@@ -98,10 +98,16 @@ def _encode_state(states: list[dict]) -> dict:
         out["pcount"] = counts
         out["particles"] = _b64(np.concatenate(flat)) if flat else ""
 
+    def tidy(x):    # 33.0 -> 33: whole-pixel boxes (a stride's grid) cost a third less JSON
+        if isinstance(x, list):
+            return [tidy(v) for v in x]
+        return int(x) if float(x).is_integer() else x
+
     def rounded(key, reshape=False):
         if any(key in s for s in states):
             out[key] = [None if key not in s else
-                        np.round(np.asarray(s[key], dtype=float), 1).tolist() for s in states]
+                        tidy(np.round(np.asarray(s[key], dtype=float), 1).tolist())
+                        for s in states]
 
     for key in ("search_window", "ellipse", "candidates", "rays"):
         rounded(key)
@@ -194,7 +200,9 @@ def sample_values(spec: dict, k: int = 5) -> list:
         else:
             vals = list(np.linspace(lo, hi, k))
             step = spec["step"]
-            vals = [lo + round((v - lo) / step) * step for v in vals]
+            # on the step grid, but never past the field's range (0.01 + 200 * 0.5 = 100.01
+            # would be refused by a q whose maximum is 100)
+            vals = [min(hi, max(lo, lo + round((v - lo) / step) * step)) for v in vals]
         vals = [int(round(v)) if kind == "int" else round(float(v), 6) for v in vals]
     else:
         return [d]
