@@ -100,10 +100,12 @@ def recorder(states: list):
 __all__ = ["draw_integral_image", "rho_map", "kalman_frames", "recorder", "markdown_table"]
 
 
-def markdown_table(rows, columns, formats=None):
-    """Rows (dicts) as an IPython Markdown table; ``formats`` maps column -> format spec."""
+def markdown_table(rows, columns, formats=None, labels=None):
+    """Rows (dicts) as an IPython Markdown table; ``formats`` maps column -> format spec and
+    ``labels`` column -> header (short headers keep the table inside the page's column)."""
     from IPython.display import Markdown
     formats = formats or {}
+    labels = labels or {}
 
     def cell(row, c):
         v = row.get(c, "")
@@ -113,6 +115,7 @@ def markdown_table(rows, columns, formats=None):
             return format(float(v), formats[c]) if c in formats else str(v)
         except (TypeError, ValueError):
             return str(v)
-    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    lines = ["| " + " | ".join(labels.get(c, c) for c in columns) + " |",
+             "|" + "---|" * len(columns)]
     lines += ["| " + " | ".join(cell(r, c) for c in columns) + " |" for r in rows]
     return Markdown("\n".join(lines))
