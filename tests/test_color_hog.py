@@ -195,7 +195,9 @@ def test_relative_gate_refuses_an_occlusion(clip):
         frames[i][max(0, y - 20):y + h + 20, max(0, x - 20):x + w + 20] = 128
     counts = {}
     for k in (0.0, 2.0):
-        t = trackers.create("color-hog-ipca", seed=0, T=10, gate_k=k)
+        # lost_below=0: the lost gate off, to see the learning gate alone (the lost gate also
+        # stops learning: a lost frame is not learned, see the next test)
+        t = trackers.create("color-hog-ipca", seed=0, T=10, gate_k=k, lost_below=0.0)
         t.init(frames[0], clip.groundtruth[0])
         for i in range(1, 20):
             t.update(frames[i])
@@ -205,6 +207,23 @@ def test_relative_gate_refuses_an_occlusion(clip):
         counts[k] = (t.n_learned - before, t.n_rejected)
     assert counts[0.0] == (10, 0)
     assert counts[2.0][0] <= 2 and counts[2.0][1] >= 8
+
+
+def test_lost_frames_are_not_learned(clip):
+    """With the lost gate at its default, the occluded frames are reported lost and none of
+    them joins the subspaces, even with the learning gate off."""
+    frames = [f.copy() for f in clip.frames[:30]]
+    for i in range(20, 30):
+        x, y, w, h = clip.groundtruth[i].astype(int)
+        frames[i][max(0, y - 20):y + h + 20, max(0, x - 20):x + w + 20] = 128
+    t = trackers.create("color-hog-ipca", seed=0, T=10, gate_k=0.0)
+    t.init(frames[0], clip.groundtruth[0])
+    for i in range(1, 20):
+        t.update(frames[i])
+    before = t.n_learned
+    oks = [t.update(frames[i])[0] for i in range(20, 30)]
+    assert sum(oks) <= 2
+    assert t.n_learned - before == sum(oks)
 
 
 def test_relative_gate_rule_by_hand(monkeypatch):

@@ -56,15 +56,47 @@ def test_identical_black_frames_do_not_walk_with_ok(name):
         assert np.all(np.isfinite(b)) and b[2] > 0 and b[3] > 0
 
 
-def test_optional_self_likelihood_rule(start):
-    """With ``lost_fraction`` set, a frame whose best particle scores below that fraction of
-    the reference's score against itself is lost; a normal next frame is not."""
+def _gate_by_hand(d2s, below, k, window=30):
+    """The distance gate of ``ParticleFilterTracker`` written out as a slow loop: which frames
+    of a sequence of best D^2 values are lost."""
+    hist, lost = [], []
+    for d2 in d2s:
+        if len(hist) >= 5 and 1 - d2 < below:
+            med = np.median(hist)
+            mad = np.median([abs(v - med) for v in hist])
+            if d2 > med + k * max(1.4826 * mad, med / 2):
+                lost.append(True)
+                continue
+        hist = (hist + [d2])[-window:]
+        lost.append(False)
+    return lost
+
+
+@pytest.mark.parametrize("name", ["color-pf", "hsi-color-pf"])
+def test_distance_gate_matches_the_rule_by_hand(name, start, monkeypatch):
+    """Feed the gate a chosen series of best distances (the likelihood is replaced by one
+    that reports them) and compare its lost frames with the rule computed by hand."""
     frames, box = start
-    t = trackers.create("color-pf")
-    t.lost_fraction = 1e-3
+    d2s = [0.05, 0.04, 0.06, 0.05, 0.07, 0.05, 0.5, 0.06, 0.25, 0.2, 0.9, 0.04]
+    # hand-worked: range of the first six: median 0.05, MAD 0.01 -> spread max(0.0148, 0.025)
+    # = 0.025, bound 0.05 + 3 * 0.025 = 0.125: 0.5 and 0.9 (match < 0.7) are lost; 0.25
+    # (match 0.75) and 0.2 (match 0.8) are not lost whatever their distance.
+    expected = _gate_by_hand(d2s, 0.7, 3.0)
+    assert expected == [False] * 6 + [True, False, False, False, True, False]
+    t = trackers.create(name, seed=0)
     t.init(frames[0], box)
-    ok, _ = t.update(frames[1])
-    assert ok and t.best_ratio > t.lost_fraction
-    t.lost_fraction = 1.01            # nothing can beat the reference by 1 %
-    ok, _ = t.update(frames[2])
-    assert not ok and t.best_ratio < 1.01
+    series = iter(d2s)
+
+    def fake_likelihood(frame, particles):
+        d2 = next(series)
+        t._match = np.full(len(particles), 1.0 - d2)
+        return np.full(len(particles), np.exp(-d2 / 0.08))
+
+    monkeypatch.setattr(t, "_likelihood", fake_likelihood)
+    got = [not t.update(frames[1 + i % 3])[0] for i in range(len(d2s))]
+    assert got == expected
+
+
+def test_distance_gate_is_off_in_the_paper_preset():
+    for name in ["color-pf", "color-hog-pf", "color-hog-ipca", "hsi-color-pf", "hog-pf"]:
+        assert trackers.create(name, preset="paper").params.lost_below == 0.0

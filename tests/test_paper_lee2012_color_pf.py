@@ -22,7 +22,8 @@ PRINTED = {
     "resampler": "multinomial",  # pseudocode: one r ~ U[0, 1] per particle, smallest c_i >= r
     "init": "frame",           # pseudocode, t = 0: particles spread uniformly over the image
 }
-NOT_IN_PAPER = {"min_size"}    # eq. 9 has no floor on w and h
+NOT_IN_PAPER = {"min_size",     # eq. 9 has no floor on w and h
+                "lost_below", "lost_k"}   # the paper reports no lost frames
 
 
 def _fields():

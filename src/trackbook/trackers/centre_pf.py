@@ -71,6 +71,10 @@ class CentreParticleFilter(ParticleFilterTracker):
     scale : the box scale relative to the initial box (1 unless a subclass estimates it).
     """
 
+    #: Recovery is the widening spread around the last estimate (``lost_growth``), not a
+    #: scatter over the frame: Kim et al.'s trackers keep their own lost search.
+    scatter_fraction = 0.0
+
     def _model(self, frame, box):
         self._size = np.asarray(box[2:4], dtype=float)
         self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)

@@ -60,7 +60,7 @@ from ..features.patches import sample_patches
 from ..filters.motion import (VX, VY, W, H, box_to_state, clamp_states, fuse, gaussian_likelihood,
                               predict_eq9, similarity, states_to_boxes)
 from ..filters.particle import RESAMPLERS, effective_sample_size
-from .particle_filter import ParticleFilterTracker
+from .particle_filter import ParticleFilterTracker, lost_below_param, lost_k_param
 from ..learning.incremental_svd import IncrementalSVD
 from ..params import NOT_PRINTED, param
 from .registry import register
@@ -116,6 +116,9 @@ class ColorPFParams:
                             paper=NOT_PRINTED,
                             why="eq. 9 has no floor, but a box must cover pixels to have a "
                             "histogram: every side stays >= 4 px (in the paper preset too)")
+    # Not in the paper, which never reports a lost target: the book's distance gate (ch. 2).
+    lost_below: float = lost_below_param()
+    lost_k: float = lost_k_param()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -301,8 +304,12 @@ class ColorHogParticleFilter(ParticleFilterTracker):
         d2 = self._distances2(feats)
         self._similarities = {"color": similarity(d2["color"], p.sigma_color)}
         p_color = gaussian_likelihood(d2["color"], p.sigma_color)
+        # the match 1 - D^2 of the lost gate, fused with the same alpha as eq. 14
+        match = 1.0 - d2["color"]
         if not self.use_hog:
+            self._match = np.clip(match, 0.0, 1.0)
             return p_color
+        self._match = np.clip(p.alpha * match + (1.0 - p.alpha) * (1.0 - d2["hog"]), 0.0, 1.0)
         self._similarities["hog"] = similarity(d2["hog"], p.sigma_hog)
         return fuse(p_color, gaussian_likelihood(d2["hog"], p.sigma_hog), p.alpha)   # eq. 14
 

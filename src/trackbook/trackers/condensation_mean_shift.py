@@ -86,7 +86,8 @@ def _common_params():
                          why="the book's addition for speed on large targets; eq. 3 sums every "
                              "pixel, which this setting matches on targets of 8 px half-axes"),
         min_rho=param(0.3, 0.0, 1.0, 0.05,
-                      "best rho below this: the frame is reported lost (ok=False)",
+                      "best rho below this: the frame is reported lost (ok=False) and the "
+                      "search widens to the whole frame",
                       paper=NOT_PRINTED, paper_value=0.0,
                       why="the paper never reports a lost target; the book flags frames whose "
                           "best rho is below 0.3 (0 = off)"),
@@ -226,10 +227,9 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     name = "condensation"
     Params = CondensationParams
-    #: Its own gate (``min_rho`` on the Bhattacharyya coefficient) decides lost frames; the
-    #: base class's likelihood-ratio rule stays off here even if enabled there (its
-    #: likelihood is scored after mean-shift moved the particles, so it has no ``L_self``).
-    lost_fraction = 0.0
+    #: Its lost rule is ``min_rho`` on the best candidate's Bhattacharyya coefficient (a
+    #: candidate's ``match`` is its rho); while lost, half of the candidates are scattered over
+    #: the frame (``ParticleFilterTracker._scatter``) so the target is found where it returns.
 
     # -- ParticleFilterTracker interface -------------------------------------------------
     def _model(self, frame, box):
@@ -269,6 +269,7 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     def _weigh(self, rho):
         self._rho = rho
+        self._match = np.asarray(rho, dtype=float)
         lik = colour_likelihood(rho, self.params.sigma)
         self._report = {"mean_likelihood": float(lik.mean()), "mean_rho": float(rho.mean())}
         if rho.max() < self.params.min_rho:
@@ -281,6 +282,11 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
         if not self.lost:
             self.estimate[6] = 1.0
         return ok, box
+
+    def _scatter_reset(self, particles, idx):
+        """A candidate scattered over the frame to find a lost target starts at rest."""
+        particles[idx, 2:4] = 0.0
+        particles[idx, 6] = 1.0
 
     # -- for the book ------------------------------------------------------------------
     def frame_report(self) -> dict:
@@ -457,8 +463,19 @@ class MeanShift(_EllipseColourModel, Tracker):
         self._trajectory = self._centre[None, :].copy()
         self._report = {}
 
+    #: A frame whose values span at most this many grey levels carries no information.
+    flat_range = 2
+
     def _update(self, frame):
         p = self.params
+        if int(frame.max()) - int(frame.min()) <= self.flat_range:
+            # a constant frame (all black, all white, one grey): its one colour may even share
+            # a bin with the target's, but nothing in it can be the target -- lost, stay put
+            self._rho = np.zeros(1)
+            self._trajectory = self._centre[None, :].copy()
+            self._report = {"mean_likelihood": 0.0, "mean_rho": 0.0, "histograms": 0.0,
+                            "pixels": 0.0}
+            return False, ellipse_to_box(*self._centre, *self._axes)
         img = self._bin_image(frame, self._centre[None, :], self._axes[None, :] * 1.1, margin=1.0)
         if p.scale_adapt:
             res, axes = mean_shift_with_scale(img, self.q, self._centre, self._axes,
@@ -471,11 +488,37 @@ class MeanShift(_EllipseColourModel, Tracker):
         H, W = self._shape[:2]
         self._centre = np.clip(res.centres[0], [0, 0], [W, H])
         self._rho = res.rho.copy()
+        if p.min_rho > 0 and self._rho[0] < p.min_rho:
+            self._search_frame(frame)
         lik = colour_likelihood(self._rho, p.sigma)
         self._report = {"mean_likelihood": float(lik[0]), "mean_rho": float(self._rho[0]),
                         "histograms": float(res.histograms), "pixels": float(res.pixels)}
         ok = bool(self._rho[0] >= p.min_rho)
         return ok, ellipse_to_box(*self._centre, *self._axes)
+
+    #: The whole-frame search starts this many climbs at most (a grid over the frame).
+    max_starts = 400
+
+    def _search_frame(self, frame):
+        """Recovery: the climb ended below ``min_rho`` (the target is not where it was), so
+        climb again from a grid of starts over the whole frame, one half-axis apart (fewer on
+        a large frame, at most ``max_starts``), and keep the best hill top if it reaches
+        ``min_rho``. Only a lost frame pays for it; a tracker that never loses the target
+        never runs it."""
+        p = self.params
+        H, W = self._shape[:2]
+        step = np.maximum(self._axes, np.sqrt(W * H / self.max_starts))
+        xs = np.arange(step[0] / 2, W, step[0])
+        ys = np.arange(step[1] / 2, H, step[1])
+        starts = np.stack(np.meshgrid(xs, ys), -1).reshape(-1, 2)
+        img = self._bin_image(frame, starts, self._axes[None, :], margin=1.0)
+        res = mean_shift(img, self.q, starts, self._axes[None, :], max_iter=p.max_iter, eps=p.eps)
+        best = int(np.argmax(res.rho))
+        self._report["search_starts"] = float(len(starts))
+        if res.rho[best] >= max(p.min_rho, float(self._rho[0])):
+            self._centre = np.clip(res.centres[best], [0, 0], [W, H])
+            self._rho = res.rho[best:best + 1].copy()
+            self._trajectory = res.trajectory[:, best, :]
 
     def frame_report(self) -> dict:
         """The likelihood of the single candidate (Cho & Kang 2005 Fig. 5), its rho, and the

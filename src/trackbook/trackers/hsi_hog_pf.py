@@ -24,6 +24,7 @@ from ..features.hog import hog_descriptors
 from ..features.hsi import hsi_histograms
 from ..params import NOT_PRINTED, param
 from .centre_pf import CentreParticleFilter, CentrePFParams
+from .particle_filter import lost_below_param, lost_k_param
 from .registry import register
 
 
@@ -34,6 +35,9 @@ class AppearanceParams(CentrePFParams):
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
         "their settings; 0.2 is the book's choice (chapters 2-3)")
+    # Not in the paper, which never reports a lost target: the book's distance gate (ch. 2).
+    lost_below: float = lost_below_param()
+    lost_k: float = lost_k_param()
 
 
 class _AppearancePF(CentreParticleFilter):
@@ -63,6 +67,7 @@ class _AppearancePF(CentreParticleFilter):
     def _likelihood(self, frame, particles):
         feats = self._features(frame, self._boxes(particles))
         d2 = 1.0 - bhattacharyya_coefficient(feats, self.reference)
+        self._match = np.clip(1.0 - d2, 0.0, 1.0)        # rho, for the lost gate
         return np.exp(-np.clip(d2, 0.0, None) / (2.0 * self.params.obs_sigma ** 2))
 
 
