@@ -293,12 +293,16 @@ def main(argv=None):
     import argparse
     import csv
     from multiprocessing import Pool
+    from pathlib import Path
+
     from trackbook.clips import find_sequences
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", default="0-9", help="e.g. 0-9 or 0,1,2")
     ap.add_argument("--out", required=True, help="CSV to write")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--only", help="comma-separated trackers to re-run; the other rows are kept "
+                    "from the existing --out file (for a change that touches only these)")
     a = ap.parse_args(argv)
     if "-" in a.seeds:
         lo, hi = (int(v) for v in a.seeds.split("-"))
@@ -311,8 +315,19 @@ def main(argv=None):
                          "TRACKBOOK_SEQUENCES")
     jobs = [(label, t, p, s, str(path)) for label, t, p in VARIANTS for s in seeds
             for path in seqs.values()]
+    kept = {}
+    if a.only:
+        only = set(a.only.split(","))
+        with open(a.out, newline="") as f:
+            kept = {(r["variant"], int(r["seed"]), r["clip"]): r for r in csv.DictReader(f)
+                    if r["tracker"] not in only}
+        todo = [j for j in jobs if j[1] in only]
+    else:
+        todo = jobs
     with Pool(a.jobs) as pool:
-        rows = pool.map(_job, jobs, chunksize=1)
+        fresh = iter(pool.map(_job, todo, chunksize=1))
+    # every row in the order of ``jobs``: re-run ones fresh, the others as they were
+    rows = [next(fresh) if j in todo else kept[(j[0], j[3], Path(j[4]).name)] for j in jobs]
     with open(a.out, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()

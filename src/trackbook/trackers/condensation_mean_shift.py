@@ -228,7 +228,7 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     name = "condensation"
     Params = CondensationParams
     #: Its lost rule is ``min_rho`` on the best candidate's Bhattacharyya coefficient (a
-    #: candidate's ``match`` is its rho); while lost, half of the candidates are scattered over
+    #: candidate's ``match`` is its rho); while lost, four in five candidates are scattered over
     #: the frame (``ParticleFilterTracker._scatter``) so the target is found where it returns.
 
     # -- ParticleFilterTracker interface -------------------------------------------------

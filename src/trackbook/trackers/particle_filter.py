@@ -93,7 +93,7 @@ class ParticleFilterTracker(Tracker):
     #: Below this the weights are treated as carrying no information (frame "lost").
     min_total_likelihood = 0.0
     #: While lost, this fraction of the particles is scattered over the whole frame.
-    scatter_fraction = 0.5
+    scatter_fraction = 0.8
     #: The distance gate's memory: best D^2 of this many recent frames that were not lost.
     gate_window = 30
     #: After this many lost frames in a row the gate forgets its range and rebuilds it.
