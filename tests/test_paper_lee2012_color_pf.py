@@ -3,13 +3,11 @@
 The expected numbers are copied from the paper, not from the code: a changed default fails
 here unless the field says why the book departs from the paper.
 """
-import dataclasses
-
 import numpy as np
-import pytest
 
 from trackbook import trackers, viz
-from trackbook.params import NOT_PRINTED, has_paper, is_departure
+
+from ._paper import assert_fields_are
 
 # Printed in section V of Lee et al. (2012) (the seed text has no page numbers, so the
 # comments name the passage):
@@ -26,31 +24,8 @@ NOT_IN_PAPER = {"min_size",     # eq. 9 has no floor on w and h
                 "lost_below", "lost_k"}   # the paper reports no lost frames
 
 
-def _fields():
-    return {f.name: f for f in dataclasses.fields(trackers.get("color-pf").Params)}
-
-
-def test_every_field_records_the_paper():
-    fields = _fields()
-    assert set(fields) == set(PRINTED) | NOT_IN_PAPER
-    for name, f in fields.items():
-        assert has_paper(f), f"{name} does not record the paper's value (paper=)"
-
-
-@pytest.mark.parametrize("name", sorted(PRINTED))
-def test_printed_values_are_pinned(name):
-    assert _fields()[name].metadata["paper"] == PRINTED[name]
-
-
-@pytest.mark.parametrize("name", sorted(NOT_IN_PAPER))
-def test_not_printed_fields_say_so(name):
-    assert _fields()[name].metadata["paper"] is NOT_PRINTED
-
-
-def test_every_departure_says_why():
-    for name, f in _fields().items():
-        if is_departure(f):
-            assert len(f.metadata["why"].split()) >= 5, f"{name} departs without a why"
+def test_fields_are_the_printed_and_the_not_printed():
+    assert_fields_are("color-pf", PRINTED, NOT_IN_PAPER)
 
 
 def test_paper_preset_builds_the_printed_method():

@@ -4,13 +4,13 @@ The expected values are copied from the paper (J. KIICE 19(6), 2015), not from t
 changed default fails here unless the field says why the book departs from the paper. The text
 has no page numbers, so each comment names the section and passage.
 """
-import dataclasses
-
 import numpy as np
 import pytest
 
 from trackbook import trackers
-from trackbook.params import NOT_PRINTED, is_departure
+from trackbook.params import is_departure
+
+from ._paper import assert_fields_are, fields
 
 PRINTED = {
     "kalman-covariance": {
@@ -34,19 +34,9 @@ NOT_IN_PAPER = {
 }
 
 
-def _fields(name):
-    return {f.name: f for f in dataclasses.fields(trackers.get(name).Params)}
-
-
 @pytest.mark.parametrize("name", sorted(PRINTED))
 def test_printed_values_are_recorded(name):
-    f = _fields(name)
-    for key, value in PRINTED[name].items():
-        assert f[key].metadata["paper"] == value, key
-    for key in NOT_IN_PAPER[name]:
-        assert f[key].metadata["paper"] is NOT_PRINTED, key
-        assert f[key].metadata["why"].strip(), key
-    assert set(f) == set(PRINTED[name]) | NOT_IN_PAPER[name]
+    assert_fields_are(name, PRINTED[name], NOT_IN_PAPER[name])
 
 
 @pytest.mark.parametrize("name", sorted(PRINTED))
@@ -68,7 +58,7 @@ def test_book_departures_are_listed_with_a_why():
     for key in ("threshold", "gate", "fallback", "features", "manoeuvre_gate"):
         assert key in rows and rows[key]["why"].strip(), key
     assert "q" not in rows and "r" not in rows     # Q = I, R = I as printed
-    assert not is_departure(_fields("kalman-covariance")["init_size"])
+    assert not is_departure(fields("kalman-covariance")["init_size"])
 
 
 def test_kalman_paper_preset_never_searches_the_whole_frame():
