@@ -77,8 +77,9 @@ class ParticleFilterTracker(Tracker):
     always pass). The gate is on the distance, not on the likelihood: ``exp(-D^2 / 2 sigma^2)``
     of a given match changes by orders of magnitude with sigma, ``D^2`` does not. Both tests
     are needed: on the Crossing sequence a box still on the pedestrian (IoU 0.6-0.8) has a
-    best HOG match of only 0.66, and a colour distance that rises from 0.02 to 0.17, but it is the two
-    together that mark the frames where the box is off the target (chapter 2). After
+    best HOG match of only 0.66, and a colour distance that rises from 0.02 to 0.17; the two
+    together marked 145 frames of ``color-pf`` and ``hsi-color-pf`` lost on the seven
+    sequences (seed 0), 4 of them with the box still on the target (chapter 2). After
     ``gate_patience`` lost frames in a row the recent range is forgotten and rebuilt, so a
     target whose look changed for good is not reported lost for ever.
 
