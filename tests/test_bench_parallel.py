@@ -180,3 +180,24 @@ def test_ctrl_c_during_a_parallel_bench_prints_one_line(tmp_path, two_clips):
     lines = [x for x in err.splitlines() if x.strip()]
     assert p.returncode == 130, err
     assert len(lines) == 1 and "resume" in lines[0], err
+
+
+def test_single_process_bench_uses_one_opencv_thread_and_restores_it(tmp_path, two_clips,
+                                                                    monkeypatch):
+    """A one-worker bench runs with one OpenCV thread (faster on these small images) and
+    gives the caller back its own setting and environment afterwards."""
+    monkeypatch.delenv(parallel.ENV_CV_THREADS, raising=False)
+    before = cv2.getNumThreads()
+    seen = []
+    real = parallel._bench.run_group
+
+    def spy(*a, **k):
+        seen.append((cv2.getNumThreads(), os.environ.get(parallel.ENV_CV_THREADS)))
+        return real(*a, **k)
+
+    monkeypatch.setattr(parallel._bench, "run_group", spy)
+    bench.run(["mean-shift"], two_clips, str(tmp_path), workers=1, progress=False,
+              reference=False)
+    assert seen and all(s == (1, "1") for s in seen)
+    assert cv2.getNumThreads() == before
+    assert parallel.ENV_CV_THREADS not in os.environ

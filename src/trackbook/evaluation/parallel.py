@@ -16,6 +16,7 @@ paths, or use sample clips).
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -59,14 +60,35 @@ def one_thread_per_worker():
 
     With N workers on N cores, OpenCV's own thread pool (one thread per core in every worker)
     oversubscribes the cores: the workers' threads preempt each other. One thread per worker
-    is the usual rule for process-parallel OpenCV. A single-process bench keeps OpenCV's
-    threads, since nothing else competes for the cores. The boxes do not change: the
-    trackers' OpenCV calls are deterministic whatever the number of threads
+    is the usual rule for process-parallel OpenCV. The boxes do not change: the trackers'
+    OpenCV calls are deterministic whatever the number of threads
     (tests/test_bench_parallel.py compares 1 and 2 workers)."""
     import cv2
 
     cv2.setNumThreads(1)
     os.environ[ENV_CV_THREADS] = "1"
+
+
+@contextlib.contextmanager
+def one_opencv_thread():
+    """One OpenCV thread for a single-process bench, restored afterwards (the caller may be a
+    notebook that uses OpenCV for other things). The trackers' OpenCV calls work on small
+    patches and frames, where the thread pool's hand-offs cost more than they save: the
+    development-set bench (7 sequences, 11 trackers + MIL) took 139 s in one process with
+    OpenCV's default threads and 104 s with one, on 2 cores (benchmarks/scaling.py's
+    machine)."""
+    import cv2
+
+    threads, env = cv2.getNumThreads(), os.environ.get(ENV_CV_THREADS)
+    one_thread_per_worker()
+    try:
+        yield
+    finally:
+        cv2.setNumThreads(threads)
+        if env is None:
+            os.environ.pop(ENV_CV_THREADS, None)
+        else:
+            os.environ[ENV_CV_THREADS] = env
 
 
 def _worker_init():
@@ -103,8 +125,9 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
         return _execute_dask(tasks, out, finished, scheduler, multi_seed)
     gs = groups(tasks, workers)
     if workers == 1 or len(gs) == 1:
-        for g in gs:
-            finished(g, _bench.run_group(g, out, multi_seed))
+        with one_opencv_thread():
+            for g in gs:
+                finished(g, _bench.run_group(g, out, multi_seed))
         return
     import multiprocessing as mp
 
