@@ -15,6 +15,7 @@ import sys
 
 import numpy as np
 
+import trackbook
 from trackbook import trackers
 from trackbook.clips.synthetic import leave_and_return
 from trackbook.evaluation import metrics
@@ -28,15 +29,9 @@ def sweep(name, clip_seeds=range(3), tracker_seeds=range(4)):
     for cs in clip_seeds:
         clip = leave_and_return(N_BEFORE, N_ABSENT, N_AFTER, seed=cs)
         for seed in tracker_seeds:
-            t = trackers.create(name, seed=seed)
-            t.init(clip.frames[0], clip.groundtruth[0])
-            oks, boxes = [True], [clip.groundtruth[0]]
-            for f in list(clip.frames)[1:]:
-                ok, b = t.update(f)
-                oks.append(ok)
-                boxes.append(b)
-            absent = np.array(oks[N_BEFORE:N_BEFORE + N_ABSENT])
-            iou = metrics.iou(np.array(boxes), clip.groundtruth)[N_BEFORE + N_ABSENT:]
+            r = trackbook.evaluate(name, clip, seed=seed)
+            absent = r.ok[N_BEFORE:N_BEFORE + N_ABSENT]
+            iou = metrics.iou(r.boxes, clip.groundtruth)[N_BEFORE + N_ABSENT:]
             worst_ok = max(worst_ok, int(absent.sum()))
             recover.append(int(np.argmax(iou > 0.5)) if np.any(iou > 0.5) else 99)
     return worst_ok, sorted(recover)

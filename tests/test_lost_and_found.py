@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import trackbook
 from trackbook import trackers
 from trackbook.clips.synthetic import leave_and_return
 from trackbook.evaluation import metrics
@@ -34,14 +35,8 @@ def clip():
 
 
 def _run(name, clip):
-    t = trackers.create(name, seed=0)
-    t.init(clip.frames[0], clip.groundtruth[0])
-    oks, boxes = [True], [clip.groundtruth[0]]
-    for f in list(clip.frames)[1:]:
-        ok, b = t.update(f)
-        oks.append(ok)
-        boxes.append(b)
-    return np.array(oks), np.array(boxes)
+    r = trackbook.evaluate(name, clip, seed=0)
+    return r.ok, r.boxes
 
 
 @pytest.mark.parametrize("name", _names())
