@@ -56,6 +56,9 @@ class Tracker:
 
     name: ClassVar[str] = "tracker"
     Params: ClassVar[type] = NoParams
+    #: A frame whose values span at most this many grey levels (all black, all white, one
+    #: grey) carries no information: trackers report it lost instead of scoring it.
+    flat_range: ClassVar[int] = 2
 
     def __init__(self, seed: int | None = 0, **params):
         check_seed(seed)
@@ -103,6 +106,10 @@ class Tracker:
         self.bbox = tuple(float(v) for v in box)
         self.ok = bool(ok)
         return self.ok, self.bbox
+
+    def _is_flat(self, frame: np.ndarray) -> bool:
+        """Whether ``frame`` is constant up to ``flat_range`` grey levels (nothing to match)."""
+        return int(frame.max()) - int(frame.min()) <= self.flat_range
 
     # -- what subclasses implement ---------------------------------------------------------
     def _init(self, frame: np.ndarray, box: np.ndarray) -> None:  # pragma: no cover

@@ -77,7 +77,6 @@ class CentreParticleFilter(ParticleFilterTracker):
 
     def _model(self, frame, box):
         self._size = np.asarray(box[2:4], dtype=float)
-        self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
         self.velocity = np.zeros(2)
         self.spread = float(self.params.sigma)
         self.scale = 1.0

@@ -463,12 +463,9 @@ class MeanShift(_EllipseColourModel, Tracker):
         self._trajectory = self._centre[None, :].copy()
         self._report = {}
 
-    #: A frame whose values span at most this many grey levels carries no information.
-    flat_range = 2
-
     def _update(self, frame):
         p = self.params
-        if int(frame.max()) - int(frame.min()) <= self.flat_range:
+        if self._is_flat(frame):
             # a constant frame (all black, all white, one grey): its one colour may even share
             # a bin with the target's, but nothing in it can be the target -- lost, stay put
             self._rho = np.zeros(1)

@@ -99,10 +99,9 @@ class ParticleFilterTracker(Tracker):
     gate_window = 30
     #: After this many lost frames in a row the gate forgets its range and rebuilds it.
     gate_patience = 30
-    #: A frame whose values span at most this many grey levels carries no information.
-    flat_range = 2
 
     def _init(self, frame, box):
+        self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
         self._model(frame, box)
         self._particles = np.asarray(self._initial_particles(frame, box), dtype=float)
         n = self._particles.shape[0]
@@ -113,7 +112,6 @@ class ParticleFilterTracker(Tracker):
         self._match = np.ones(n)
         self._gate_d2 = []          # best D^2 of recent frames that were not lost
         self._lost_in_a_row = 0
-        self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
 
     def _update(self, frame):
         resample = RESAMPLERS[self.params.resampler]
@@ -124,7 +122,7 @@ class ParticleFilterTracker(Tracker):
         particles = self._predict(particles)
         particles = np.asarray(self._refine(frame, particles), dtype=float)
         self._match = np.full(particles.shape[0], np.nan)   # a subclass's _likelihood fills it
-        if int(frame.max()) - int(frame.min()) <= self.flat_range:
+        if self._is_flat(frame):
             lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
         else:
             lik = np.asarray(self._likelihood(frame, particles), dtype=float)
