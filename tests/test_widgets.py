@@ -88,7 +88,7 @@ def test_set_reruns_and_the_state_sent_changes(registered, tiny_folder):  # noqa
     assert pg.run_data["state"]["pcount"][3] == min(60, MAX_PARTICLES)
     p = _particles(pg.run_data, 3)               # quantised to half pixels, near the box corner
     assert np.abs(p - boxes[3][:2]).max() < 6
-    with pytest.raises(ValueError, match="not knobs"):
+    with pytest.raises(ValueError, match="unknown parameter .alpha."):
         pg.set(alpha=0.5)
 
 

@@ -22,11 +22,14 @@ import json
 import os
 from pathlib import Path
 
+import difflib
+
 import anywidget
 import numpy as np
 import traitlets as T
 
 from .. import clips as _clips
+from .. import params as _params
 from .. import trackers as _trackers
 from . import data as D
 
@@ -78,6 +81,45 @@ def _params_cls(name):
     return cls if dataclasses.is_dataclass(getattr(cls, "Params", None)) else None
 
 
+def _field_names(tracker) -> list:
+    cls = _params_cls(tracker)
+    return [f.name for f in dataclasses.fields(cls.Params)] if cls else []
+
+
+class Refused(T.TraitError, ValueError):
+    """A knob, tracker or clip the playground refuses: a ``ValueError`` (what the library
+    raises for bad input) that is also a ``TraitError``, so traitlets rolls the trait back."""
+
+
+def _refuse(what: str, value, choices) -> ValueError:
+    """The ValueError for a name that is not among ``choices``, with the nearest one."""
+    near = difflib.get_close_matches(str(value), [str(c) for c in choices], n=1)
+    hint = f" (did you mean {near[0]!r}?)" if near else ""
+    return Refused(f"{what} {value!r} is not one of this playground's {what}s{hint}; "
+                      f"choose from {list(choices)}.")
+
+
+def _jsonable(v):
+    return list(v) if isinstance(v, tuple) else v
+
+
+def parse_values(tracker, values: dict) -> dict:
+    """``values`` for ``tracker``'s params through the one parser
+    (:func:`trackbook.params.parse`, then the params' own checks of combinations), as the
+    ``values`` trait stores them (tuples as lists); raises ``ValueError`` naming the knob."""
+    cls = _params_cls(tracker)
+    if cls is None:
+        if values:
+            raise ValueError(f"tracker {tracker!r} has no params; it takes no knob "
+                             f"(got {sorted(values)}).")
+        return {}
+    if not isinstance(values, dict):
+        raise TypeError(f"values must be a dict {{knob: value}}, got {type(values).__name__}.")
+    out = {k: _params.parse(cls.Params, k, v) for k, v in values.items()}
+    _params.make_params(cls.Params, out)       # combinations (e.g. low < high) checked too
+    return {k: _jsonable(v) for k, v in out.items()}
+
+
 def page_html(payload: dict, png: bytes, alt: str) -> str:
     """One self-contained fragment: root ``div.tb-playground``, the data as JSON in a
     ``<script>`` (no fetch, so ``file://`` works), the viewer module inline and ``png`` in a
@@ -101,7 +143,8 @@ class Playground(anywidget.AnyWidget):
         or image folder without ground truth works too: drag the target's box on the first
         frame (or pass ``box=``).
     trackers : list of tracker names (registered or ``"opencv-mil"``)
-    params : names of the params to expose as knobs (those the chosen tracker has)
+    params : names of the params to expose as knobs first (any param of the chosen tracker
+        can also be set later with :meth:`set`); a name no tracker has is refused
     n_frames : track only the first frames (faster in class)
     seed : the trackers' seed
     values : initial values of params
@@ -137,7 +180,22 @@ class Playground(anywidget.AnyWidget):
                              "Playground(clips=['red-cube'], trackers=['color-pf']).")
         for t in trackers:
             _trackers.get(t)  # fail early, with the list of names
+        params = [params] if isinstance(params, str) else list(params)
+        known = sorted({n for t in trackers for n in _field_names(t)})
+        for name in params:     # a typo is refused, not silently dropped
+            if name not in known:
+                raise _refuse("param", name, known)
         self.param_names = list(params)
+        self._trackers_list = list(trackers)
+        if values is not None and not isinstance(values, dict):
+            raise TypeError(f"values must be a dict {{knob: value}}, got "
+                            f"{type(values).__name__}.")
+        for name in (values or {}):
+            if name not in known:
+                raise _refuse("param", name, known)
+        for t in trackers:     # each given value through the parser, for the trackers having it
+            fields = _field_names(t)
+            parse_values(t, {k: v for k, v in (values or {}).items() if k in fields})
         self.n_frames = n_frames
         self.seed = seed
         self._initial = dict(values or {})
@@ -145,6 +203,9 @@ class Playground(anywidget.AnyWidget):
         self._clips = {}
         for c in clips:
             self._clips[str(c)] = _load_own(c)
+        for name in (values or {}):     # a knob given a value is a knob
+            if name not in self.param_names:
+                self.param_names.append(name)
         self.result = None
         self.states: list[dict] = []
         self.runs = 0
@@ -161,6 +222,38 @@ class Playground(anywidget.AnyWidget):
         self.observe(self._on_tracker, names="tracker")
         self.observe(self._on_change, names=["values", "init_box"])
         self._run()
+
+    # -- refusals: a bad name or value never replaces what the view shows ---------------
+    @T.validate("tracker")
+    def _valid_tracker(self, proposal):
+        t = proposal["value"]
+        if t not in self._trackers_list:
+            raise _refuse("tracker", t, self._trackers_list)
+        return t
+
+    @T.validate("clip")
+    def _valid_clip(self, proposal):
+        c = proposal["value"]
+        if c not in self._clips:
+            raise _refuse("clip", c, list(self._clips))
+        return c
+
+    @T.validate("values")
+    def _valid_values(self, proposal):
+        try:
+            return parse_values(self.tracker, dict(proposal["value"]))
+        except (ValueError, TypeError) as e:
+            raise Refused(str(e)) from None
+
+    def set_state(self, sync_data):
+        """The front-end's path: a refused value leaves the run and the knobs as they were
+        (the viewer gets them back) and says why in ``error``."""
+        try:
+            return super().set_state(sync_data)
+        except (ValueError, TypeError, T.TraitError) as e:
+            self.error = str(e)
+            self.send_state([k for k in ("values", "tracker", "clip") if k in sync_data])
+            return None
 
     # -- configuration -------------------------------------------------------------------
     def _knobs(self, tracker):
@@ -207,14 +300,30 @@ class Playground(anywidget.AnyWidget):
 
     def set(self, **knobs):
         """Re-run with these knob values (others unchanged) and return the new result,
-        by the path a slider takes (the ``values`` trait)."""
-        unknown = set(knobs) - {k["name"] for k in self.config["knobs"][self.tracker]}
-        if unknown:
-            raise ValueError(f"{sorted(unknown)} are not knobs of this playground's "
-                             f"{self.tracker!r}; it has "
-                             f"{[k['name'] for k in self.config['knobs'][self.tracker]]}.")
-        clean = {k: list(v) if isinstance(v, tuple) else v for k, v in knobs.items()}
-        self.values = {**self.values, **clean}
+        by the path a slider takes (the ``values`` trait).
+
+        Any param of the current tracker is a knob, declared in ``params=`` or not (an
+        undeclared one joins the panel's knobs). Every value goes through
+        :func:`trackbook.params.parse`: a wrong name or value raises ``ValueError`` naming the
+        knob, and the playground keeps its values and the run it shows.
+        """
+        new = parse_values(self.tracker, {**self.values, **knobs})
+        extra = [k for k in knobs if k not in self.param_names]
+        if extra:       # now a knob of the panel too
+            self.param_names.extend(extra)
+            self.config = self._config(list(self._clips), self._trackers_list)
+        old, old_error = dict(self.values), self.error
+        self.error = ""
+        self.values = new
+        if self.error:          # the tracker refused this combination while running
+            error = self.error
+            self.unobserve(self._on_change, names=["values", "init_box"])
+            try:
+                self.values = old
+            finally:
+                self.observe(self._on_change, names=["values", "init_box"])
+            self.error = old_error
+            raise ValueError(error)
         return self.result
 
     def params(self) -> dict:
