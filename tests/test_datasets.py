@@ -5,7 +5,7 @@ import pytest
 
 from trackbook import clips
 from trackbook.clips import _dataset_tables as T
-from trackbook.clips.datasets import detect, load_dataset
+from trackbook.clips.datasets import DatasetWarning, detect, load_dataset
 from trackbook.evaluation import bench
 
 _JPG = cv2.imencode(".jpg", np.full((24, 32, 3), 90, np.uint8))[1].tobytes()
@@ -118,8 +118,12 @@ def test_plain_folder_of_sequences_keeps_working(tmp_path):
 def test_wrong_range_names_the_file(tmp_path):
     root = _otb_tree(tmp_path / "OTB100")
     (root / "David" / "groundtruth_rect.txt").write_text(_gt(770))
-    s = {x.name: x for x in load_dataset(root)}["David"]
+    with pytest.warns(DatasetWarning, match="1 folder"):
+        ds = load_dataset(root)
+    assert "David" not in [x.name for x in ds]               # listed as skipped, with why
+    assert [k.name for k in ds.skipped] == ["David"]
+    assert "groundtruth_rect.txt has 770 boxes" in ds.skipped[0].reason
     with pytest.raises(ValueError, match="groundtruth_rect.txt has 770 boxes"):
-        s.load()
+        load_dataset(root, strict=True)
     with pytest.raises(ValueError, match="unknown dataset kind"):
         load_dataset(root, kind="otb")

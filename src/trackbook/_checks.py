@@ -7,8 +7,12 @@ assignment.
 
 from __future__ import annotations
 
+import errno
 import math
+import os
+import stat
 from numbers import Real
+from pathlib import Path
 
 import numpy as np
 
@@ -36,13 +40,33 @@ def check_frame(frame, *, name: str = "frame") -> np.ndarray:
             "Pass one video frame as cv2.imread returns it."
         )
     if frame.dtype != np.uint8:
-        raise ValueError(
-            f"{name} has dtype {frame.dtype}; trackers expect uint8 in 0..255. "
-            "Convert with np.clip(frame * 255, 0, 255).astype(np.uint8) for images in [0, 1]."
-        )
+        raise ValueError(f"{name} has dtype {frame.dtype}; trackers expect uint8 in 0..255. "
+                         + _dtype_advice(frame))
+    if frame.shape[0] == 0 or frame.shape[1] == 0:
+        raise ValueError(f"{name} has shape {frame.shape}: it is empty (no pixels); pass a "
+                         "real image.")
     if frame.shape[0] < 2 or frame.shape[1] < 2:
-        raise ValueError(f"{name} has shape {frame.shape}: it is empty; pass a real image.")
+        raise ValueError(f"{name} has shape {frame.shape}: a single row or column of pixels; "
+                         "a tracker needs an image at least 2 x 2 pixels (is the frame read "
+                         "or reshaped the wrong way round?).")
     return frame
+
+
+def _dtype_advice(frame: np.ndarray) -> str:
+    """How to convert a non-uint8 frame to uint8 0..255, from its dtype and its values."""
+    if frame.dtype == np.uint16:
+        return ("A 16-bit frame (0..65535) keeps its top 8 bits with (frame >> 8).astype("
+                "np.uint8), or scales with cv2.convertScaleAbs(frame, alpha=255 / 65535).")
+    if np.issubdtype(frame.dtype, np.integer) or frame.dtype == np.bool_:
+        return "Convert with np.clip(frame, 0, 255).astype(np.uint8) if it holds 0..255."
+    if np.issubdtype(frame.dtype, np.floating) and frame.size:
+        finite = frame[np.isfinite(frame)]
+        hi = float(finite.max()) if finite.size else 0.0
+        if hi > 1.0:
+            return ("Its values reach {:g}, so it is already in 0..255: convert with "
+                    "np.clip(frame, 0, 255).astype(np.uint8) (not frame * 255).".format(hi))
+    return ("For a float image in 0..1 convert with "
+            "np.clip(frame * 255, 0, 255).astype(np.uint8).")
 
 
 def _fmt(box) -> str:
@@ -52,6 +76,17 @@ def _fmt(box) -> str:
 
 def as_box(bbox, *, name: str = "bbox") -> np.ndarray:
     """Return ``bbox`` as a float array ``(x, y, w, h)`` with w, h > 0, else raise."""
+    if isinstance(bbox, (str, bytes)) or (
+            isinstance(bbox, (list, tuple)) and any(isinstance(v, (str, bytes)) for v in bbox)
+    ) or (isinstance(bbox, np.ndarray) and bbox.dtype.kind in "USO"
+          and any(isinstance(v, (str, bytes)) for v in bbox.ravel())):
+        raise ValueError(f"{name} must be four numbers (x, y, w, h), got text {bbox!r}; "
+                         "convert it first, e.g. [float(v) for v in text.split(',')].")
+    if (isinstance(bbox, (list, tuple)) and any(isinstance(v, (list, tuple, np.ndarray))
+                                                for v in bbox)) or np.ndim(bbox) > 1:
+        raise ValueError(
+            f"{name} {bbox!r} is nested; a box is four numbers (x, y, w, h) in one flat "
+            "sequence. Two corners [[x1, y1], [x2, y2]] become (x1, y1, x2 - x1, y2 - y1).")
     try:
         box = np.asarray(bbox, dtype=float).reshape(-1)
     except (TypeError, ValueError):
@@ -142,3 +177,52 @@ def check_boxes(arr, *, name: str) -> np.ndarray:
             f"{name} must be an N x 4 array of boxes (x, y, w, h), got shape {a.shape}."
         )
     return a
+
+
+def fs_error(e: OSError, path, what: str = "file") -> Exception:
+    """The error to raise for an ``OSError`` met while reading ``path``: a
+    ``PermissionError``, ``FileNotFoundError`` or ``ValueError`` whose message names the path,
+    what went wrong (permission, dangling link, link loop, ...) and the fix."""
+    p = Path(path)
+    if isinstance(e, PermissionError) or e.errno in (errno.EACCES, errno.EPERM):
+        return PermissionError(
+            f"{what} {p}: permission denied; make it readable (e.g. chmod -R u+rX {p}) or "
+            "copy it somewhere you can read.")
+    if e.errno == errno.ELOOP:
+        return ValueError(f"{what} {p} is a symbolic-link loop (a link that points back to "
+                          "itself); replace the link with the real file or folder.")
+    if isinstance(e, FileNotFoundError) or e.errno == errno.ENOENT:
+        if os.path.islink(p):
+            return FileNotFoundError(
+                f"{what} {p} is a link to {os.readlink(p)}, which does not exist (a dangling "
+                "link); fix the link or copy the real file there.")
+        return FileNotFoundError(f"{what} {p} does not exist.")
+    if e.errno == errno.EISDIR:
+        return ValueError(f"{what} {p} is a folder, not a file.")
+    return ValueError(f"{what} {p} cannot be read: {e.strerror or e}.")
+
+
+def check_file(path, *, what: str = "file", fix: str = "") -> Path:
+    """Return ``path`` as a ``Path`` if it is an existing regular file, else raise the error
+    :func:`fs_error` gives (missing, dangling link, link loop, no permission, a folder); ``fix``
+    is appended to the message of a missing file."""
+    p = Path(path)
+    try:
+        st = os.stat(p)
+    except OSError as e:
+        err = fs_error(e, p, what)
+        if fix and type(err) is FileNotFoundError:
+            err = FileNotFoundError(f"{str(err).rstrip('.')}; {fix}")
+        raise err from None
+    if stat.S_ISDIR(st.st_mode):
+        raise ValueError(f"{what} {p} is a folder, not a file.")
+    return p
+
+
+def list_dir(folder, *, what: str = "folder") -> list[Path]:
+    """The entries of ``folder`` (``Path.iterdir``), file-system errors named as in
+    :func:`fs_error`."""
+    try:
+        return list(Path(folder).iterdir())
+    except OSError as e:
+        raise fs_error(e, folder, what) from None

@@ -3,11 +3,30 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from collections.abc import Sequence
 from pathlib import Path
 
 import cv2
 import numpy as np
+
+from .._checks import fs_error
+
+
+class CorruptFrameWarning(UserWarning):
+    """A frame that decodes only in part (a truncated JPEG, a video cut short): the warning
+    names the file and the frame."""
+
+
+def _truncated(data: bytes, suffix: str) -> bool:
+    """True when an image file's bytes end before the format's end marker (JPEG's EOI
+    ``FF D9``, PNG's ``IEND`` chunk): the decoder would fill the rest with grey."""
+    tail = data[-4096:]
+    if suffix in (".jpg", ".jpeg"):
+        return b"\xff\xd9" not in tail
+    if suffix == ".png":
+        return b"IEND" not in tail
+    return False
 
 
 class FrameSequence(Sequence):
@@ -78,9 +97,22 @@ class ImageFiles(FrameSequence):
         return len(self.paths)
 
     def _get(self, i):
-        img = cv2.imread(str(self.paths[i]), cv2.IMREAD_COLOR)
+        path = self.paths[i]
+        try:     # missing, unreadable, a link loop: each said as such, with the path
+            data = path.read_bytes()
+        except OSError as e:
+            raise fs_error(e, path, f"frame {i}: image") from None
+        if not data:
+            raise ValueError(f"frame {i}: image {path} is an empty file (0 bytes); the "
+                             "download or copy did not finish.")
+        img = cv2.imdecode(np.frombuffer(data, np.uint8), cv2.IMREAD_COLOR)
         if img is None:
-            raise ValueError(f"cannot read image {self.paths[i]}: is it a valid JPEG/PNG?")
+            raise ValueError(f"frame {i}: image {path} ({len(data)} bytes) cannot be decoded: "
+                             "it is corrupt or not an image (JPEG, PNG or BMP).")
+        if _truncated(data, path.suffix.lower()):
+            warnings.warn(f"frame {i}: image {path} is truncated (no end marker); the part "
+                          "after the cut decodes as grey. Re-download or re-export it.",
+                          CorruptFrameWarning, stacklevel=3)
         return img
 
 
@@ -115,10 +147,11 @@ class VideoFrames(FrameSequence):
     def __iter__(self):
         cap = cv2.VideoCapture(str(self.path))
         try:
-            for _ in range(self._n):
+            for i in range(self._n):
                 ok, img = cap.read()
                 if not ok:
-                    break
+                    raise ValueError(f"cannot decode frame {i} of {self.path} (of "
+                                     f"{self._n} counted when loaded); was the file changed?")
                 yield img
         finally:
             cap.release()

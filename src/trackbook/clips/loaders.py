@@ -10,17 +10,21 @@ from __future__ import annotations
 import math
 import os
 import re
+import warnings
 from pathlib import Path
 
 import cv2
 import numpy as np
 
-from .clip import Clip, ImageFiles, VideoFrames
+from .._checks import check_file, fs_error, list_dir
+from .clip import Clip, CorruptFrameWarning, ImageFiles, VideoFrames
 
 IMAGE_SUFFIXES = {".jpg", ".jpeg", ".png", ".bmp"}
 VIDEO_SUFFIXES = {".mp4", ".avi", ".mov", ".mkv", ".m4v", ".mpg", ".mpeg", ".webm", ".wmv"}
 GT_NAMES = ("groundtruth_rect.txt", "groundtruth.txt")
 _SEP = re.compile(r"[,\s]+")
+#: a number written with a decimal comma (``10,5``) inside a whitespace-separated line
+_DECIMAL_COMMA = re.compile(r"\d,\d")
 
 
 def read_groundtruth(path) -> np.ndarray:
@@ -31,14 +35,16 @@ def read_groundtruth(path) -> np.ndarray:
     Infinite values and negative widths or heights are refused with the file and line: they
     are typing errors, not "target absent".
     """
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"ground-truth file {path} does not exist; pass the path of "
-                                "a text file with one x,y,w,h line per frame.")
+    path = check_file(path, what="ground-truth file",
+                      fix="pass the path of a text file with one x,y,w,h line per frame.")
     try:
-        text = path.read_bytes().decode("utf-8-sig")
+        data = path.read_bytes()
+    except OSError as e:
+        raise fs_error(e, path, "ground-truth file") from None
+    try:
+        text = data.decode("utf-8-sig")
     except UnicodeDecodeError as e:
-        line = path.read_bytes()[:e.start].count(b"\n") + 1
+        line = data[:e.start].count(b"\n") + 1
         raise ValueError(
             f"{path}, line {line}: not UTF-8 text (byte {e.object[e.start]:#04x}); save the "
             "ground truth as plain text with one x,y,w,h line per frame."
@@ -48,6 +54,13 @@ def read_groundtruth(path) -> np.ndarray:
         line = line.strip()
         if not line:
             continue
+        words = line.split()
+        if len(words) > 1 and any(_DECIMAL_COMMA.search(w) for w in words):
+            # "10,5<TAB>12,25": commas inside whitespace-separated numbers are decimal commas,
+            # which would otherwise read as twice as many values (a false 8-value polygon)
+            raise ValueError(
+                f"{path}, line {lineno}: {line!r} uses decimal commas; write decimal points "
+                "(10.5 not 10,5), e.g. with sed 's/,/./g' when the fields are tab-separated.")
         parts = [p for p in _SEP.split(line) if p]
         try:
             vals = [float(p) for p in parts]
@@ -88,7 +101,8 @@ def read_groundtruth(path) -> np.ndarray:
 
 def _find_groundtruth(folder: Path) -> list[Path]:
     for name in GT_NAMES:
-        if (folder / name).is_file():
+        # a dangling or looping link is found too, so that reading it says what is wrong
+        if (folder / name).is_file() or (folder / name).is_symlink():
             return [folder / name]
     multi = sorted(folder.glob("groundtruth_rect.*.txt"))  # OTB's Jogging, Skating2, ...
     return multi
@@ -101,7 +115,8 @@ def load_folder(folder, name: str | None = None, fps: float = 30.0, groundtruth=
     """
     folder = Path(folder)
     img_dir = folder / "img" if (folder / "img").is_dir() else folder
-    paths = sorted(p for p in img_dir.iterdir() if p.suffix.lower() in IMAGE_SUFFIXES)
+    paths = sorted(p for p in list_dir(img_dir, what="image folder")
+                   if p.suffix.lower() in IMAGE_SUFFIXES)
     if not paths:
         raise FileNotFoundError(
             f"no images in {img_dir}; an OTB sequence folder has img/0001.jpg, img/0002.jpg, ..."
@@ -129,13 +144,51 @@ def load_folder(folder, name: str | None = None, fps: float = 30.0, groundtruth=
 
 def count_video_frames(path) -> int:
     """Count the decodable frames of a video (container frame counts are unreliable)."""
+    return _count_frames(path)[0]
+
+
+def _count_frames(path) -> tuple[int, int]:
+    """(decodable frames, frames the container lists or -1)."""
     cap = cv2.VideoCapture(str(path))
     if not cap.isOpened():
         raise ValueError(f"cannot open video {path}: unreadable or not a video.")
+    listed = int(cap.get(cv2.CAP_PROP_FRAME_COUNT) or -1)
     n = 0
     while cap.grab():
         n += 1
     cap.release()
+    return n, listed
+
+
+def write_video(path, frames, fps: float, size) -> int:
+    """Write BGR ``frames`` of ``size`` (width, height) to ``path`` (mp4v); return the count.
+
+    Raises ``ValueError`` naming the file when OpenCV's writer cannot open it (a codec that
+    refuses the size, e.g. a 2 x 20000 clip, or a folder that cannot be written) or when the
+    written file does not hold the frames: a failed write is never reported as written.
+    """
+    path = Path(path)
+    w, h = (int(v) for v in size)
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"mp4v"), float(fps), (w, h))
+    if not writer.isOpened():
+        raise ValueError(f"cannot write video {path}: OpenCV's mp4v writer refused a {w}x{h} "
+                         "video (MPEG-4 needs sides of 16..8190 px and a writable folder); "
+                         "the CSV beside it holds the boxes.")
+    n = 0
+    try:
+        for frame in frames:
+            writer.write(frame)
+            n += 1
+    finally:
+        writer.release()
+    written = -1
+    if path.is_file() and path.stat().st_size > 0:
+        cap = cv2.VideoCapture(str(path))
+        written = int(cap.get(cv2.CAP_PROP_FRAME_COUNT)) if cap.isOpened() else -1
+        cap.release()
+    if n and written < 1:
+        raise ValueError(f"writing video {path} failed: {n} frames were given but the file "
+                         "holds none (disk full, or a codec that refused the frames).")
     return n
 
 
@@ -144,12 +197,18 @@ def load_video(path, groundtruth=None, name: str | None = None) -> Clip:
 
     Without ground truth every row is NaN (tracking still works; scores need ground truth).
     """
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"video file {path} does not exist.")
-    n = count_video_frames(path)
+    path = check_file(path, what="video file")
+    n, listed = _count_frames(path)
     if n == 0:
         raise ValueError(f"video {path} has no decodable frames: is it empty or corrupt?")
+    if listed > n:      # a frame the decoder cannot read ends the stream early: say which
+        msg = (f"video {path}: frame {n} (counting from 0) cannot be decoded; the file lists "
+               f"{listed} frames, so it is truncated or corrupt from there")
+        if n < 2:
+            raise ValueError(msg + "; re-encode or re-download it "
+                             "(e.g. ffmpeg -i in.avi -c:v libx264 out.mp4).")
+        warnings.warn(msg + f"; only frames 0..{n - 1} are used.", CorruptFrameWarning,
+                      stacklevel=2)
     cap = cv2.VideoCapture(str(path))
     fps = cap.get(cv2.CAP_PROP_FPS) or 30.0
     cap.release()
@@ -206,6 +265,6 @@ def find_sequences(root=None) -> dict[str, Path]:
         return {}
     root = Path(root)
     return {
-        p.name: p for p in sorted(root.iterdir())
+        p.name: p for p in sorted(list_dir(root, what="sequences folder"))
         if p.is_dir() and _find_groundtruth(p) and (p / "img").is_dir()
     }
