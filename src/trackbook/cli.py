@@ -133,9 +133,8 @@ def _parse_box(text: str, clip) -> tuple:
 def cmd_track(args) -> int:
     import csv
 
-    import cv2
-
     from . import clips
+    from .clips.loaders import write_video
     from .evaluation.runner import evaluate
 
     from . import trackers
@@ -160,14 +159,10 @@ def cmd_track(args) -> int:
         w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
         for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms)):
             w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"])
-    width, height = clip.size
-    writer = cv2.VideoWriter(str(out / f"{stem}.mp4"), cv2.VideoWriter_fourcc(*"mp4v"),
-                             clip.fps, (width, height))
-    for i, frame in enumerate(clip.frames):
-        if i >= len(r.boxes):
-            break
-        writer.write(annotate(frame, {args.tracker: r.boxes[i]}, clip.groundtruth[i]))
-    writer.release()
+    write_video(out / f"{stem}.mp4", (annotate(frame, {args.tracker: r.boxes[i]},
+                                               clip.groundtruth[i])
+                                      for i, frame in zip(range(len(r.boxes)), clip.frames)),
+                clip.fps, clip.size)     # raises, naming the file, when the writer failed
     s = r.scores
     print(f"{args.tracker} on {clip.name}: " + (
         f"AUC {s['auc']:.3f}, precision@20 {s['precision20']:.3f}, tracking rate "
@@ -182,8 +177,7 @@ def _track_all_targets(args, clip, params, out) -> int:
     target and one video with every target's box."""
     import csv
 
-    import cv2
-
+    from .clips.loaders import write_video
     from .evaluation import metrics
     from .trackers.multi import track_clip
 
@@ -196,16 +190,10 @@ def _track_all_targets(args, clip, params, out) -> int:
             w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])   # ms: all targets' update
             for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms)):
                 w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"])
-    width, height = clip.size
     video = out / f"{stem}.mp4"
-    writer = cv2.VideoWriter(str(video), cv2.VideoWriter_fourcc(*"mp4v"), clip.fps,
-                             (width, height))
     n = len(ms)
-    for i, frame in enumerate(clip.frames):
-        if i >= n:
-            break
-        writer.write(annotate(frame, {name: boxes[i] for name, boxes in res.items()}))
-    writer.release()
+    write_video(video, (annotate(frame, {name: boxes[i] for name, boxes in res.items()})
+                        for i, frame in zip(range(n), clip.frames)), clip.fps, clip.size)
     for name, boxes in res.items():
         gt = clip.targets[name][:n]
         print(f"{args.tracker} on {clip.name}/{name}: AUC {metrics.auc(boxes[1:], gt[1:]):.3f}")
@@ -332,9 +320,27 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _one_line_warnings():
+    """Data warnings (folders a dataset skipped, a truncated frame) as one line on stderr."""
+    import warnings
+
+    from .clips.clip import CorruptFrameWarning
+    from .clips.datasets import DatasetWarning
+
+    shown = warnings.showwarning
+
+    def show(message, category, *rest, **kw):
+        if issubclass(category, (DatasetWarning, CorruptFrameWarning)):
+            print(f"trackbook: warning: {' '.join(str(message).split())}", file=sys.stderr)
+        else:
+            shown(message, category, *rest, **kw)
+    warnings.showwarning = show
+
+
 def main(argv=None) -> int:
     """Run one subcommand; every error is one line on stderr and a non-zero exit code."""
     args = build_parser().parse_args(argv)
+    _one_line_warnings()
     try:
         return args.fn(args)
     except KeyboardInterrupt:

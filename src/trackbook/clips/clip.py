@@ -98,22 +98,30 @@ class ImageFiles(FrameSequence):
 
     def _get(self, i):
         path = self.paths[i]
-        try:     # missing, unreadable, a link loop: each said as such, with the path
-            data = path.read_bytes()
-        except OSError as e:
-            raise fs_error(e, path, f"frame {i}: image") from None
-        if not data:
-            raise ValueError(f"frame {i}: image {path} is an empty file (0 bytes); the "
-                             "download or copy did not finish.")
-        img = cv2.imdecode(np.frombuffer(data, np.uint8), cv2.IMREAD_COLOR)
-        if img is None:
+        img = cv2.imread(str(path), cv2.IMREAD_COLOR)
+        if img is None:     # say which: missing, unreadable, a link loop, empty, not an image
+            try:
+                data = path.read_bytes()
+            except OSError as e:
+                raise fs_error(e, path, f"frame {i}: image") from None
+            if not data:
+                raise ValueError(f"frame {i}: image {path} is an empty file (0 bytes); the "
+                                 "download or copy did not finish.")
             raise ValueError(f"frame {i}: image {path} ({len(data)} bytes) cannot be decoded: "
                              "it is corrupt or not an image (JPEG, PNG or BMP).")
-        if _truncated(data, path.suffix.lower()):
+        if _truncated(_tail(path), path.suffix.lower()):
             warnings.warn(f"frame {i}: image {path} is truncated (no end marker); the part "
                           "after the cut decodes as grey. Re-download or re-export it.",
                           CorruptFrameWarning, stacklevel=3)
         return img
+
+
+def _tail(path: Path, n: int = 4096) -> bytes:
+    """The last ``n`` bytes of a file (where an image format's end marker is)."""
+    with open(path, "rb") as f:
+        f.seek(0, 2)
+        f.seek(max(f.tell() - n, 0))
+        return f.read()
 
 
 class VideoFrames(FrameSequence):
