@@ -1,9 +1,12 @@
 """OTB scores of a run: overlap, centre error, success and precision curves (SPEC section 4).
 
 Every function takes ``(pred, gt)`` as N x 4 arrays of boxes ``(x, y, w, h)`` and scores every
-row whose ground truth is finite. A prediction that is NaN or has w <= 0 or h <= 0 scores
-IoU 0 and an infinite centre error (a tracker that gave up is wrong, not excused). Boxes use
-continuous coordinates: a box covers [x, x + w) x [y, y + h).
+row whose ground truth is finite. A prediction that is NaN or has w <= 0 or h <= 0 (negative
+sizes included: such a box covers no pixel) scores IoU 0 and an infinite centre error (a
+tracker that gave up is wrong, not excused). Ground truth of zero size (or NaN) is OTB's
+"target absent" and is not scored; ground truth with a *negative* width or height is refused
+with ``ValueError`` naming the row: it is a typing error (two corners written as x, y, w, h),
+not an absent target. Boxes use continuous coordinates: a box covers [x, x + w) x [y, y + h).
 
 Which frames to score is the caller's choice; :func:`trackbook.evaluate` drops frame 0, the
 initialisation, before calling these.
@@ -24,6 +27,14 @@ PRECISION_THRESHOLDS = np.arange(0, 51, dtype=float)
 def _pair(pred, gt):
     p = check_boxes(pred, name="pred")
     g = check_boxes(gt, name="gt")
+    with np.errstate(invalid="ignore"):
+        neg = np.flatnonzero((g[:, 2] < 0) | (g[:, 3] < 0))
+    if neg.size:
+        i = int(neg[0])
+        raise ValueError(
+            f"gt row {i} ({', '.join(f'{v:g}' for v in g[i])}) has a negative width or height "
+            f"({neg.size} such rows); ground truth is x, y, w, h with w, h >= 0 (not two "
+            "corners); write NaN or 0, 0, 0, 0 where the target is absent.")
     if p.shape[0] != g.shape[0]:
         raise ValueError(
             f"pred has {p.shape[0]} boxes but gt has {g.shape[0]}; give one box per frame each."
