@@ -34,12 +34,13 @@ def test_a_truncated_video_names_the_first_bad_frame(tmp_path):
         assert len(clips.load(tmp_path / "whole.avi")) == 20     # a whole file: no warning
 
 
-def test_a_video_corrupt_from_its_start_is_an_error_naming_the_frame(tmp_path):
+def test_a_video_corrupt_after_one_frame_is_an_error_naming_the_frame(tmp_path):
     data = _mjpg(tmp_path / "whole.avi")
-    head = data.index(b"movi") + 4 + 8 + 200          # inside the first frame's data
+    movi = data.index(b"movi")
+    second = data.index(b"00dc", data.index(b"00dc", movi) + 4)   # the second frame's chunk
     bad = tmp_path / "bad.avi"
-    bad.write_bytes(data[:head])
-    with pytest.raises(ValueError, match="bad.avi"):
+    bad.write_bytes(data[:second + 100])               # one whole frame, then a cut
+    with pytest.raises(ValueError, match=r"bad.avi: frame 1 .*cannot be decoded.*20 frames"):
         clips.load(bad)
 
 
