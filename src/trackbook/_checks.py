@@ -1,4 +1,4 @@
-"""Input checks shared by every public entry point (SPEC section 7).
+"""Input checks shared by every public entry point.
 
 Each check either returns a clean value or raises a ``ValueError`` whose message names the
 problem *and* the fix, because the people calling these are students in the middle of an

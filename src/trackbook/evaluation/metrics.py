@@ -1,4 +1,4 @@
-"""OTB scores of a run: overlap, centre error, success and precision curves (SPEC section 4).
+"""OTB scores of a run: overlap, centre error, success and precision curves.
 
 Every function takes ``(pred, gt)`` as N x 4 arrays of boxes ``(x, y, w, h)`` and scores every
 row whose ground truth is finite. A prediction that is NaN or has w <= 0 or h <= 0 (negative
