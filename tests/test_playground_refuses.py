@@ -75,3 +75,19 @@ def test_a_real_tracker_with_an_unknown_resampler():
     with pytest.raises(ValueError, match="resampler"):
         pg.set(resampler="nope")
     assert pg.values == before and pg.runs == runs
+
+
+def test_a_combination_the_tracker_refuses_is_raised_and_rolled_back(pg, monkeypatch):
+    from trackbook.playground import data as D
+    real = D.run_payload
+
+    def refuse_slow(tracker, clip, params, *a, **k):   # a rule between knobs, as trackers have
+        if params.get("speed", 0) > 6:
+            raise ValueError("speed above 6 needs n_particles >= 50")
+        return real(tracker, clip, params, *a, **k)
+    monkeypatch.setattr(D, "run_payload", refuse_slow)
+    before, run, runs = dict(pg.values), pg.run_data, pg.runs
+    with pytest.raises(ValueError, match="needs n_particles"):
+        pg.set(speed=7.0)
+    assert pg.values == before and pg.run_data is run and pg.runs == runs
+    assert pg.set(speed=5.0).params["speed"] == 5.0 and pg.runs == runs + 1
