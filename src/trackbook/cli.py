@@ -76,6 +76,8 @@ def _out_dir(path) -> Path:
 
 
 def cmd_clips(args) -> int:
+    import textwrap
+
     from . import clips
 
     if args.action == "export":
@@ -84,10 +86,9 @@ def cmd_clips(args) -> int:
         video, gt = clips.export(args.name, args.path)
         print(f"wrote {video} and {gt}")
         return 0
-    for name in clips.available():
-        c = clips.load(name)
-        print(f"{name:22s} {len(c):4d} frames {c.size[0]}x{c.size[1]}  "
-              f"{clips.describe(name).split(': ', 1)[1][:90]}")
+    for s in clips.catalogue():            # from the registry: nothing is rendered
+        print(f"{s.name:22s} {s.paper:8s} {s.frames:4d} frames {s.size[0]}x{s.size[1]}  "
+              f"{textwrap.shorten(s.description, 90, placeholder=' ...')}")
     found = clips.find_sequences()
     if found:
         print(f"\nsequences found ({Path(next(iter(found.values()))).parent}):")
