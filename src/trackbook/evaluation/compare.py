@@ -11,17 +11,12 @@ from __future__ import annotations
 
 import numpy as np
 
-#: Attributes of the development sequences (OTB codes from the benchmark's annotation; the two
-#: VOT sequences annotated by the same rules from their SOURCE.txt descriptions).
-SEQUENCE_ATTRIBUTES = {
-    "David": ("IV", "OPR", "SV", "OCC", "DEF", "MB", "IPR"),
-    "Jogging1": ("OPR", "OCC", "DEF"),
-    "MotorRolling": ("IV", "SV", "MB", "FM", "IPR", "BC", "LR"),
-    "Couple": ("OPR", "SV", "DEF", "FM", "BC"),
-    "Crossing": ("SV", "DEF", "BC"),
-    "Ball1": ("FM", "BC", "LR"),
-    "Bag": ("DEF", "IPR", "SV", "BC"),
-}
+from ..clips.datasets import attributes as _attributes
+
+#: Attributes of the development sequences: the OTB toolkit's table, and for the two VOT
+#: sequences the same codes given by the OTB rules (see ``clips.datasets.attributes``).
+SEQUENCE_ATTRIBUTES = {n: _attributes(n) for n in (
+    "David", "Jogging1", "MotorRolling", "Couple", "Crossing", "Ball1", "Bag")}
 
 #: What the attribute codes mean, for the difficulties the guide is about.
 DIFFICULTIES = {
