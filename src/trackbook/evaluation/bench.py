@@ -546,7 +546,7 @@ def _plot(records, out, suffix="", title=""):
     # benchmark run inside a notebook would switch the kernel away from inline figures.
     from matplotlib.figure import Figure
 
-    from ..viz.core import CYCLE
+    from ..style import CYCLE
 
     by = {}
     for r in records:

@@ -14,11 +14,13 @@ import cv2
 import numpy as np
 import traitlets as T
 
+from ..style import EST_COLOR, GT_COLOR, bgr
+from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
 from .core import BOOK_ENV, VIEWER_CSS, VIEWER_JS, page_html
 
-GT_BGR = (115, 158, 0)
-EST_BGR = (0, 94, 213)
+GT_BGR = bgr(GT_COLOR)
+EST_BGR = bgr(EST_COLOR)
 
 
 def _jpeg(img) -> str:
@@ -73,7 +75,8 @@ class Animation(anywidget.AnyWidget):
         self._png_src = (images, index, gt, runs[labels[0]])
         self.static_data = {
             "config": {"clips": [{"key": name, "name": name}], "trackers": labels,
-                       "knobs": {k: [] for k in labels}, "n_frames": n},
+                       "knobs": {k: [] for k in labels}, "n_frames": n,
+                       "colors": VIEWER_COLORS},
             "clips": {name: clip},
             "runs": {f"{name}|{k}|": {**v, "clip": name} for k, v in runs.items()},
             "initial": {"clip": name, "tracker": labels[0]}, "note": note}

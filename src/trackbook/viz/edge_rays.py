@@ -6,9 +6,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..features import edge_rays as er
-from .core import EST_COLOR, GT_COLOR, bgr2rgb, draw_box
+from ..style import CYCLE, EST_COLOR, GT_COLOR
+from .core import bgr2rgb, draw_box
 
-RAY_COLORS = plt.get_cmap("tab10").colors[:8]
+RAY_COLORS = CYCLE              # one colour per ray, the book's palette
 
 
 def draw_rays(ax, xy, dists, color=None, lw=1.5, labels=False):

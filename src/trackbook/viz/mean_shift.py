@@ -10,7 +10,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..filters.mean_shift import bin_image, ellipse_rho
-from .core import CYCLE, GT_COLOR, bgr2rgb, draw_box, draw_ellipse
+from ..style import CYCLE, GT_COLOR, OKABE_ITO
+from .core import bgr2rgb, draw_box, draw_ellipse
 
 
 def rho_map(frame, q, axes, region, step: int = 2, stride: int = 1, bins=(8, 8, 4)):
@@ -104,7 +105,7 @@ def weight_histogram(weights, ax=None, title=None):
     if ax is None:
         _, ax = plt.subplots(figsize=(4.5, 2.8))
     w = np.sort(np.asarray(weights, dtype=float))[::-1]
-    ax.bar(np.arange(len(w)), w, color="#1f77b4")
+    ax.bar(np.arange(len(w)), w, color=OKABE_ITO["blue"])
     ax.set_xlabel("candidates, heaviest first")
     ax.set_ylabel("normalised weight")
     if title:

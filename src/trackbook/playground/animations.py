@@ -3,7 +3,7 @@
 Each function returns a displayable :class:`~trackbook.playground.animation.Animation`
 (scrub, play/pause, arrow keys; live in Jupyter and in the HTML book, offline)::
 
-    from trackbook.viz.animations import sir_cycle
+    from trackbook.playground.animations import sir_cycle
     sir_cycle()                     # predict / weigh / resample of a particle filter
 """
 
@@ -14,10 +14,11 @@ import numpy as np
 from .. import clips as _clips
 from ..evaluation import metrics
 from ..evaluation.runner import evaluate
-from ..playground.animation import Animation, run_entry
-from ..playground.data import snapshot
+from ..style import OKABE_ITO
+from .animation import Animation, run_entry
+from .data import snapshot
 
-ORANGE, PURPLE, SKY = "#E69F00", "#CC79A7", "#56B4E9"
+ORANGE, PURPLE, SKY = OKABE_ITO["orange"], OKABE_ITO["reddish purple"], OKABE_ITO["sky blue"]
 
 
 def show_run(clip, results: dict, max_frames: int = 80) -> Animation:
