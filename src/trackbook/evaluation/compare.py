@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._markdown import table as _md_table
 from ..clips.datasets import attributes as _attributes
 
 #: Attributes of the development sequences: the OTB toolkit's table, and for the two VOT
@@ -101,19 +102,9 @@ def markdown(rows: list[dict], fmt: dict | None = None) -> str:
     """A list of dicts as a markdown table (the book has no pandas)."""
     if not rows:
         return ""
-    fmt = fmt or {}
-    cols = list(rows[0])
-    lines = ["| " + " | ".join(cols) + " |", "|" + "|".join("---" for _ in cols) + "|"]
-    for r in rows:
-        cells = []
-        for c in cols:
-            v = r[c]
-            if isinstance(v, float):
-                cells.append("–" if not np.isfinite(v) else fmt.get(c, "{:.3f}").format(v))
-            else:
-                cells.append(str(v))
-        lines.append("| " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+    formats = {c: (lambda v, f=f: f.format(v) if isinstance(v, float) else str(v))
+               for c, f in (fmt or {}).items()}
+    return _md_table(rows, list(rows[0]), formats=formats, number=".3f") + "\n"
 
 
 def per_attribute(rows, attributes: dict, codes=tuple(DIFFICULTIES)) -> list[dict]:

@@ -6,6 +6,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib import patches as mpatches
 
+from .._markdown import table
 from .core import draw_box, draw_ellipse, draw_search_window, show_frame
 
 
@@ -104,18 +105,5 @@ def markdown_table(rows, columns, formats=None, labels=None):
     """Rows (dicts) as an IPython Markdown table; ``formats`` maps column -> format spec and
     ``labels`` column -> header (short headers keep the table inside the page's column)."""
     from IPython.display import Markdown
-    formats = formats or {}
-    labels = labels or {}
 
-    def cell(row, c):
-        v = row.get(c, "")
-        if v is None or v == "" or (isinstance(v, float) and np.isnan(v)):
-            return "–"
-        try:
-            return format(float(v), formats[c]) if c in formats else str(v)
-        except (TypeError, ValueError):
-            return str(v)
-    lines = ["| " + " | ".join(labels.get(c, c) for c in columns) + " |",
-             "|" + "---|" * len(columns)]
-    lines += ["| " + " | ".join(cell(r, c) for c in columns) + " |" for r in rows]
-    return Markdown("\n".join(lines))
+    return Markdown(table(rows, columns, formats=formats, labels=labels))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .._markdown import table
 from ..features import edge_rays as er
 from ..style import CYCLE, EST_COLOR, GT_COLOR
 from .core import bgr2rgb, draw_box
@@ -96,14 +97,6 @@ def md_table(rows, digits: int = 3):
     from IPython.display import Markdown
     if isinstance(rows, dict):
         rows = [{"": k, **v} if isinstance(v, dict) else {"": k, "value": v} for k, v in rows.items()]
-    cols = list(dict.fromkeys(c for r in rows for c in r))
-
-    def fmt(v):
-        if isinstance(v, (bool, np.bool_)):
-            return "yes" if v else "no"
-        if isinstance(v, (float, np.floating)):
-            return f"{v:.{digits}f}"
-        return str(v)
-    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
-    lines += ["| " + " | ".join(fmt(r.get(c, "")) for c in cols) + " |" for r in rows]
-    return Markdown("\n".join(lines))
+    rows = [{k: ("yes" if v else "no") if isinstance(v, (bool, np.bool_)) else v
+             for k, v in r.items()} for r in rows]
+    return Markdown(table(rows, number=f".{digits}f"))
