@@ -137,14 +137,13 @@ def cmd_track(args) -> int:
     import cv2
 
     from . import clips
+    from ._checks import check_max_frames
     from .evaluation.runner import evaluate
 
     from . import trackers
 
     trackers.get(args.tracker)          # unknown name: one line before any work
-    if args.max_frames is not None and args.max_frames < 1:
-        raise ValueError(f"--max-frames {args.max_frames}: pass at least 1 (the first frame "
-                         "is the one the tracker starts from).")
+    check_max_frames(args.max_frames, name="--max-frames")
     params = _track_params(args.tracker, args.param)
     clip = clips.load(args.clip)
     out = _out_dir(args.out)

@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import clips as _clips
+from .._checks import check_max_frames
 from . import metrics
 from .runner import evaluate, evaluate_many  # noqa: F401  (evaluate: tests patch it)
 
@@ -353,8 +354,7 @@ def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
     if reference and REFERENCE not in trackers:
         trackers.append(REFERENCE)
     seeds = parse_seeds(seed if seeds is None else seeds)
-    if max_frames is not None and (isinstance(max_frames, bool) or int(max_frames) < 2):
-        raise ValueError(f"max_frames = {max_frames!r}: evaluating needs at least 2 frames.")
+    max_frames = check_max_frames(max_frames)
     tasks = []
     for ref in resolve_clips(clips):
         clip = ref.load()
