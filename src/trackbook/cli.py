@@ -138,6 +138,7 @@ def cmd_track(args) -> int:
 
     from . import clips
     from ._checks import check_max_frames
+    from .evaluation.metrics import scores_line
     from .evaluation.runner import evaluate
 
     from . import trackers
@@ -169,9 +170,7 @@ def cmd_track(args) -> int:
         writer.write(annotate(frame, {args.tracker: r.boxes[i]}, clip.groundtruth[i]))
     writer.release()
     s = r.scores
-    print(f"{args.tracker} on {clip.name}: " + (
-        f"AUC {s['auc']:.3f}, precision@20 {s['precision20']:.3f}, tracking rate "
-        f"{s['tracking_rate']:.1%}, " if "auc" in s else "") + f"{s['ms_median']:.2f} ms/frame")
+    print(f"{args.tracker} on {clip.name}: {scores_line(s, sep=', ')}")
     print(f"wrote {out / (stem + '.csv')} and {out / (stem + '.mp4')}")
     return 0
 

@@ -23,13 +23,6 @@ GT_BGR = bgr(GT_COLOR)
 EST_BGR = bgr(EST_COLOR)
 
 
-def _jpeg(img) -> str:
-    import base64
-
-    ok, buf = cv2.imencode(".jpg", np.asarray(img), [cv2.IMWRITE_JPEG_QUALITY, D.JPEG_QUALITY])
-    return base64.b64encode(buf.tobytes()).decode("ascii")
-
-
 def _r(a, nd=1):
     return None if a is None else np.round(np.asarray(a, dtype=float), nd).tolist()
 
@@ -65,7 +58,7 @@ class Animation(anywidget.AnyWidget):
         super().__init__(**kwargs)
         h, w = np.asarray(images[0]).shape[:2]
         n = len(next(iter(runs.values()))["boxes"])
-        clip = {"name": name, "w": int(w), "h": int(h), "frames": [_jpeg(i) for i in images],
+        clip = {"name": name, "w": int(w), "h": int(h), "frames": [D.jpeg(i) for i in images],
                 "index": None if index is None else [int(i) for i in index],
                 "gt": None if gt is None else [None if b is None or not np.isfinite(b).all()
                                                else _r(b) for b in gt]}

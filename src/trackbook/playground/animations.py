@@ -33,8 +33,7 @@ def show_run(clip, results: dict, max_frames: int = 80) -> Animation:
     for label, r in results.items():
         s = r.scores
         iou = metrics.iou(r.boxes, clip.groundtruth[:len(r.boxes)])[idx]
-        score = (f"{label} on {clip.name}: AUC {s['auc']:.3f} \u00b7 precision@20px "
-                 f"{s['precision20']:.3f} \u00b7 tracking rate {s['tracking_rate']:.1%}"
+        score = (f"{label} on {clip.name}: {metrics.scores_line(s, ms=False)}"
                  if "auc" in s else f"{label} on {clip.name}")
         runs[label] = run_entry(label, np.asarray(r.boxes)[idx], curve=iou,
                                 curve_label="IoU with ground truth", curve_x="frame",
