@@ -108,10 +108,10 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
     Parameters
     ----------
     sensor : {"noisy-truth", "covariance"}
-        ``"noisy-truth"`` (chapter 6): the measurement is the ground-truth centre plus Gaussian
+        ``"noisy-truth"`` (``06_kalman``): the measurement is the ground-truth centre plus Gaussian
         noise of standard deviation ``noise_sd`` px, filtered by the constant-velocity model
         with ``R = noise_sd**2 I`` and one run per process-noise scale in ``qs`` (the viewer
-        offers them as a choice). ``"covariance"`` (chapter 7): the measurement is the best
+        offers them as a choice). ``"covariance"`` (``07_region_covariance``): the measurement is the best
         covariance match of the ``kalman-covariance`` tracker (``params`` go to it).
     """
     if sensor == "noisy-truth":
@@ -167,7 +167,7 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
 
 
 def _kalman_noisy_truth(clip, n_frames, seed, qs, noise_sd) -> Animation:
-    """Chapter 6's view: a simulated sensor (true centre + N(0, noise_sd^2)) and one Kalman
+    """The view of ``06_kalman``: a simulated sensor (true centre + N(0, noise_sd^2)) and one Kalman
     run per Q scale, on the same frames and the same noisy measurements."""
     from ..filters.kalman import constant_velocity
 

@@ -1,4 +1,4 @@
-"""Figures of chapter 09: trackers side by side, claims with their intervals, speed.
+"""Figures of ``09_trackers_compared``: trackers side by side, claims with their intervals, speed.
 
 Comparison plots highlight the trackers under discussion and draw the rest in grey, keep
 legends outside the data, and use the book's one palette (:data:`trackbook.style.OKABE_ITO`).

@@ -1,4 +1,5 @@
-"""Drawings for chapters 04 (region covariance) and 05 (Kalman search window)."""
+"""Drawings for ``07_region_covariance`` (region covariance) and ``06_kalman`` (the Kalman
+search window)."""
 
 from __future__ import annotations
 
@@ -51,7 +52,7 @@ def rho_map(frame, tracker, ax=None, title=None):
 
 
 def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
-    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (chapter 7).
+    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (``07_region_covariance``).
 
     ``states`` is a list (per frame) of dicts with ``search_window``, ``ellipse`` and
     ``center`` (the posterior centre), as recorded by ``evaluate(..., on_frame=...)``.
@@ -82,7 +83,7 @@ def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
 
 
 def recorder(states: list):
-    """An ``on_frame`` callback that appends what chapter 7 draws to ``states``."""
+    """An ``on_frame`` callback that appends what ``07_region_covariance`` draws to ``states``."""
     def record(i, tracker, frame, box):
         sw = getattr(tracker, "search_window", None)
         el = getattr(tracker, "ellipse", None) if hasattr(tracker, "prediction") else None

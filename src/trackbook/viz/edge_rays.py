@@ -1,4 +1,4 @@
-"""Drawings of chapter 03 (edge rays, Kim, Kim & Choi 2016)."""
+"""Drawings of ``05_edge_rays`` (edge rays, Kim, Kim & Choi 2016)."""
 
 from __future__ import annotations
 

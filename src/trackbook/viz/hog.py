@@ -1,4 +1,4 @@
-"""Drawings for chapters 02 and 08: HOG cells as star glyphs, learned bases as images."""
+"""Drawings for ``03_hog`` and ``04_incremental_svd``: HOG cells as star glyphs, learned bases as images."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Drawings of chapter 8 (mean-shift) and its lab notes (Cho & Kang 2005 Fig. 1-6).
+"""Drawings of ``08_mean_shift`` and ``lab_notes_cho2005`` (Cho & Kang 2005 Fig. 1-6).
 
 Coordinates: trackers use continuous image coordinates (pixel i covers [i, i+1)); matplotlib's
 ``imshow`` puts pixel i at i, so everything drawn here is shifted by half a pixel.
@@ -18,7 +18,7 @@ def rho_map(frame, q, axes, region, step: int = 2, stride: int = 1, bins=(8, 8, 
     """rho[p(y), q] for every centre y on a grid over ``region = (x0, y0, x1, y1)``.
 
     Returns ``(xs, ys, rho)`` with rho of shape ``(len(ys), len(xs))``: the surface mean-shift
-    climbs (chapter 8's density picture).
+    climbs (the density picture of ``08_mean_shift``).
     """
     x0, y0, x1, y1 = region
     xs = np.arange(x0, x1, step) + 0.5
