@@ -1,4 +1,4 @@
-"""The generated sample clips (SPEC section 3): shapes, determinism, exact ground truth."""
+"""The generated sample clips: registry, shapes, determinism, exact ground truth."""
 
 from __future__ import annotations
 
@@ -16,9 +16,9 @@ from trackbook.clips import samples, synthetic
 from trackbook.clips.synthetic import Canvas, Sprite, mask_box
 
 EXPECTED = {
-    "robot-corridor-day": "000", "robot-corridor-night": "000", "patterned-object": "001",
-    "red-cube": "002", "yellow-ball": "002", "occluder": "003", "shelves": "003",
-    "two-faces": "003",
+    "robot-corridor-day": "lee2012", "robot-corridor-night": "lee2012",
+    "patterned-object": "kim2016", "red-cube": "lee2015", "yellow-ball": "lee2015",
+    "occluder": "cho2005", "shelves": "cho2005", "two-faces": "cho2005",
 }
 OTB_CODES = {"IV", "OCC", "FM", "SV", "BC", "DEF", "MB", "IPR", "OPR", "LR", "OV", "CM"}
 NAMES = sorted(EXPECTED)
@@ -55,6 +55,34 @@ def test_the_eight_sample_clips_are_registered_with_their_papers():
         assert samples.info(name).paper == paper
         assert name in clips.available(paper)
         assert len(samples.info(name).description) > 80
+        assert clips.describe(name).startswith(f"{name} ({paper}): ")
+
+
+@pytest.mark.parametrize("old", ["000", "002", "003"])
+def test_the_old_paper_numbers_are_refused_with_the_key_to_use(old):
+    key = {"000": "lee2012", "002": "lee2015", "003": "cho2005"}[old]
+    with pytest.raises(ValueError, match=f"paper='{key}'"):
+        clips.available(old)
+    with pytest.raises(ValueError, match="lee2012, kim2016, lee2015, cho2005"):
+        clips.catalogue(paper="lee")
+
+
+def test_the_catalogue_lists_every_clip_without_rendering(monkeypatch):
+    # rendering is refused while listing: the catalogue must come from the registry alone
+    def refuse(*a, **k):
+        raise AssertionError("a listing rendered a clip")
+    monkeypatch.setattr(samples, "render", refuse)
+    infos = clips.catalogue()
+    assert [s.name for s in infos] == clips.available()
+    assert [s.name for s in clips.catalogue("cho2005")] == ["occluder", "shelves", "two-faces"]
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_catalogue_says_what_loading_gives(name):
+    info = next(s for s in clips.catalogue() if s.name == name)
+    clip = clips.load(name)
+    assert (info.frames, info.size, info.fps) == (len(clip), clip.size, clip.fps)
+    assert info.attributes == clip.attributes and info.description == clip.description
 
 
 @pytest.mark.parametrize("name", clips.available())
@@ -107,7 +135,7 @@ def test_every_photograph_ships_in_the_installed_wheel():
 # ------------------------------------------------------------------------- determinism
 @pytest.mark.parametrize("name", NAMES)
 def test_building_twice_gives_identical_clips(name):
-    a, b = samples.info(name).make(), samples.info(name).make()   # bypass the cache
+    a, b = samples.build.__wrapped__(name), samples.build.__wrapped__(name)  # no cache
     assert a.frames.array is not b.frames.array
     np.testing.assert_array_equal(a.frames.array, b.frames.array)
     np.testing.assert_array_equal(a.groundtruth, b.groundtruth)
@@ -123,7 +151,7 @@ def test_generation_leaves_the_global_rng_alone():
     np.random.seed(123)
     expected = np.random.random(3)
     np.random.seed(123)
-    samples.info("yellow-ball").make()
+    samples.build.__wrapped__("yellow-ball")
     np.testing.assert_array_equal(np.random.random(3), expected)
 
 
@@ -334,3 +362,21 @@ def test_path_goes_through_its_keys_and_smoothing_keeps_its_range(keys):
 def test_sprite_support_needs_opaque_pixels():
     with pytest.raises(ValueError, match="alpha"):
         Sprite(np.zeros((5, 5, 3)), np.zeros((5, 5)))
+
+
+def test_the_clips_command_lists_without_rendering_and_cuts_at_a_word(monkeypatch, capsys):
+    from trackbook import cli
+
+    def refuse(*a, **k):
+        raise AssertionError("trackbook clips rendered a clip")
+    monkeypatch.setattr(samples, "render", refuse)
+    assert cli.main(["clips"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    for info in clips.catalogue():
+        line = next(ln for ln in lines if ln.split()[:2] == [info.name, info.paper])
+        assert f"{info.frames} frames {info.size[0]}x{info.size[1]}" in line
+        shown = line.split(f"{info.size[1]}  ", 1)[1].removesuffix(" ...")
+        assert info.description.startswith(shown)
+        # the listing stops between two words of the description, never inside one
+        rest = info.description[len(shown):]
+        assert rest == "" or rest.startswith(" ")

@@ -127,3 +127,16 @@ def test_wrong_range_names_the_file(tmp_path):
         load_dataset(root, strict=True)
     with pytest.raises(ValueError, match="unknown dataset kind"):
         load_dataset(root, kind="otb")
+
+
+def test_one_attribute_table_the_otb_toolkits():
+    from trackbook.clips.datasets import attributes
+    from trackbook.evaluation import compare
+
+    # Crossing in the OTB toolkit's attribute list (Wu et al. 2015): SV DEF FM OPR BC
+    assert set(attributes("Crossing")) == {"SV", "DEF", "FM", "OPR", "BC"}
+    assert attributes("Jogging1") == attributes("Jogging.1") == T.OTB_ATTRIBUTES["Jogging_1"]
+    assert attributes("Bag") == T.VOT_ATTRIBUTES["Bag"] and attributes("NoSuchSeq") == ()
+    for name, codes in compare.SEQUENCE_ATTRIBUTES.items():   # the guide reads the same table
+        assert codes == (T.OTB_ATTRIBUTES.get(name.replace("1", "_1") if name == "Jogging1"
+                                              else name) or T.VOT_ATTRIBUTES[name]), name

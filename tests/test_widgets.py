@@ -182,7 +182,7 @@ def test_playground_rejects_unknown_tracker(tiny_folder):  # noqa: F811
 @pytest.mark.parametrize("make", ["sir_cycle", "kalman_ball", "mean_shift_climb",
                                   "subspace_drift"])
 def test_animations_use_the_viewer(make, monkeypatch):
-    from trackbook.viz import animations
+    from trackbook.playground import animations
 
     kw = {"kalman_ball": {"n_frames": 8}, "subspace_drift": {"n_frames": 12},
           "sir_cycle": {"frames": [1, 2]}}.get(make, {})
@@ -204,3 +204,16 @@ def test_animations_use_the_viewer(make, monkeypatch):
         assert all(b >= a - 1e-4 for a, b in zip(rho, rho[1:])) and rho[-1] > rho[0]
     monkeypatch.setenv(BOOK_ENV, "1")
     assert a._repr_mimebundle_()["text/html"].startswith('<div class="tb-playground"')
+
+
+def test_the_viewer_takes_its_colours_from_python():
+    import re
+
+    from trackbook import style
+
+    js = VIEWER_JS.read_text(encoding="utf-8")
+    assert not re.search(r"#[0-9a-fA-F]{6}\b", js)      # no second list of colours in the JS
+    pg = Playground(clips=["red-cube"], trackers=["mean-shift"], params=[], n_frames=3)
+    assert pg.config["colors"] == style.VIEWER
+    assert pg.static_payload()["config"]["colors"] == style.VIEWER
+    assert style.bgr(style.GT_COLOR) == (0x73, 0x9E, 0x00)   # "#009E73" read back to front

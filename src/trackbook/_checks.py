@@ -156,6 +156,23 @@ def check_seed(seed) -> None:
                          "(or None for a fresh random run).")
 
 
+#: Frames an evaluation needs: frame 0 starts the tracker, frame 1 is the first one scored.
+MIN_FRAMES = 2
+
+
+def check_max_frames(max_frames, *, name: str = "max_frames") -> int | None:
+    """``max_frames`` as an ``int`` (``None``: the whole clip); ``ValueError`` unless it is an
+    integer (not a bool) of at least :data:`MIN_FRAMES`. ``name`` is how the caller spells it
+    (``"--max-frames"`` on the command line)."""
+    if max_frames is None:
+        return None
+    if (isinstance(max_frames, (bool, np.bool_)) or not isinstance(max_frames, (int, np.integer))
+            or max_frames < MIN_FRAMES):
+        raise ValueError(f"{name} = {max_frames!r}: pass an integer of at least {MIN_FRAMES} "
+                         "(frame 0 starts the tracker, frame 1 is the first one scored).")
+    return int(max_frames)
+
+
 def check_finite_number(value, *, name: str) -> None:
     """Raise ``ValueError`` if ``value`` is a number that is NaN or infinite."""
     if isinstance(value, bool):

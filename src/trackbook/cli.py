@@ -76,6 +76,8 @@ def _out_dir(path) -> Path:
 
 
 def cmd_clips(args) -> int:
+    import textwrap
+
     from . import clips
 
     if args.action == "export":
@@ -84,10 +86,9 @@ def cmd_clips(args) -> int:
         video, gt = clips.export(args.name, args.path)
         print(f"wrote {video} and {gt}")
         return 0
-    for name in clips.available():
-        c = clips.load(name)
-        print(f"{name:22s} {len(c):4d} frames {c.size[0]}x{c.size[1]}  "
-              f"{clips.describe(name).split(': ', 1)[1][:90]}")
+    for s in clips.catalogue():            # from the registry: nothing is rendered
+        print(f"{s.name:22s} {s.paper:8s} {s.frames:4d} frames {s.size[0]}x{s.size[1]}  "
+              f"{textwrap.shorten(s.description, 90, placeholder=' ...')}")
     found = clips.find_sequences()
     if found:
         print(f"\nsequences found ({Path(next(iter(found.values()))).parent}):")
@@ -134,15 +135,15 @@ def cmd_track(args) -> int:
     import csv
 
     from . import clips
+    from ._checks import check_max_frames
     from .clips.loaders import write_video
+    from .evaluation.metrics import scores_line
     from .evaluation.runner import evaluate
 
     from . import trackers
 
     trackers.get(args.tracker)          # unknown name: one line before any work
-    if args.max_frames is not None and args.max_frames < 1:
-        raise ValueError(f"--max-frames {args.max_frames}: pass at least 1 (the first frame "
-                         "is the one the tracker starts from).")
+    check_max_frames(args.max_frames, name="--max-frames")
     params = _track_params(args.tracker, args.param)
     clip = clips.load(args.clip)
     out = _out_dir(args.out)
@@ -164,9 +165,7 @@ def cmd_track(args) -> int:
                                       for i, frame in zip(range(len(r.boxes)), clip.frames)),
                 clip.fps, clip.size)     # raises, naming the file, when the writer failed
     s = r.scores
-    print(f"{args.tracker} on {clip.name}: " + (
-        f"AUC {s['auc']:.3f}, precision@20 {s['precision20']:.3f}, tracking rate "
-        f"{s['tracking_rate']:.1%}, " if "auc" in s else "") + f"{s['ms_median']:.2f} ms/frame")
+    print(f"{args.tracker} on {clip.name}: {scores_line(s, sep=', ')}")
     print(f"wrote {out / (stem + '.csv')} and {out / (stem + '.mp4')}")
     return 0
 

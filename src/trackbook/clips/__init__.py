@@ -16,14 +16,29 @@ import cv2
 import numpy as np
 
 from . import samples as _samples
-from . import synthetic as _synthetic  # noqa: F401  (registers the sample scenarios)
+from . import scenes as _scenes  # noqa: F401  (registers the sample clips)
 from .clip import ArrayFrames, Clip, FrameSequence, ImageFiles, VideoFrames
 from .loaders import find_sequences, load_folder, load_path, load_video, read_groundtruth
 
 
 def available(paper: str | None = None) -> list[str]:
-    """Names of the sample clips (all, or those standing in for one paper: "000".."003")."""
+    """Names of the sample clips: all, or those standing in for one paper.
+
+    Parameters
+    ----------
+    paper : str, optional
+        A paper key: ``"lee2012"``, ``"kim2016"``, ``"lee2015"`` or ``"cho2005"``.
+    """
     return _samples.names(paper)
+
+
+def catalogue(paper: str | None = None) -> list[_samples.SampleInfo]:
+    """What each sample clip is, from the registry, without rendering a frame.
+
+    One :class:`~trackbook.clips.samples.SampleInfo` per clip (name, paper key, frames,
+    size, fps, OTB attributes, description), in the order of :func:`available`.
+    """
+    return [_samples.info(n) for n in _samples.names(paper)]
 
 
 def describe(name: str) -> str:
@@ -32,7 +47,7 @@ def describe(name: str) -> str:
         raise ValueError(f"unknown sample clip {name!r}{_near(name, available())}; sample "
                          f"clips: {', '.join(available())}.")
     s = _samples.info(name)
-    return f"{s.name} (paper {s.paper}): {s.description}"
+    return f"{s.name} ({s.paper}): {s.description}"
 
 
 def _near(name, names) -> str:
@@ -99,7 +114,7 @@ def export(clip, path, fourcc: str = "mp4v") -> tuple[Path, Path]:
 
 __all__ = [
     "Clip", "FrameSequence", "ArrayFrames", "ImageFiles", "VideoFrames", "available",
-    "describe", "load", "export", "find_sequences", "load_folder", "load_video",
+    "catalogue", "describe", "load", "export", "find_sequences", "load_folder", "load_video",
     "read_groundtruth",
 ]
 

@@ -477,3 +477,11 @@ UAV_ATTRIBUTES = {
     'uav7': ('SV', 'LR', 'FOC', 'POC', 'BC'),
     'person21': ('SV', 'ARC', 'LR', 'POC', 'BC', 'IV', 'VC', 'SOB'),
 }
+
+#: The two VOT2015 sequences of the development set (``bag``, ``ball1``) have no OTB
+#: annotation; these are OTB codes given by the OTB rules (Wu et al. 2015, sec. 4.1) from the
+#: challenges their SOURCE.txt lists (a reading, not a toolkit's table).
+VOT_ATTRIBUTES = {
+    'Bag': ('DEF', 'IPR', 'SV', 'BC'),
+    'Ball1': ('FM', 'BC', 'LR'),
+}

@@ -182,6 +182,19 @@ def _otb_attributes(name: str, folder: str) -> tuple:
     return ()
 
 
+def attributes(name: str) -> tuple:
+    """OTB attribute codes of a sequence, by its OTB or folder name (``()`` if unknown).
+
+    The OTB toolkit's table (``_dataset_tables.OTB_ATTRIBUTES``; a second target of a
+    sequence is spelt ``Jogging.1``, ``Jogging_1`` or, as a folder, ``Jogging1``), then the
+    two VOT sequences of the development set (``_dataset_tables.VOT_ATTRIBUTES``).
+    """
+    found = _otb_attributes(name, name)
+    if not found and name[-1:].isdigit() and name[-2:-1].isalpha():
+        found = _otb_attributes(f"{name[:-1]}_{name[-1]}", name)
+    return found or tuple(_t.VOT_ATTRIBUTES.get(name, ()))
+
+
 def _plain(folder: Path, attributes=(), skipped=None) -> list[Sequence]:
     """The sequences of one OTB-style folder; why none, appended to ``skipped``."""
     def skip(reason):

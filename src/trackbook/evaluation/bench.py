@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import clips as _clips
+from .._checks import check_max_frames
 from . import metrics
 from .runner import evaluate, evaluate_many  # noqa: F401  (evaluate: tests patch it)
 
@@ -353,8 +354,7 @@ def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
     if reference and REFERENCE not in trackers:
         trackers.append(REFERENCE)
     seeds = parse_seeds(seed if seeds is None else seeds)
-    if max_frames is not None and (isinstance(max_frames, bool) or int(max_frames) < 2):
-        raise ValueError(f"max_frames = {max_frames!r}: evaluating needs at least 2 frames.")
+    max_frames = check_max_frames(max_frames)
     tasks = []
     for ref in resolve_clips(clips):
         clip = ref.load()
@@ -457,26 +457,26 @@ def summarize(rows) -> list[dict]:
 
 def markdown_table(rows) -> str:
     """Per-tracker summary, then AUC per clip (mean over seeds), as markdown."""
+    from .._markdown import table
+
     summ = summarize(rows)
-    lines = ["| tracker | clips | mean AUC | mean precision@20 | mean tracking rate | median ms/frame |",
-             "|---|---:|---:|---:|---:|---:|"]
-    for s in summ:
-        lines.append(f"| {s['tracker']} | {s['clips']} | {s['auc']:.3f} | {s['precision20']:.3f} "
-                     f"| {s['tracking_rate']:.1%} | {s['ms_median']:.2f} |")
+    cols = ["tracker", "clips", "auc", "precision20", "tracking_rate", "ms_median"]
+    lines = [table(summ, cols, labels={"auc": "mean AUC", "precision20": "mean precision@20",
+                                       "tracking_rate": "mean tracking rate",
+                                       "ms_median": "median ms/frame"},
+                   formats={"auc": ".3f", "precision20": ".3f", "tracking_rate": ".1%",
+                            "ms_median": ".2f"}, align={c: "right" for c in cols[1:]})]
     clip_names = list(dict.fromkeys(r["clip"] for r in rows))
-    lines += ["", "AUC per clip:", "",
-              "| tracker | " + " | ".join(clip_names) + " |",
-              "|---|" + "---:|" * len(clip_names)]
     cell: dict = {}
     for r in rows:
         if r.get("auc") is not None:
             cell.setdefault((r["tracker"], r["clip"]), []).append(r["auc"])
-    for s in summ:
-        vals = []
-        for c in clip_names:
-            v = cell.get((s["tracker"], c))
-            vals.append("" if not v else f"{np.mean(v):.3f}")
-        lines.append(f"| {s['tracker']} | " + " | ".join(vals) + " |")
+    per_clip = [{"tracker": s["tracker"], **{c: float(np.mean(cell[(s["tracker"], c)]))
+                                             for c in clip_names if cell.get((s["tracker"], c))}}
+                for s in summ]
+    lines += ["", "AUC per clip:", "",
+              table(per_clip, ["tracker", *clip_names], number=".3f",
+                    align={c: "right" for c in clip_names})]
     return "\n".join(lines) + "\n"
 
 
@@ -546,7 +546,7 @@ def _plot(records, out, suffix="", title=""):
     # benchmark run inside a notebook would switch the kernel away from inline figures.
     from matplotlib.figure import Figure
 
-    from ..viz.core import CYCLE
+    from ..style import CYCLE
 
     by = {}
     for r in records:

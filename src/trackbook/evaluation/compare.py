@@ -11,17 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 
-#: Attributes of the development sequences (OTB codes from the benchmark's annotation; the two
-#: VOT sequences annotated by the same rules from their SOURCE.txt descriptions).
-SEQUENCE_ATTRIBUTES = {
-    "David": ("IV", "OPR", "SV", "OCC", "DEF", "MB", "IPR"),
-    "Jogging1": ("OPR", "OCC", "DEF"),
-    "MotorRolling": ("IV", "SV", "MB", "FM", "IPR", "BC", "LR"),
-    "Couple": ("OPR", "SV", "DEF", "FM", "BC"),
-    "Crossing": ("SV", "DEF", "BC"),
-    "Ball1": ("FM", "BC", "LR"),
-    "Bag": ("DEF", "IPR", "SV", "BC"),
-}
+from .._markdown import table as _md_table
+from ..clips.datasets import attributes as _attributes
+
+#: Attributes of the development sequences: the OTB toolkit's table, and for the two VOT
+#: sequences the same codes given by the OTB rules (see ``clips.datasets.attributes``).
+SEQUENCE_ATTRIBUTES = {n: _attributes(n) for n in (
+    "David", "Jogging1", "MotorRolling", "Couple", "Crossing", "Ball1", "Bag")}
 
 #: What the attribute codes mean, for the difficulties the guide is about.
 DIFFICULTIES = {
@@ -106,19 +102,9 @@ def markdown(rows: list[dict], fmt: dict | None = None) -> str:
     """A list of dicts as a markdown table (the book has no pandas)."""
     if not rows:
         return ""
-    fmt = fmt or {}
-    cols = list(rows[0])
-    lines = ["| " + " | ".join(cols) + " |", "|" + "|".join("---" for _ in cols) + "|"]
-    for r in rows:
-        cells = []
-        for c in cols:
-            v = r[c]
-            if isinstance(v, float):
-                cells.append("–" if not np.isfinite(v) else fmt.get(c, "{:.3f}").format(v))
-            else:
-                cells.append(str(v))
-        lines.append("| " + " | ".join(cells) + " |")
-    return "\n".join(lines) + "\n"
+    formats = {c: (lambda v, f=f: f.format(v) if isinstance(v, float) else str(v))
+               for c, f in (fmt or {}).items()}
+    return _md_table(rows, list(rows[0]), formats=formats, number=".3f") + "\n"
 
 
 def per_attribute(rows, attributes: dict, codes=tuple(DIFFICULTIES)) -> list[dict]:

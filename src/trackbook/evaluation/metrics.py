@@ -154,8 +154,25 @@ def summary(pred, gt) -> dict:
     }
 
 
+def scores_line(scores: dict, *, ms: bool = True, sep: str = " \u00b7 ") -> str:
+    """A run's headline scores as one line of text (the playground, the animations, the CLI).
+
+    ``"AUC 0.512 · precision@20px 0.640 · tracking rate 58.0% · 4.21 ms/frame"``; without
+    ground truth (no ``"auc"`` in ``scores``) ``"no ground truth"`` stands for the three
+    scores. ``ms=False`` leaves out the timing (``scores["ms_median"]``).
+    """
+    if "auc" in scores:
+        parts = [f"AUC {scores['auc']:.3f}", f"precision@20px {scores['precision20']:.3f}",
+                 f"tracking rate {scores['tracking_rate']:.1%}"]
+    else:
+        parts = ["no ground truth"]
+    if ms and "ms_median" in scores:
+        parts.append(f"{scores['ms_median']:.2f} ms/frame")
+    return sep.join(parts)
+
+
 __all__ = [
     "iou", "center_error", "success_curve", "auc", "precision_curve", "precision",
     "tracking_rate", "mean_center_error", "summary", "SUCCESS_THRESHOLDS",
-    "PRECISION_THRESHOLDS",
+    "PRECISION_THRESHOLDS", "scores_line",
 ]

@@ -15,9 +15,7 @@ from pathlib import Path
 def candidates(name: str) -> list[Path]:
     """Where ``book/results/<name>`` may be, in the order they are tried."""
     here = Path.cwd()
-    import trackbook
-
-    src_root = Path(trackbook.__file__).resolve().parents[2]   # <repo>/src/trackbook/__init__.py
+    src_root = Path(__file__).resolve().parents[3]   # <repo>/src/trackbook/evaluation/results.py
     return [here / "results" / name,                  # running in book/
             here / "book" / "results" / name,          # running at the repository root
             here.parent / "book" / "results" / name,   # running in notebooks/ (exported)

@@ -9,7 +9,7 @@ import numpy as np
 
 from .. import clips as _clips
 from .. import trackers as _trackers
-from .._checks import as_box, clip_box
+from .._checks import as_box, check_max_frames, clip_box
 from . import metrics
 
 
@@ -105,9 +105,7 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
     """
     clip = _clips.load(clip)
     made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
-    if max_frames is not None and (isinstance(max_frames, bool) or not isinstance(
-            max_frames, (int, np.integer))):
-        raise ValueError(f"max_frames = {max_frames!r}: pass an integer (at least 2) or None.")
+    max_frames = check_max_frames(max_frames)
     n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
     if n < 2:
         raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")

@@ -94,11 +94,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.speed:
         rows = speed_table(args.speed, seed=args.seed)
-        cols = list(rows[0])
-        print("| " + " | ".join(cols) + " |\n|" + "---|" * len(cols))
-        for r in rows:
-            print("| " + " | ".join(f"{v:.3f}" if isinstance(v, float) else str(v)
-                                    for v in r.values()) + " |")
+        from .._markdown import table
+
+        print(table(rows, number=".3f"))
         return 0
     seqs = _clips.find_sequences()
     if not seqs:

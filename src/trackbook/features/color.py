@@ -1,6 +1,6 @@
 """Kernel-weighted colour histograms and the Bhattacharyya coefficient.
 
-Chapter 1 of the book. The histogram of a region counts the colours of its pixels, each
+Chapter ``01_kernel_histograms`` of the book. The histogram of a region counts the colours of its pixels, each
 pixel weighted by a kernel that trusts the centre more than the border (eq. 1 of Lee et al.
 2012; eq. 2-3 of Cho & Kang 2005; Comaniciu, Ramesh & Meer 2003):
 
@@ -44,7 +44,7 @@ def kernel_weights(height: int, width: int) -> np.ndarray:
 
     r is each pixel centre's distance to the patch centre divided by the largest such
     distance, so the corner pixels get weight 0 and the centre the most. The paper's prose
-    says k = 1 - r (a cone); the book follows the printed eq. 1 (chapter 1 compares the two).
+    says k = 1 - r (a cone); the book follows the printed eq. 1 (``01_kernel_histograms`` compares the two).
     """
     yy, xx = np.mgrid[0:height, 0:width].astype(float)
     dy = yy + 0.5 - height / 2
@@ -138,8 +138,8 @@ def hsv_bin_index_u8(bgr: np.ndarray, bins=HSV_BINS) -> np.ndarray:
 
     The same bins, computed without leaving OpenCV: ``cv2.LUT`` maps each HSV channel to its
     share of the index (h * bs * bv, s * bv, v) and ``cv2.transform`` adds the three shares.
-    About three times faster than the integer arithmetic of :func:`hsv_bin_index` on the
-    100 patches of a particle filter.
+    Faster than the integer arithmetic of :func:`hsv_bin_index` on the
+    patches of a particle filter.
     """
     if int(np.prod(bins)) > 256:
         raise ValueError(f"bins = {bins} has more than 256 cells; use hsv_bin_index instead.")

@@ -1,4 +1,4 @@
-"""Region covariance descriptors and the Förstner–Moonen metric (chapter 7, Lee 2015 §2.1).
+"""Region covariance descriptors and the Förstner–Moonen metric (``07_region_covariance``, Lee 2015 §2.1).
 
 A region R of a frame is described by the d x d covariance of per-pixel feature vectors
 (eq. 2 / eq. 4 of Lee 2015). Two regions are compared with the Förstner–Moonen distance
@@ -23,7 +23,7 @@ import numpy as np
 
 #: The feature sets a tracker can use; the string spells the feature vector.
 #: ``"xyIIxIy"`` is eq. 2 as Lee (2015) prints it (signed Ix, Iy); the book's default
-#: ``"xyI|Ix||Iy|"`` takes their absolute values as Tuzel et al. (2006) do (chapter 7).
+#: ``"xyI|Ix||Iy|"`` takes their absolute values as Tuzel et al. (2006) do (``07_region_covariance``).
 FEATURE_SETS = ("xyI|Ix||Iy|", "rI|Ix||Iy|", "xyRGB|Ix||Iy|", "xyIIxIy")
 
 
@@ -172,7 +172,7 @@ class Workspace:
 def _integral_planes(planes, out=None) -> np.ndarray:
     """Zero-padded summed-area tables of 2-D planes: S[c, y, x] = Σ planes[c][:y, :x], float64.
 
-    One ``cv2.integral`` per contiguous plane: about ten times faster than one call on the
+    One ``cv2.integral`` per contiguous plane: faster than one call on the
     interleaved multi-channel image, and exact in float64. ``out``: where to write S.
     """
     h, w = planes[0].shape

@@ -1,4 +1,4 @@
-"""The 8-ray edge observation model of Kim, Kim & Choi 2016 (chapter 5 of the book).
+"""The 8-ray edge observation model of Kim, Kim & Choi 2016 (chapter ``05_edge_rays`` of the book).
 
 From a point, walk along 8 rays at 45 degree steps and note how far the nearest edge pixel is
 on each ray (eq. 1 for the target model M, eq. 4 for a particle's model p). Two sets of rays

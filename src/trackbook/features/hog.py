@@ -3,7 +3,7 @@
 A variant of Dalal & Triggs (2005): signed angles (8 bins of 45 degrees over 360), small 4 x 4 px
 cells and one normalisation of the whole descriptor instead of overlapping blocks.
 
-Chapter 3 of the book. The recipe, on a grey patch resized to 16 wide x 24 high:
+Chapter ``03_hog`` of the book. The recipe, on a grey patch resized to 16 wide x 24 high:
 
 1. smooth with a 5 x 5 Gaussian;
 2. central differences (eq. 2)::
@@ -88,7 +88,7 @@ def gray_patches(bgr_patches: np.ndarray) -> np.ndarray:
 
 def _pad_edges(patches: np.ndarray, k: int) -> np.ndarray:
     """(N, h, w) patches padded by ``k`` pixels repeating each patch's own edge pixels
-    (``np.pad(mode="edge")``, written as five slice copies: about twice as fast)."""
+    (``np.pad(mode="edge")``, written as five slice copies, which is faster)."""
     n, h, w = patches.shape
     out = np.empty((n, h + 2 * k, w + 2 * k), dtype=patches.dtype)
     out[:, k:-k, k:-k] = patches
@@ -168,9 +168,8 @@ def orientation_bin(gx: np.ndarray, gy: np.ndarray, bins: int = HOG_BINS) -> np.
 
     For the paper's 8 bins of 45 degrees the bin is the octant of (g_x, g_y): the signs of
     g_x and g_y and whether |g_y| exceeds |g_x| (``_OCTANT_BIN``). That is exact, with no
-    arctangent and no rounding at the edges, and about five times faster than
-    ``np.arctan2`` (the HOG trackers' largest single cost per frame, measured on 100 patches
-    of 24 x 16 px). For other bin counts it is floor(atan2(g_y, g_x) * bins / 2pi + bins) mod
+    arctangent and no rounding at the edges, and faster than
+    ``np.arctan2`` (which was the HOG trackers' largest single cost per frame). For other bin counts it is floor(atan2(g_y, g_x) * bins / 2pi + bins) mod
     bins, the same bin as eq. 4's theta + 2pi: the shift by ``bins`` (not 2pi) makes every
     value positive, so the floor is a plain integer cast, and an angle just below 0 lands in
     the last bin and never in a bin ``bins``. (The two agree on every (g_x, g_y) except

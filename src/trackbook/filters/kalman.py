@@ -1,4 +1,4 @@
-"""The linear Kalman filter of chapter 6 (eq. 7–13 of Lee 2015).
+"""The linear Kalman filter of ``06_kalman`` (eq. 7–13 of Lee 2015).
 
 Names follow filterpy (``x``, ``P``, ``F``, ``H``, ``Q``, ``R``, ``K``, ``y``, ``S``;
 ``predict()`` / ``update(z)``) so the book can put this code and

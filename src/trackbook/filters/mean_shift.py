@@ -1,6 +1,6 @@
 """Kernel mean-shift on an ellipse target (Comaniciu, Ramesh & Meer 2003; §3.3 of Cho & Kang 2005).
 
-Chapter 8 of the book. The target is an ellipse with centre ``y`` and half-axes ``(Hx, Hy)``.
+Chapter ``08_mean_shift`` of the book. The target is an ellipse with centre ``y`` and half-axes ``(Hx, Hy)``.
 Its colour distribution counts the colours of the pixels inside the ellipse, each weighted by
 the Epanechnikov profile ``k(r) = 1 - r^2`` of its ellipse-normalised radius
 ``r^2 = ((x - y_x) / Hx)^2 + ((y - y_y) / Hy)^2`` (eq. 2-3 of Cho & Kang 2005).
@@ -78,7 +78,7 @@ def _bin_luts(bins):
 def hsv_bin_image(bgr: np.ndarray, bins=HSV_BINS) -> np.ndarray:
     """The bin index of :func:`trackbook.features.color.hsv_bin_index` for an H x W x 3 image,
     converted to HSV as one 2-D image (OpenCV converts an N x 1 column, as that function
-    passes it, row by row, which is ~20x slower) and binned by three lookup tables."""
+    passes it, row by row, which is much slower) and binned by three lookup tables."""
     hsv = cv2.cvtColor(np.ascontiguousarray(bgr), cv2.COLOR_BGR2HSV)
     lut_h, lut_s, lut_v = _bin_luts(tuple(int(b) for b in bins))
     return lut_h.take(hsv[..., 0]) + lut_s.take(hsv[..., 1]) + lut_v.take(hsv[..., 2])

@@ -1,6 +1,6 @@
 """Motion and measurement models of Lee et al. 2012's particle filter (section V).
 
-Chapter 06 of the book. The state of a particle (eq. 8) is
+Chapter ``02_particle_filters`` of the book. The state of a particle (eq. 8) is
 
     X = [x, y, w, h, x_dot, y_dot],
 

@@ -1,1 +1,1 @@
-"""On-line appearance learning: incremental SVD (chapter 08)."""
+"""On-line appearance learning: incremental SVD (``04_incremental_svd``)."""

@@ -1,6 +1,6 @@
 """Incremental SVD with a forgetting factor (eq. 6-7 of Lee et al. 2012; Ross et al. 2008).
 
-Chapter 4 of the book. Given the thin SVD A = U Sigma V^T of the d x n features seen so far
+Chapter ``04_incremental_svd`` of the book. Given the thin SVD A = U Sigma V^T of the d x n features seen so far
 and m new columns B, the SVD of [A B] follows from a small (k+m) x (k+m) problem (eq. 6):
 
     [A B] = [U  B~] [ Sigma   U^T B  ] [ V^T  0 ]

@@ -14,18 +14,13 @@ import cv2
 import numpy as np
 import traitlets as T
 
+from ..style import EST_COLOR, GT_COLOR, bgr
+from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
 from .core import BOOK_ENV, VIEWER_CSS, VIEWER_JS, page_html
 
-GT_BGR = (115, 158, 0)
-EST_BGR = (0, 94, 213)
-
-
-def _jpeg(img) -> str:
-    import base64
-
-    ok, buf = cv2.imencode(".jpg", np.asarray(img), [cv2.IMWRITE_JPEG_QUALITY, D.JPEG_QUALITY])
-    return base64.b64encode(buf.tobytes()).decode("ascii")
+GT_BGR = bgr(GT_COLOR)
+EST_BGR = bgr(EST_COLOR)
 
 
 def _r(a, nd=1):
@@ -63,7 +58,7 @@ class Animation(anywidget.AnyWidget):
         super().__init__(**kwargs)
         h, w = np.asarray(images[0]).shape[:2]
         n = len(next(iter(runs.values()))["boxes"])
-        clip = {"name": name, "w": int(w), "h": int(h), "frames": [_jpeg(i) for i in images],
+        clip = {"name": name, "w": int(w), "h": int(h), "frames": [D.jpeg(i) for i in images],
                 "index": None if index is None else [int(i) for i in index],
                 "gt": None if gt is None else [None if b is None or not np.isfinite(b).all()
                                                else _r(b) for b in gt]}
@@ -73,7 +68,8 @@ class Animation(anywidget.AnyWidget):
         self._png_src = (images, index, gt, runs[labels[0]])
         self.static_data = {
             "config": {"clips": [{"key": name, "name": name}], "trackers": labels,
-                       "knobs": {k: [] for k in labels}, "n_frames": n},
+                       "knobs": {k: [] for k in labels}, "n_frames": n,
+                       "colors": VIEWER_COLORS},
             "clips": {name: clip},
             "runs": {f"{name}|{k}|": {**v, "clip": name} for k, v in runs.items()},
             "initial": {"clip": name, "tracker": labels[0]}, "note": note}

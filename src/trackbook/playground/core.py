@@ -31,6 +31,7 @@ import traitlets as T
 from .. import clips as _clips
 from .. import params as _params
 from .. import trackers as _trackers
+from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
 
 HERE = Path(__file__).parent
@@ -40,9 +41,9 @@ VIEWER_CSS = HERE / "viewer.css"
 BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
 #: longest clip the HTML book precomputes (frames), whatever ``n_frames`` says
 STATIC_MAX_FRAMES = 80
-#: the HTML book's samples of a knob outside the first ones (``_FIRST``), besides its default
+#: the HTML book's samples of a knob outside _FIRST, besides its default
 STATIC_OTHER_SAMPLES = 3
-#: most bytes of one playground in the HTML book (pages stay under 3 MB)
+#: most bytes of one playground in the HTML book (a page stays under 3 MB to load quickly)
 MAX_PAGE_BYTES = 2_900_000
 #: the knobs the book's promise names, precomputed first
 _FIRST = ("n_particles", "alpha", "ratio_low", "ratio_high", "ratio_window")
@@ -273,7 +274,7 @@ class Playground(anywidget.AnyWidget):
         return {"clips": [{"key": k, "name": self._clips[k].name} for k in clip_names],
                 "trackers": trackers,
                 "knobs": {t: self._knobs(t) for t in trackers},
-                "n_frames": self.n_frames}
+                "n_frames": self.n_frames, "colors": VIEWER_COLORS}
 
     def _defaults(self, tracker):
         return {k["name"]: k["default"] for k in self.config["knobs"][tracker]}
@@ -434,7 +435,7 @@ class Playground(anywidget.AnyWidget):
         return runs
 
     def static_knobs(self, tracker) -> list:
-        """The knobs of ``tracker`` as the HTML book offers them: the first knobs (``_FIRST``)
+        """The knobs of ``tracker`` as the HTML book offers them: the knobs of ``_FIRST``
         (particles, alpha, the ratio window) and those given ``samples=`` keep all their
         samples; every other knob keeps its default and at most ``STATIC_OTHER_SAMPLES``
         others (the nearest below and above the default, then the range's ends), so that

@@ -31,15 +31,21 @@ def _b64(a: np.ndarray) -> str:
     return base64.b64encode(np.ascontiguousarray(a).tobytes()).decode("ascii")
 
 
+def jpeg(img, quality: int = JPEG_QUALITY) -> str:
+    """A BGR image (as OpenCV and the clips hold it) as base64 JPEG text for the viewer."""
+    ok, buf = cv2.imencode(".jpg", np.asarray(img), [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
+    if not ok:
+        raise ValueError(f"cannot encode an image of shape {np.shape(img)} as JPEG.")
+    return base64.b64encode(buf.tobytes()).decode("ascii")
+
+
 def clip_payload(clip, n: int, quality: int = JPEG_QUALITY) -> dict:
     """The first ``n`` frames of ``clip`` as JPEG (encoded once) and their ground truth."""
     frames = []
     for i, f in enumerate(clip.frames):
         if i >= n:
             break
-        ok, buf = cv2.imencode(".jpg", np.asarray(f),   # clips are BGR, as cv2 wants
-                               [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
-        frames.append(base64.b64encode(buf.tobytes()).decode("ascii"))
+        frames.append(jpeg(f, quality))
     gt = np.asarray(clip.groundtruth[:len(frames)], dtype=float)
     has_gt = bool(np.isfinite(gt).all(axis=1).any())
     w, h = clip.size
@@ -115,12 +121,7 @@ def _encode_state(states: list[dict]) -> dict:
 
 
 def scores_text(result) -> str:
-    s = result.scores
-    if "auc" in s:
-        return (f"{result.tracker} on {result.clip}: AUC {s['auc']:.3f} · precision@20px "
-                f"{s['precision20']:.3f} · tracking rate {s['tracking_rate']:.1%} · "
-                f"{s['ms_median']:.2f} ms/frame")
-    return f"{result.tracker} on {result.clip}: no ground truth · {s['ms_median']:.2f} ms/frame"
+    return f"{result.tracker} on {result.clip}: {metrics.scores_line(result.scores)}"
 
 
 def run_payload(tracker: str, clip, values: dict, n: int | None, seed: int = 0,

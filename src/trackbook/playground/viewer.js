@@ -5,10 +5,6 @@
 // Contract: root element .tb-playground, knob inputs [data-knob], frame input [data-frame],
 // play button [data-play].
 
-const COLORS = {
-  gt: "#009E73", est: "#D55E00", particle: "#0072B2", window: "#E69F00",
-  ellipse: "#CC79A7", cand: "#8c8c8c", ray: "#56B4E9", curve: "#D55E00", grid: "#dddddd",
-};
 const SPEEDS = [["slow", 5], ["normal", 12], ["fast", 25]];
 
 function el(tag, attrs, parent) {
@@ -54,6 +50,8 @@ class Viewer {
   constructor(root, host) {
     this.root = root;
     this.host = host;
+    // element -> colour, from Python (trackbook.style.VIEWER) with the config
+    this.colors = host.config().colors || {};
     this.frame = 0;
     this.playing = false;
     this.images = [];
@@ -263,16 +261,16 @@ class Viewer {
     if (im && im.complete && im.naturalWidth) c.drawImage(im, 0, 0, this.fw, this.fh);
     else { c.fillStyle = "#222"; c.fillRect(0, 0, this.fw, this.fh); }
     const gt = this.clipInfo.gt;
-    if (gt && gt[i]) this.box(gt[i], COLORS.gt, 2);
+    if (gt && gt[i]) this.box(gt[i], this.colors.gt, 2);
     const extra = this.run && this.run.extra_boxes;   // animations: e.g. the measurement
     if (extra) for (const e of extra) if (e.boxes[i]) this.box(e.boxes[i], e.color, 2, e.dash);
     const r = this.run, st = this.state || {};
     if (r && r.boxes) {
-      if (st.search_window && st.search_window[i]) this.box(st.search_window[i], COLORS.window, 1.5, [5, 4]);
-      if (st.candidates && st.candidates[i]) for (const b of st.candidates[i]) this.box(b, COLORS.cand, 1);
+      if (st.search_window && st.search_window[i]) this.box(st.search_window[i], this.colors.window, 1.5, [5, 4]);
+      if (st.candidates && st.candidates[i]) for (const b of st.candidates[i]) this.box(b, this.colors.cand, 1);
       if (st.particles && st.particles[i]) {
         const p = st.particles[i];
-        c.fillStyle = COLORS.particle;
+        c.fillStyle = this.colors.particle;
         for (let j = 0; j < p.length; j += 3) {
           const rad = 1.5 + 4 * Math.sqrt(Math.max(0, p[j + 2]) / 1000);
           c.globalAlpha = 0.35 + 0.5 * p[j + 2] / 1000;
@@ -282,13 +280,13 @@ class Viewer {
       }
       if (st.ellipse && st.ellipse[i]) {
         const e = st.ellipse[i];
-        c.save(); c.strokeStyle = COLORS.ellipse; c.lineWidth = 2;
+        c.save(); c.strokeStyle = this.colors.ellipse; c.lineWidth = 2;
         c.beginPath(); c.ellipse(e[0] * s, e[1] * s, Math.abs(e[2]) * s, Math.abs(e[3]) * s, 0, 0, 2 * Math.PI);
         c.stroke(); c.restore();
       }
       if (st.rays && st.rays[i]) {
         const q = st.rays[i];
-        c.save(); c.strokeStyle = COLORS.ray; c.lineWidth = 1.5;
+        c.save(); c.strokeStyle = this.colors.ray; c.lineWidth = 1.5;
         for (let j = 0; j < 8 && j + 2 < q.length; j++) {
           const [dx, dy] = RAY_DIRS[j], n = Math.hypot(dx, dy);
           c.beginPath(); c.moveTo(q[0] * s, q[1] * s);
@@ -296,9 +294,9 @@ class Viewer {
         }
         c.restore();
       }
-      if (r.boxes[i]) this.box(r.boxes[i], COLORS.est, 2.5);
+      if (r.boxes[i]) this.box(r.boxes[i], this.colors.est, 2.5);
     }
-    if (this.drag && this.drag.b) this.box(this.drag.b, COLORS.est, 2, [4, 3]);
+    if (this.drag && this.drag.b) this.box(this.drag.b, this.colors.est, 2, [4, 3]);
     this.legend();
     this.curve();
     const iou = r && r.iou ? r.iou[i] : null;
@@ -312,8 +310,8 @@ class Viewer {
     const c = this.ctx;
     c.font = "11px sans-serif";
     let x = 6;
-    const items = [[(this.run && this.run.est_label) || "estimate", COLORS.est]];
-    if (this.clipInfo.gt) items.unshift(["ground truth", COLORS.gt]);
+    const items = [[(this.run && this.run.est_label) || "estimate", this.colors.est]];
+    if (this.clipInfo.gt) items.unshift(["ground truth", this.colors.gt]);
     for (const e of (this.run && this.run.extra_boxes) || []) items.push([e.label, e.color]);
     for (const [name, col] of items) {
       const w = c.measureText(name).width + 18;
@@ -339,11 +337,11 @@ class Viewer {
     c.fillText("0", x0 - 3, y0 + h + 12); c.fillText(String(n - 1), x0 + w - 12, y0 + h + 12);
     c.fillText("1", x0 - 10, y0 + 8); c.fillText("0", x0 - 10, y0 + h);
     const X = (k) => x0 + (n > 1 ? k / (n - 1) : 0) * w, Y = (v) => y0 + h - v * h;
-    c.strokeStyle = COLORS.grid; c.setLineDash([4, 3]);
+    c.strokeStyle = this.colors.grid; c.setLineDash([4, 3]);
     c.beginPath(); c.moveTo(x0, Y(0.5)); c.lineTo(x0 + w, Y(0.5)); c.stroke(); c.setLineDash([]);
     const ys = custom ? custom.values : useIou ? r.iou : (r && r.ok ? r.ok : null);
     if (ys) {
-      c.strokeStyle = COLORS.curve; c.lineWidth = 1.5; c.beginPath();
+      c.strokeStyle = this.colors.curve; c.lineWidth = 1.5; c.beginPath();
       let pen = false;
       ys.forEach((v, k) => {
         if (v === null || v === undefined) { pen = false; return; }

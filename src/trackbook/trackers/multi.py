@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from .._checks import check_frame, clip_box
+from .._checks import check_frame, check_max_frames, clip_box
 
 
 def target_seed(seed, k: int):
@@ -114,10 +114,7 @@ def track_clip(name: str, clip, seed: int | None = 0, max_frames: int | None = N
     if unknown:
         raise ValueError(f"clip {clip.name!r} has no target(s) {unknown}; "
                          f"its targets are {list(clip.targets)}.")
-    if max_frames is not None and (isinstance(max_frames, bool) or not isinstance(
-            max_frames, (int, np.integer)) or max_frames < 1):
-        raise ValueError(f"max_frames = {max_frames!r}: pass an integer of at least 1 (frame 0 "
-                         "is the one the trackers start from), or None for the whole clip.")
+    max_frames = check_max_frames(max_frames)
     n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
     first = clip.frames[0]
     starts = []

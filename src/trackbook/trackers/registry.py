@@ -29,14 +29,3 @@ def get(name: str) -> type[Tracker]:
             f"unknown tracker {name!r}; registered trackers: {', '.join(available()) or '(none)'}."
         )
     return _REGISTRY[name]
-
-
-def create(name: str, seed: int | None = 0, **params) -> Tracker:
-    """Create the tracker registered as ``name`` with a seed and its params.
-
-    Examples
-    --------
-    >>> from trackbook import trackers
-    >>> t = trackers.create("color-hog-ipca", seed=0, n_particles=100)  # doctest: +SKIP
-    """
-    return get(name)(seed=seed, **params)

@@ -1,7 +1,7 @@
-"""Figures of chapter 09: trackers side by side, claims with their intervals, speed.
+"""Figures of ``09_trackers_compared``: trackers side by side, claims with their intervals, speed.
 
 Comparison plots highlight the trackers under discussion and draw the rest in grey, keep
-legends outside the data, and use the book's one palette (:data:`trackbook.viz.core.OKABE_ITO`).
+legends outside the data, and use the book's one palette (:data:`trackbook.style.OKABE_ITO`).
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .core import GREY, OKABE_ITO
+from ..style import GREY, OKABE_ITO
 
 #: Colour per preset in the claims plots.
 PRESET_COLORS = {"paper": OKABE_ITO[1], "book": OKABE_ITO[5]}

@@ -13,30 +13,8 @@ import numpy as np
 from matplotlib import patches as mpatches
 
 from ..evaluation import metrics
+from ..style import CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, Palette  # noqa: F401
 
-class Palette(list):
-    """A list of colours that can also be indexed by name: ``p[5] == p["blue"]``."""
-
-    def __init__(self, named: dict):
-        super().__init__(named.values())
-        self.names = dict(named)
-
-    def __getitem__(self, key):
-        return self.names[key] if isinstance(key, str) else super().__getitem__(key)
-
-
-#: The book's one palette: Okabe & Ito's eight colours, distinguishable with the common
-#: colour-vision deficiencies; index it by position or by name.
-OKABE_ITO = Palette({"black": "#000000", "orange": "#E69F00", "sky blue": "#56B4E9",
-                     "bluish green": "#009E73", "yellow": "#F0E442", "blue": "#0072B2",
-                     "vermillion": "#D55E00", "reddish purple": "#CC79A7"})
-#: Ground truth bluish green, the estimate vermillion, everything else from the palette; trackers
-#: that a comparison plot is not about are drawn in GREY.
-GT_COLOR = "#009E73"
-EST_COLOR = "#D55E00"
-GREY = "#BBBBBB"
-CYCLE = ["#D55E00", "#0072B2", "#E69F00", "#CC79A7", "#56B4E9", "#000000", "#009E73",
-         "#F0E442"]
 
 def bgr2rgb(frame: np.ndarray) -> np.ndarray:
     """BGR (OpenCV) to RGB (matplotlib)."""

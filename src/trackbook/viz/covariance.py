@@ -1,4 +1,5 @@
-"""Drawings for chapters 04 (region covariance) and 05 (Kalman search window)."""
+"""Drawings for ``07_region_covariance`` (region covariance) and ``06_kalman`` (the Kalman
+search window)."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib import patches as mpatches
 
+from .._markdown import table
 from .core import draw_box, draw_ellipse, draw_search_window, show_frame
 
 
@@ -50,7 +52,7 @@ def rho_map(frame, tracker, ax=None, title=None):
 
 
 def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
-    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (chapter 7).
+    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (``07_region_covariance``).
 
     ``states`` is a list (per frame) of dicts with ``search_window``, ``ellipse`` and
     ``center`` (the posterior centre), as recorded by ``evaluate(..., on_frame=...)``.
@@ -81,7 +83,7 @@ def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
 
 
 def recorder(states: list):
-    """An ``on_frame`` callback that appends what chapter 7 draws to ``states``."""
+    """An ``on_frame`` callback that appends what ``07_region_covariance`` draws to ``states``."""
     def record(i, tracker, frame, box):
         sw = getattr(tracker, "search_window", None)
         el = getattr(tracker, "ellipse", None) if hasattr(tracker, "prediction") else None
@@ -104,18 +106,5 @@ def markdown_table(rows, columns, formats=None, labels=None):
     """Rows (dicts) as an IPython Markdown table; ``formats`` maps column -> format spec and
     ``labels`` column -> header (short headers keep the table inside the page's column)."""
     from IPython.display import Markdown
-    formats = formats or {}
-    labels = labels or {}
 
-    def cell(row, c):
-        v = row.get(c, "")
-        if v is None or v == "" or (isinstance(v, float) and np.isnan(v)):
-            return "–"
-        try:
-            return format(float(v), formats[c]) if c in formats else str(v)
-        except (TypeError, ValueError):
-            return str(v)
-    lines = ["| " + " | ".join(labels.get(c, c) for c in columns) + " |",
-             "|" + "---|" * len(columns)]
-    lines += ["| " + " | ".join(cell(r, c) for c in columns) + " |" for r in rows]
-    return Markdown("\n".join(lines))
+    return Markdown(table(rows, columns, formats=formats, labels=labels))

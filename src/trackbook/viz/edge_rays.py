@@ -1,14 +1,16 @@
-"""Drawings of chapter 03 (edge rays, Kim, Kim & Choi 2016)."""
+"""Drawings of ``05_edge_rays`` (edge rays, Kim, Kim & Choi 2016)."""
 
 from __future__ import annotations
 
 import matplotlib.pyplot as plt
 import numpy as np
 
+from .._markdown import table
 from ..features import edge_rays as er
-from .core import EST_COLOR, GT_COLOR, bgr2rgb, draw_box
+from ..style import CYCLE, EST_COLOR, GT_COLOR
+from .core import bgr2rgb, draw_box
 
-RAY_COLORS = plt.get_cmap("tab10").colors[:8]
+RAY_COLORS = CYCLE              # one colour per ray, the book's palette
 
 
 def draw_rays(ax, xy, dists, color=None, lw=1.5, labels=False):
@@ -95,14 +97,6 @@ def md_table(rows, digits: int = 3):
     from IPython.display import Markdown
     if isinstance(rows, dict):
         rows = [{"": k, **v} if isinstance(v, dict) else {"": k, "value": v} for k, v in rows.items()]
-    cols = list(dict.fromkeys(c for r in rows for c in r))
-
-    def fmt(v):
-        if isinstance(v, (bool, np.bool_)):
-            return "yes" if v else "no"
-        if isinstance(v, (float, np.floating)):
-            return f"{v:.{digits}f}"
-        return str(v)
-    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
-    lines += ["| " + " | ".join(fmt(r.get(c, "")) for c in cols) + " |" for r in rows]
-    return Markdown("\n".join(lines))
+    rows = [{k: ("yes" if v else "no") if isinstance(v, (bool, np.bool_)) else v
+             for k, v in r.items()} for r in rows]
+    return Markdown(table(rows, number=f".{digits}f"))

@@ -1,4 +1,4 @@
-"""Drawings for chapters 02 and 08: HOG cells as star glyphs, learned bases as images."""
+"""Drawings for ``03_hog`` and ``04_incremental_svd``: HOG cells as star glyphs, learned bases as images."""
 
 from __future__ import annotations
 
@@ -6,9 +6,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..features.hog import HOG_BINS, HOG_CELL
+from ..style import OKABE_ITO
 
 
-def plot_hog(descriptor, ax=None, shape=(6, 4), color="#1f77b4", title=None):
+def plot_hog(descriptor, ax=None, shape=(6, 4), color=OKABE_ITO["blue"], title=None):
     """Draw a (rows x cols x 8) HOG descriptor: in each cell, one ray per orientation bin,
     its length the bin's share, pointing along the bin's centre angle (y down, as the image).
     Negative values (basis vectors) are drawn in red."""

@@ -1,4 +1,4 @@
-"""Drawings of chapter 8 (mean-shift) and its lab notes (Cho & Kang 2005 Fig. 1-6).
+"""Drawings of ``08_mean_shift`` and ``lab_notes_cho2005`` (Cho & Kang 2005 Fig. 1-6).
 
 Coordinates: trackers use continuous image coordinates (pixel i covers [i, i+1)); matplotlib's
 ``imshow`` puts pixel i at i, so everything drawn here is shifted by half a pixel.
@@ -10,14 +10,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..filters.mean_shift import bin_image, ellipse_rho
-from .core import CYCLE, GT_COLOR, bgr2rgb, draw_box, draw_ellipse
+from ..style import CYCLE, GT_COLOR, OKABE_ITO
+from .core import bgr2rgb, draw_box, draw_ellipse
 
 
 def rho_map(frame, q, axes, region, step: int = 2, stride: int = 1, bins=(8, 8, 4)):
     """rho[p(y), q] for every centre y on a grid over ``region = (x0, y0, x1, y1)``.
 
     Returns ``(xs, ys, rho)`` with rho of shape ``(len(ys), len(xs))``: the surface mean-shift
-    climbs (chapter 8's density picture).
+    climbs (the density picture of ``08_mean_shift``).
     """
     x0, y0, x1, y1 = region
     xs = np.arange(x0, x1, step) + 0.5
@@ -104,7 +105,7 @@ def weight_histogram(weights, ax=None, title=None):
     if ax is None:
         _, ax = plt.subplots(figsize=(4.5, 2.8))
     w = np.sort(np.asarray(weights, dtype=float))[::-1]
-    ax.bar(np.arange(len(w)), w, color="#1f77b4")
+    ax.bar(np.arange(len(w)), w, color=OKABE_ITO["blue"])
     ax.set_xlabel("candidates, heaviest first")
     ax.set_ylabel("normalised weight")
     if title:

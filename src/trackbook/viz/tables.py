@@ -2,10 +2,7 @@
 
 from __future__ import annotations
 
-
-def _cell(value) -> str:
-    """One table cell: text with the pipe escaped, so a value cannot break the table."""
-    return str(value).replace("|", "\\|").replace("\n", " ")
+from .._markdown import table
 
 
 def departures_table(name) -> str:
@@ -19,10 +16,7 @@ def departures_table(name) -> str:
     from .. import trackers
 
     rows = trackers.departures(name)
-    lines = ["| param | paper | book | why |", "|---|---|---|---|"]
-    for r in rows:
-        lines.append("| " + " | ".join(_cell(r[k]) for k in ("param", "paper", "book", "why"))
-                     + " |")
+    lines = [table(rows, ["param", "paper", "book", "why"])]
     if not rows:
         lines.append(f"| – | – | – | every default of `{name}` is the printed value |")
     return "\n".join(lines)

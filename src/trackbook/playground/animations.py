@@ -3,7 +3,7 @@
 Each function returns a displayable :class:`~trackbook.playground.animation.Animation`
 (scrub, play/pause, arrow keys; live in Jupyter and in the HTML book, offline)::
 
-    from trackbook.viz.animations import sir_cycle
+    from trackbook.playground.animations import sir_cycle
     sir_cycle()                     # predict / weigh / resample of a particle filter
 """
 
@@ -14,10 +14,11 @@ import numpy as np
 from .. import clips as _clips
 from ..evaluation import metrics
 from ..evaluation.runner import evaluate
-from ..playground.animation import Animation, run_entry
-from ..playground.data import snapshot
+from ..style import OKABE_ITO
+from .animation import Animation, run_entry
+from .data import snapshot
 
-ORANGE, PURPLE, SKY = "#E69F00", "#CC79A7", "#56B4E9"
+ORANGE, PURPLE, SKY = OKABE_ITO["orange"], OKABE_ITO["reddish purple"], OKABE_ITO["sky blue"]
 
 
 def show_run(clip, results: dict, max_frames: int = 80) -> Animation:
@@ -32,8 +33,7 @@ def show_run(clip, results: dict, max_frames: int = 80) -> Animation:
     for label, r in results.items():
         s = r.scores
         iou = metrics.iou(r.boxes, clip.groundtruth[:len(r.boxes)])[idx]
-        score = (f"{label} on {clip.name}: AUC {s['auc']:.3f} \u00b7 precision@20px "
-                 f"{s['precision20']:.3f} \u00b7 tracking rate {s['tracking_rate']:.1%}"
+        score = (f"{label} on {clip.name}: {metrics.scores_line(s, ms=False)}"
                  if "auc" in s else f"{label} on {clip.name}")
         runs[label] = run_entry(label, np.asarray(r.boxes)[idx], curve=iou,
                                 curve_label="IoU with ground truth", curve_x="frame",
@@ -108,10 +108,10 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
     Parameters
     ----------
     sensor : {"noisy-truth", "covariance"}
-        ``"noisy-truth"`` (chapter 6): the measurement is the ground-truth centre plus Gaussian
+        ``"noisy-truth"`` (``06_kalman``): the measurement is the ground-truth centre plus Gaussian
         noise of standard deviation ``noise_sd`` px, filtered by the constant-velocity model
         with ``R = noise_sd**2 I`` and one run per process-noise scale in ``qs`` (the viewer
-        offers them as a choice). ``"covariance"`` (chapter 7): the measurement is the best
+        offers them as a choice). ``"covariance"`` (``07_region_covariance``): the measurement is the best
         covariance match of the ``kalman-covariance`` tracker (``params`` go to it).
     """
     if sensor == "noisy-truth":
@@ -167,7 +167,7 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
 
 
 def _kalman_noisy_truth(clip, n_frames, seed, qs, noise_sd) -> Animation:
-    """Chapter 6's view: a simulated sensor (true centre + N(0, noise_sd^2)) and one Kalman
+    """The view of ``06_kalman``: a simulated sensor (true centre + N(0, noise_sd^2)) and one Kalman
     run per Q scale, on the same frames and the same noisy measurements."""
     from ..filters.kalman import constant_velocity
 

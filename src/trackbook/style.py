@@ -1,0 +1,47 @@
+"""The book's colours, in one place for the figures, the playground viewer and the videos.
+
+Dependency-free (no numpy, no matplotlib), so any layer may import it. Colours are ``#RRGGBB``
+strings; :func:`bgr` turns one into the ``(B, G, R)`` tuple OpenCV draws with.
+"""
+
+from __future__ import annotations
+
+
+class Palette(list):
+    """A list of colours that can also be indexed by name: ``p[5] == p["blue"]``."""
+
+    def __init__(self, named: dict):
+        super().__init__(named.values())
+        self.names = dict(named)
+
+    def __getitem__(self, key):
+        return self.names[key] if isinstance(key, str) else super().__getitem__(key)
+
+
+#: The book's one palette: Okabe & Ito's eight colours, distinguishable with the common
+#: colour-vision deficiencies; index it by position or by name.
+OKABE_ITO = Palette({"black": "#000000", "orange": "#E69F00", "sky blue": "#56B4E9",
+                     "bluish green": "#009E73", "yellow": "#F0E442", "blue": "#0072B2",
+                     "vermillion": "#D55E00", "reddish purple": "#CC79A7"})
+#: Ground truth bluish green, the estimate vermillion, everything else from the palette;
+#: trackers that a comparison plot is not about are drawn in GREY.
+GT_COLOR = OKABE_ITO["bluish green"]
+EST_COLOR = OKABE_ITO["vermillion"]
+GREY = "#BBBBBB"
+#: The order in which several trackers of one plot take their colours.
+CYCLE = [OKABE_ITO[k] for k in ("vermillion", "blue", "orange", "reddish purple", "sky blue",
+                                "black", "bluish green", "yellow")]
+#: What the playground viewer draws each element in (sent to ``viewer.js`` with its config).
+VIEWER = {"gt": GT_COLOR, "est": EST_COLOR, "particle": OKABE_ITO["blue"],
+          "window": OKABE_ITO["orange"], "ellipse": OKABE_ITO["reddish purple"],
+          "cand": "#8c8c8c", "ray": OKABE_ITO["sky blue"], "curve": EST_COLOR,
+          "grid": "#dddddd"}
+
+
+def bgr(colour: str) -> tuple:
+    """``"#RRGGBB"`` as the ``(B, G, R)`` integer tuple OpenCV draws with."""
+    h = colour.lstrip("#")
+    if len(h) != 6:
+        raise ValueError(f"colour {colour!r} is not '#RRGGBB'.")
+    r, g, b = (int(h[i:i + 2], 16) for i in (0, 2, 4))
+    return (b, g, r)
