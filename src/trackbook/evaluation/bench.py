@@ -272,8 +272,9 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
                                 else (imports or ()))]
     tasks = plan(trackers, clips, seed, max_frames, params, reference, seeds, preset=preset,
                  max_runs=max_runs, imports=imports)
-    if scheduler:
-        parallel.check_timeout(scheduler_timeout)
+    scheduler = scheduler or os.environ.get(parallel.ENV_SCHEDULER) or None
+    if isinstance(scheduler, (str, os.PathLike)):  # fail in seconds, before any run
+        parallel.check_scheduler(scheduler, parallel.check_timeout(scheduler_timeout))
     multi_seed = len({t.seed for t in tasks}) > 1
     done: dict[Task, dict] = {}
     if not force:
