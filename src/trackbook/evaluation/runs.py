@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import importlib.metadata
 import json
 import os
 import re
@@ -170,7 +171,7 @@ def code_modules(cls) -> list:
         if m is not None and getattr(m, "__file__", None) and k is not object:
             core[m.__name__] = m
     folders = {str(Path(m.__file__).resolve().parent) for m in core.values()
-               if not m.__name__.startswith("trackbook")}
+               if not (m.__name__ == "trackbook" or m.__name__.startswith("trackbook."))}
     found = dict(core)
     for m in core.values():
         for v in list(vars(m).values()):
@@ -185,8 +186,9 @@ def code_modules(cls) -> list:
 
 
 def code_fingerprint(name: str) -> str:
-    """A hash of the code behind tracker ``name``: the source of :func:`code_modules`, the
-    trackbook version and OpenCV's version (cached per process)."""
+    """A hash of the code behind tracker ``name``: the source of :func:`code_modules` (and of
+    any ``.py`` script such a module names, e.g. the MIL child), the installed trackbook
+    version and OpenCV's version (cached per process)."""
     if name in _CODE:
         return _CODE[name]
     import cv2
@@ -194,18 +196,23 @@ def code_fingerprint(name: str) -> str:
     from .. import trackers as _trackers
 
     try:
-        from .. import __version__
-    except ImportError:  # trackbook/__init__ still importing
-        __version__ = "unknown"
+        version = importlib.metadata.version("trackbook")
+    except importlib.metadata.PackageNotFoundError:  # a source tree without install
+        version = "unknown"
     cls = _trackers.get(name)
     h = hashlib.blake2b(digest_size=16)
-    h.update(f"{__version__};{cv2.__version__};{cls.__module__}.{cls.__qualname__};".encode())
+    h.update(f"{version};{cv2.__version__};{cls.__module__}.{cls.__qualname__};".encode())
     for m in code_modules(cls):
-        h.update(m.__name__.encode())
-        try:
-            _hash_file(h, m.__file__)
-        except OSError:  # a module without a readable file (zip import): key by name only
-            pass
+        files = [m.__file__]
+        # a script the module runs in a child process (opencv-mil's _mil_child.py) is its code
+        files += sorted({v for v in vars(m).values() if isinstance(v, str)
+                         and v.endswith(".py") and os.path.isfile(v)})
+        for f in files:
+            h.update(f"{m.__name__}:{Path(f).name};".encode())
+            try:
+                _hash_file(h, f)
+            except OSError:  # a module without a readable file (zip import): key by name only
+                pass
     _CODE[name] = h.hexdigest()
     return _CODE[name]
 
