@@ -209,3 +209,24 @@ def test_a_killed_two_worker_bench_leaves_no_process(tmp_path, sig):
             except OSError:
                 pass
         p.stderr.close()
+
+
+def test_bench_parallel_and_runs_do_not_import_each_other():
+    import ast
+    import importlib
+
+    def imported(mod):
+        tree = ast.parse(open(importlib.import_module(mod).__file__).read())
+        names = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and node.level == 1:
+                names |= {node.module} if node.module else {a.name for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                names.add(node.module.rsplit(".", 1)[-1])
+        return names
+
+    b = imported("trackbook.evaluation.bench")
+    p = imported("trackbook.evaluation.parallel")
+    r = imported("trackbook.evaluation.runs")
+    assert "bench" not in p and "bench" not in r and "parallel" not in r
+    assert "runs" in p and ("runs" in b or "parallel" in b)

@@ -33,8 +33,8 @@ import numpy as np
 
 from .. import clips as _clips
 from . import metrics, parallel
-from .runs import (ClipRef, Task, _jsonable, code_fingerprint, fingerprint, load_imports,  # noqa: F401
-                   load_run, run_group, safe_name, write_atomic)
+from .runs import (ClipRef, Task, _jsonable, code_fingerprint, fingerprint,  # noqa: F401
+                   load_imports, load_run, run_group, safe_name, write_atomic)
 
 REFERENCE = "opencv-mil"
 COLUMNS = ["tracker", "clip", "frames", "auc", "precision20", "tracking_rate",

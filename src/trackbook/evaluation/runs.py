@@ -264,7 +264,8 @@ class Task:
         return hashlib.sha1(json.dumps(self.settings, sort_keys=True).encode()).hexdigest()
 
     def path(self, out) -> Path:
-        return Path(out) / "runs" / f"{self.tracker}__{safe_name(self.clip.name)}__s{self.seed}__{self.key[:12]}.json"
+        name = f"{self.tracker}__{safe_name(self.clip.name)}__s{self.seed}__{self.key[:12]}"
+        return Path(out) / "runs" / f"{name}.json"
 
 
 def safe_name(name: str) -> str:
