@@ -181,3 +181,17 @@ def test_otb_layout_files_score_what_the_bench_scored(tmp_path):
         ious = [_iou(p, g) for p, g in zip(boxes[1:], gt[1:])]  # OTB scores frames 2..N
         auc = np.mean([np.mean([v > t for v in ious]) for t in np.linspace(0, 1, 21)])
         assert abs(auc - r["auc"]) < 1e-12, r["tracker"]
+
+
+def test_a_worker_that_dies_is_one_line_not_a_hang(tmp_path, capsys):
+    from trackbook import cli
+
+    f = tmp_path / "crasher.py"
+    f.write_text(TRACKER_FILE.format(name="user-crasher", shift=0).replace(
+        "    def _update(self, frame):\n",
+        "    def _update(self, frame):\n        import os\n        os._exit(3)\n"))
+    a, b = _folder(tmp_path / "d", "a"), _folder(tmp_path / "d", "b")
+    code = cli.main(["bench", "--import", str(f), "--trackers", "user-crasher", "--clips",
+                     f"{a},{b}", "--workers", "2", "--quiet", "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and "exit code 3" in err[0], err

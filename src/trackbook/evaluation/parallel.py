@@ -140,6 +140,10 @@ def stop_on_signals():
             signal.signal(getattr(signal, s), h)
 
 
+class WorkerLost(ChildProcessError):
+    """A worker process died (killed, out of memory) before finishing its runs."""
+
+
 def watch_parent(parent: int, interval: float = 0.5) -> None:
     """End this process when process ``parent`` is gone: on Linux the kernel sends SIGKILL
     (``prctl(PR_SET_PDEATHSIG)``); everywhere a daemon thread polls ``os.getppid()``."""
@@ -228,7 +232,7 @@ def _execute_local(gs, out, finished, workers, multi_seed, imports):
                 dead = [p for p in procs if p.exitcode not in (None, 0)]
                 if dead or all(p.exitcode is not None for p in procs):
                     code = dead[0].exitcode if dead else 0
-                    raise RuntimeError(
+                    raise WorkerLost(
                         f"a bench worker process ended unexpectedly (exit code {code}); "
                         "finished runs are saved, run the same command again to resume."
                     ) from None
