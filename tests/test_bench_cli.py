@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from trackbook import cli, clips
-from trackbook.evaluation import bench
+from trackbook.evaluation import bench, runs
 
 from .conftest import SEQUENCES, needs_sequences
 
@@ -51,7 +51,7 @@ def test_bench_writes_tables_and_resumes(tmp_path, tiny_folder, monkeypatch):
     def tracked_again(*a, **k):
         calls.append(a)
         raise RuntimeError("tracked again")
-    monkeypatch.setattr(bench, "evaluate", tracked_again)
+    monkeypatch.setattr(runs, "evaluate", tracked_again)
     rows2 = bench.run(["opencv-mil"], [str(tiny_folder)], out, progress=False)
     assert calls == [] and rows2 == rows
     # different settings are not confused with the saved run: it tracks again
@@ -72,7 +72,7 @@ def test_bench_leaves_the_matplotlib_backend_alone(tmp_path, tiny_folder):
 
 def test_bench_interrupted_loses_nothing_finished(tmp_path, tiny_folder, monkeypatch):
     out = tmp_path / "bench"
-    real = bench.evaluate
+    real = runs.evaluate
     second = tmp_path / "tiny2"
     import shutil
     shutil.copytree(tiny_folder, second)
@@ -81,12 +81,12 @@ def test_bench_interrupted_loses_nothing_finished(tmp_path, tiny_folder, monkeyp
         if clip.name == "tiny2":
             raise KeyboardInterrupt
         return real(tracker, clip, **kw)
-    monkeypatch.setattr(bench, "evaluate", flaky)
+    monkeypatch.setattr(runs, "evaluate", flaky)
     with pytest.raises(KeyboardInterrupt):
         bench.run(["opencv-mil"], [str(tiny_folder), str(second)], out, progress=False)
     assert len(list((out / "runs").glob("opencv-mil__tiny__s0__*.json"))) == 1
     assert not list((out / "runs").glob("*.tmp"))
-    monkeypatch.setattr(bench, "evaluate", real)
+    monkeypatch.setattr(runs, "evaluate", real)
     rows = bench.run(["opencv-mil"], [str(tiny_folder), str(second)], out, progress=False)
     assert {r["clip"] for r in rows} == {"tiny", "tiny2"}
 

@@ -189,13 +189,13 @@ def test_single_process_bench_uses_one_opencv_thread_and_restores_it(tmp_path, t
     monkeypatch.delenv(parallel.ENV_CV_THREADS, raising=False)
     before = cv2.getNumThreads()
     seen = []
-    real = parallel._bench.run_group
+    real = parallel.runs.run_group
 
     def spy(*a, **k):
         seen.append((cv2.getNumThreads(), os.environ.get(parallel.ENV_CV_THREADS)))
         return real(*a, **k)
 
-    monkeypatch.setattr(parallel._bench, "run_group", spy)
+    monkeypatch.setattr(parallel.runs, "run_group", spy)
     bench.run(["mean-shift"], two_clips, str(tmp_path), workers=1, progress=False,
               reference=False)
     assert seen and all(s == (1, "1") for s in seen)

@@ -202,8 +202,9 @@ def _track_all_targets(args, clip, params, out) -> int:
 
 
 def cmd_bench(args) -> int:
-    from .evaluation import bench
+    from .evaluation import bench, runs
 
+    runs.load_imports(args.imports)   # before --param looks the trackers up
     params: dict[str, dict] = {}
     for item in args.param or []:
         if ":" not in item:
@@ -215,11 +216,15 @@ def cmd_bench(args) -> int:
         rows = bench.run(args.trackers, args.clips, args.out, seed=args.seed,
                          seeds=args.seeds, max_frames=args.max_frames, params=params,
                          progress=not args.quiet, force=args.force, workers=args.workers,
-                         scheduler=args.scheduler)
-    except KeyboardInterrupt:
-        print(f"\ntrackbook: interrupted; finished runs are saved in {args.out}/runs; run the "
-              "same command again to resume.", file=sys.stderr)
-        return 130
+                         scheduler=args.scheduler, imports=args.imports or (),
+                         preset=args.preset, max_runs=args.max_runs,
+                         scheduler_timeout=args.scheduler_timeout)
+    except KeyboardInterrupt as e:   # Ctrl-C, or SIGTERM/SIGHUP (parallel.Stopped)
+        signum = getattr(e, "signum", 2)
+        print(f"\ntrackbook: {'interrupted' if signum == 2 else 'stopped by a signal'}; "
+              f"finished runs are saved in {args.out}/runs; run the same command again to "
+              "resume.", file=sys.stderr)
+        return 128 + signum
     except ImportError as e:   # --scheduler without the dask extra
         print(f"trackbook: error: {e}", file=sys.stderr)
         return 2
@@ -310,6 +315,16 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--scheduler", default=None,
                    help="Dask scheduler address, e.g. tcp://HOST:8786 (default: "
                         "$TRACKBOOK_DASK_SCHEDULER; needs pip install 'trackbook[dask]')")
+    b.add_argument("--scheduler-timeout", type=float, default=None, metavar="SECONDS",
+                   help="seconds the scheduler has to connect and answer (default: "
+                        "$TRACKBOOK_DASK_TIMEOUT or 5)")
+    b.add_argument("--import", dest="imports", action="append", metavar="MODULE_OR_FILE",
+                   help="a module or .py file that registers your own tracker(s); "
+                        "repeatable; loaded in every worker")
+    b.add_argument("--preset", choices=["book", "paper"], default="book",
+                   help="start every tracker from the book's defaults or the paper's values")
+    b.add_argument("--max-runs", type=int, default=None, metavar="N",
+                   help="the most runs one bench may do (default 5000)")
     b.set_defaults(fn=cmd_bench)
 
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")

@@ -1,15 +1,17 @@
 """The benchmark: trackers x clips x seeds -> tables and plots, resumable and parallel.
 
 Each (tracker, clip, seed) run is written to ``OUT/runs/<tracker>__<clip>__s<seed>__<key>.json``
-atomically (write a temporary file, then rename) as soon as it finishes. ``<key>`` is a hash of
-everything the result depends on: the tracker, its params and seed, ``max_frames``, the clip's
-*identity* (the resolved path of its folder or video, or ``sample:<name>``, plus the target)
-and a *fingerprint* of its ground truth and frame list (file names and sizes). A re-run reads a
-run back only when its key matches, so renamed, duplicate or edited clips never share or reuse
-a stale result. The summary files (``results.csv``, ``results.json``, ``curves.json``,
-``table.md``, ``success.png``, ``precision.png`` and, when the clips carry attributes,
+atomically as soon as it finishes. ``<key>`` hashes everything the result depends on (see
+:mod:`trackbook.evaluation.runs`): the tracker, its preset, params and seed, ``max_frames``,
+the clip's identity and a fingerprint of its ground truth and frames' bytes, and a fingerprint
+of the tracker's code and the library version. A re-run reads a run back only when its key
+matches, so renamed, duplicate or edited clips and edited trackers never reuse a stale result.
+The summary files (``results.csv``, ``results.json``, ``curves.json``, ``table.md``,
+``success.png``, ``precision.png`` and, when the clips carry attributes,
 ``attributes.md``/``attributes.csv``/``success_<ATTR>.png``/``precision_<ATTR>.png``) are rebuilt
-from the runs at the end, also atomically, with mode 0644.
+from the runs at the end, also atomically, with mode 0644, and so are the results in the
+format other toolkits read: ``otb/<tracker>/<clip>.txt`` (one ``x,y,w,h`` line per frame,
+frame 1 the initial box) and ``otb/<tracker>/<clip>_time.txt`` (seconds per frame).
 
 Runs go to worker processes (``workers``, default the number of cores) or to a Dask
 distributed cluster (``scheduler``): see :mod:`trackbook.evaluation.parallel`. Scores do not
@@ -21,81 +23,26 @@ from __future__ import annotations
 
 import csv
 import dataclasses
-import hashlib
 import io
 import json
 import os
 import re
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from .. import clips as _clips
 from .._checks import check_max_frames
-from . import metrics
-from .runner import evaluate, evaluate_many  # noqa: F401  (evaluate: tests patch it)
+from . import metrics, parallel
+from .runs import (ClipRef, Task, _jsonable, code_fingerprint, fingerprint,  # noqa: F401
+                   load_imports, load_run, run_group, safe_name, write_atomic)
 
 REFERENCE = "opencv-mil"
 COLUMNS = ["tracker", "clip", "frames", "auc", "precision20", "tracking_rate",
            "mean_center_error", "ms_median", "ms_mean"]
-
-
-def _umask() -> int:
-    m = os.umask(0)
-    os.umask(m)
-    return m
-
-
-def write_atomic(path, data: bytes | str) -> None:
-    """Write ``data`` to ``path`` so that readers see the old file or the new one, never half.
-
-    The file gets the mode an ordinary ``open`` would give (0644 under the usual umask 022),
-    not ``mkstemp``'s 0600.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, mode) as f:
-            f.write(data)
-        os.chmod(tmp, 0o666 & ~_umask())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
-# --------------------------------------------------------------------------- clip references
-@dataclasses.dataclass(frozen=True)
-class ClipRef:
-    """What a worker needs to load one clip, and how the bench names and keys it.
-
-    ``spec`` is what :func:`trackbook.clips.load` accepts (a sample name or a path) or a
-    :class:`trackbook.clips.datasets.Sequence`; ``name`` is the clip's column in the tables
-    (unique within one bench); ``identity`` is ``sample:<name>`` or the resolved path (with
-    ``#<target>`` for one target of a multi-target sequence).
-    """
-
-    spec: object
-    name: str
-    identity: str
-    target: str | None = None
-
-    def load(self):
-        """The :class:`~trackbook.clips.Clip` (for one target when ``target`` is set)."""
-        if hasattr(self.spec, "load"):
-            clip = self.spec.load()
-        else:
-            clip = _clips.load(self.spec)
-        if self.target is not None and self.target in clip.targets and len(clip.targets) > 1:
-            clip = dataclasses.replace(clip, groundtruth=clip.targets[self.target],
-                                       targets={self.target: clip.targets[self.target]})
-        if clip.name != self.name:
-            clip = dataclasses.replace(clip, name=self.name)
-        return clip
+#: The most runs a bench does unless ``max_runs`` (``--max-runs``) raises it.
+MAX_RUNS = 5000
+PRESETS = ("book", "paper")
 
 
 def _ref(spec) -> list[ClipRef]:
@@ -165,54 +112,23 @@ def resolve_clips(specs) -> list[ClipRef]:
     return out
 
 
-def fingerprint(clip) -> str:
-    """A hash of the clip's ground truth (every target) and frame list: image file names and
-    sizes, a video's path and size, or a generated clip's pixels."""
-    h = hashlib.sha1()
-    for k in sorted(clip.targets):
-        h.update(k.encode())
-        h.update(np.ascontiguousarray(np.asarray(clip.targets[k], dtype=np.float64)).tobytes())
-    h.update(np.asarray(clip.groundtruth, dtype=np.float64).tobytes())
-    fr = clip.frames
-    h.update(str(len(fr)).encode())
-    paths = getattr(fr, "paths", None)
-    if paths is not None:
-        for p in paths:
-            p = Path(p)
-            h.update(f"{p.name}:{p.stat().st_size};".encode())
-    elif getattr(fr, "path", None) is not None:
-        p = Path(fr.path)
-        h.update(f"{p.resolve()}:{p.stat().st_size}".encode())
-    elif getattr(fr, "array", None) is not None:
-        h.update(np.ascontiguousarray(fr.array).tobytes())
-    else:
-        for f in fr:
-            h.update(np.ascontiguousarray(f).tobytes())
-    return h.hexdigest()
+def parse_seeds(spec, limit: int | None = None) -> list[int]:
+    """``0``, ``"0-9"``, ``"0,3,7"``, ``"0-2,5"`` or a list -> sorted unique non-negative ints.
 
+    With ``limit``, more than ``limit`` seeds is a ``ValueError`` (checked before a range is
+    expanded, so ``0-10**12`` is refused at once).
+    """
 
-def _jsonable(v):
-    if isinstance(v, dict):
-        return {k: _jsonable(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, np.ndarray):
-        return _jsonable(v.tolist())
-    if isinstance(v, (np.floating, float)):
-        return None if not np.isfinite(v) else float(v)
-    if isinstance(v, np.integer):
-        return int(v)
-    if isinstance(v, np.bool_):
-        return bool(v)
-    return v
+    def too_many(n):
+        if limit is not None and n > limit:
+            raise ValueError(f"seeds {spec!r} asks for {n} seeds, more than the {limit} runs "
+                             "this bench may do; give fewer seeds or raise the cap with "
+                             "--max-runs N (max_runs=N in Python).")
 
-
-def parse_seeds(spec) -> list[int]:
-    """``0``, ``"0-9"``, ``"0,3,7"``, ``"0-2,5"`` or a list -> sorted unique non-negative ints."""
     if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool):
         items = [int(spec)]
     elif isinstance(spec, str):
-        items = []
+        items, count = [], 0
         for part in (p.strip() for p in spec.split(",")):
             m = re.fullmatch(r"(\d+)(?:\s*-\s*(\d+))?", part)
             if not m:
@@ -221,6 +137,8 @@ def parse_seeds(spec) -> list[int]:
             a, b = int(m.group(1)), int(m.group(2) or m.group(1))
             if b < a:
                 raise ValueError(f"seeds {part!r}: the range ends before it starts; write {b}-{a}.")
+            count += b - a + 1
+            too_many(count)
             items.extend(range(a, b + 1))
     else:
         items = list(spec)
@@ -230,92 +148,9 @@ def parse_seeds(spec) -> list[int]:
         items = [int(s) for s in items]
     if not items:
         raise ValueError("no seeds given; pass e.g. --seeds 0 or --seeds 0-9.")
-    return sorted(set(items))
-
-
-@dataclasses.dataclass(frozen=True)
-class Task:
-    """One run: tracker, clip, seed; ``key`` decides whether a saved run can be reused."""
-
-    tracker: str
-    clip: ClipRef
-    seed: int
-    max_frames: int | None
-    params: tuple  # sorted (name, value) pairs
-    fingerprint: str
-    frames: int  # frames this run tracks (for the progress bar)
-
-    @property
-    def settings(self) -> dict:
-        return _jsonable({"tracker": self.tracker, "seed": self.seed,
-                          "max_frames": self.max_frames, "params": dict(self.params),
-                          "clip": self.clip.identity, "fingerprint": self.fingerprint})
-
-    @property
-    def key(self) -> str:
-        return hashlib.sha1(json.dumps(self.settings, sort_keys=True).encode()).hexdigest()
-
-    def path(self, out) -> Path:
-        safe = re.sub(r"[^A-Za-z0-9._-]+", "_", self.clip.name)
-        return Path(out) / "runs" / f"{self.tracker}__{safe}__s{self.seed}__{self.key[:12]}.json"
-
-
-def load_run(task: Task, out) -> dict | None:
-    """The saved record of ``task`` when its key matches, else None (damaged files re-run)."""
-    path = task.path(out)
-    if not path.is_file():
-        return None
-    try:
-        saved = json.loads(path.read_text())
-    except (json.JSONDecodeError, OSError, UnicodeDecodeError):
-        return None
-    return saved if saved.get("key") == task.key else None
-
-
-def _record(task: Task, r, clip, multi_seed: bool) -> dict:
-    gt = clip.groundtruth[: len(r.boxes)]
-    row = {"tracker": task.tracker, "clip": clip.name, "frames": int(len(r.boxes)), **r.scores}
-    if multi_seed:
-        row["seed"] = task.seed
-    for k, v in r.extras.items():
-        row[k] = float(np.nanmean(v))
-    rec = {"key": task.key, "settings": task.settings, "row": row, "boxes": r.boxes,
-           "ms": r.ms, "params": r.params, "attributes": list(clip.attributes)}
-    try:
-        rec["success"] = metrics.success_curve(r.boxes[1:], gt[1:])[1]
-        rec["precision"] = metrics.precision_curve(r.boxes[1:], gt[1:])[1]
-    except ValueError:
-        pass
-    return _jsonable(rec)
-
-
-def run_group(tasks, out=None, multi_seed=False, on_frames=None) -> list[dict]:
-    """Run tasks that share one clip, decoding each frame once for all of them (lockstep, see
-    :func:`trackbook.evaluation.runner.evaluate_many`); write each record to ``out`` (when
-    given) and return the records. This is what a worker process or a Dask worker executes.
-    """
-    tasks = list(tasks)
-    clip = tasks[0].clip.load()
-    by_frames: dict = {}
-    for t in tasks:
-        by_frames.setdefault(t.max_frames, []).append(t)
-    recs = {}
-    for max_frames, ts in by_frames.items():
-        if len(ts) == 1:  # kept separate so tests can patch evaluate()
-            t = ts[0]
-            results = [evaluate(t.tracker, clip, seed=t.seed, max_frames=max_frames,
-                                 **dict(t.params))]
-        else:
-            results = evaluate_many([(t.tracker, t.seed, dict(t.params)) for t in ts], clip,
-                                    max_frames=max_frames)
-        for t, r in zip(ts, results):
-            rec = _record(t, r, clip, multi_seed)
-            if out is not None:
-                write_atomic(t.path(out), json.dumps(rec))
-            recs[t] = rec
-            if on_frames is not None:
-                on_frames(t.frames)
-    return [recs[t] for t in tasks]
+    items = sorted(set(items))
+    too_many(len(items))
+    return items
 
 
 def _check_trackers_and_params(trackers, params):
@@ -342,10 +177,27 @@ def _frozen(p: dict) -> tuple:
     return tuple(sorted((k, f(v)) for k, v in p.items()))
 
 
+def _check_max_runs(max_runs) -> int:
+    if max_runs is None:
+        return MAX_RUNS
+    if isinstance(max_runs, bool) or not isinstance(max_runs, (int, np.integer)) or max_runs < 1:
+        raise ValueError(f"max_runs = {max_runs!r}: give the most runs this bench may do, a "
+                         "whole number of at least 1 (e.g. --max-runs 20000).")
+    return int(max_runs)
+
+
 def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
-         seeds=None) -> list[Task]:
+         seeds=None, preset: str = "book", max_runs: int | None = None,
+         imports=()) -> list[Task]:
     """The runs a bench would do, in order (clips, then seeds, then trackers); MIL, which
-    ignores the seed, runs with the first seed only."""
+    ignores the seed, runs with the first seed only. More than ``max_runs`` runs (default
+    :data:`MAX_RUNS`) is a ``ValueError`` naming the count and the flag that raises the cap.
+    ``imports`` are loaded first (user trackers; see :func:`run`)."""
+    load_imports(imports)
+    max_runs = _check_max_runs(max_runs)
+    if preset not in PRESETS:
+        raise ValueError(f"unknown preset {preset!r}; use one of {', '.join(PRESETS)} "
+                         "(--preset paper runs the printed methods).")
     if isinstance(trackers, str):
         trackers = [t.strip() for t in trackers.split(",") if t.strip()]
     trackers = list(dict.fromkeys(trackers))
@@ -353,10 +205,19 @@ def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
     _check_trackers_and_params(trackers, params)
     if reference and REFERENCE not in trackers:
         trackers.append(REFERENCE)
-    seeds = parse_seeds(seed if seeds is None else seeds)
+    seeds = parse_seeds(seed if seeds is None else seeds, limit=max_runs)
     max_frames = check_max_frames(max_frames)
+    refs = resolve_clips(clips)
+    per_clip = len([t for t in trackers if t != REFERENCE]) * len(seeds) + (REFERENCE in trackers)
+    total = per_clip * len(refs)
+    if total > max_runs:
+        raise ValueError(f"this bench would do {total} runs ({len(trackers)} trackers x "
+                         f"{len(refs)} clips x {len(seeds)} seeds), more than the cap of "
+                         f"{max_runs}; narrow --trackers/--clips/--seeds or raise the cap with "
+                         f"--max-runs {total} (max_runs={total} in Python).")
+    code = {t: code_fingerprint(t) for t in trackers}
     tasks = []
-    for ref in resolve_clips(clips):
+    for ref in refs:
         clip = ref.load()
         fp = fingerprint(clip)
         n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
@@ -364,20 +225,29 @@ def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
             for t in trackers:
                 if t == REFERENCE and s != seeds[0]:
                     continue
-                tasks.append(Task(t, ref, s, max_frames, _frozen(params.get(t, {})), fp, n))
+                tasks.append(Task(t, ref, s, max_frames, _frozen(params.get(t, {})), fp, n,
+                                  preset=preset, code=code[t]))
     return tasks
+
+
+def _check_out(out) -> Path:
+    if out is None or not str(out).strip():
+        raise ValueError("out is empty; name the output folder, e.g. --out bench-results "
+                         "(an empty name would write into the current folder).")
+    return Path(out)
 
 
 def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=True,
         force=False, reference=True, seeds=None, workers: int = 1,
-        scheduler: str | None = None) -> list[dict]:
+        scheduler: str | None = None, imports=(), preset: str = "book",
+        max_runs: int | None = None, scheduler_timeout: float | None = None) -> list[dict]:
     """Run every tracker on every clip (and seed); write the tables and plots; return the rows.
 
     Parameters
     ----------
     trackers : list of names (or comma-separated string); must not be empty
     clips : clip specs (see :func:`resolve_clips`); must not be empty
-    out : output folder
+    out : output folder (not empty)
     seed : int, the seed of every run (``seeds`` sweeps several)
     max_frames : int, optional; track only the first frames
     params : dict tracker name -> dict of params (only for trackers in the run)
@@ -385,13 +255,26 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     force : re-run runs already saved
     reference : also run OpenCV's MIL (the reference row of every table)
     seeds : ``"0-9"``, ``"0,3"`` or a list; rows then carry a ``seed`` column
-    workers : worker processes on this machine (1: in this process)
+    workers : worker processes on this machine (1: in this process; at least 1)
     scheduler : address of a Dask distributed scheduler (``tcp://HOST:8786``); overrides
         ``workers``. The runs go to the cluster and come back to ``out``.
+    imports : modules or ``.py`` files of user trackers (``--import``), loaded here, in every
+        local worker and on Dask workers through :func:`trackbook.trackers.plugins.load`
+    preset : ``"book"`` or ``"paper"`` (every tracker starts from the values its paper prints;
+        ``params`` override either); part of each run's key
+    max_runs : the most runs this bench may do (default :data:`MAX_RUNS`)
+    scheduler_timeout : seconds a Dask scheduler has to connect and answer (default
+        ``$TRACKBOOK_DASK_TIMEOUT`` or 5)
     """
-    from . import parallel
-
-    tasks = plan(trackers, clips, seed, max_frames, params, reference, seeds)
+    out = _check_out(out)
+    workers = parallel.check_workers(workers)
+    imports = [str(i) for i in ([imports] if isinstance(imports, (str, os.PathLike))
+                                else (imports or ()))]
+    tasks = plan(trackers, clips, seed, max_frames, params, reference, seeds, preset=preset,
+                 max_runs=max_runs, imports=imports)
+    scheduler = scheduler or os.environ.get(parallel.ENV_SCHEDULER) or None
+    if isinstance(scheduler, (str, os.PathLike)):  # fail in seconds, before any run
+        parallel.check_scheduler(scheduler, parallel.check_timeout(scheduler_timeout))
     multi_seed = len({t.seed for t in tasks}) > 1
     done: dict[Task, dict] = {}
     if not force:
@@ -418,7 +301,7 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
 
     try:
         parallel.execute(todo, out, finished, workers=workers, scheduler=scheduler,
-                         multi_seed=multi_seed)
+                         multi_seed=multi_seed, imports=imports, timeout=scheduler_timeout)
     finally:
         if bar is not None:
             bar.close()
@@ -526,6 +409,7 @@ def write_summary(records, out) -> None:
                   for c, rs in cs.items()} for t, cs in curves.items()}
     write_atomic(out / "curves.json", json.dumps(curves))
     write_atomic(out / "table.md", markdown_table(rows))
+    write_otb(records, out)
     _plot(records, out)
     attrs = attribute_rows(records)
     if attrs:
@@ -539,6 +423,26 @@ def write_summary(records, out) -> None:
             safe = re.sub(r"[^A-Za-z0-9_-]+", "_", a)
             _plot([r for r in records if a in (r.get("attributes") or [])], out,
                   suffix=f"_{safe}", title=f" ({a})")
+
+
+def write_otb(records, out) -> None:
+    """The results in the layout the OTB toolkit, got10k, pysot and pytracking read:
+    ``OUT/otb/<tracker>/<clip>.txt``, one comma-separated ``x,y,w,h`` line per frame (frame 1
+    the initial box; 1-based frame numbers, 0-based pixel coordinates as in trackbook's
+    boxes), and ``OUT/otb/<tracker>/<clip>_time.txt``, the seconds each frame took (frame 1:
+    ``init``). With several seeds these are the first seed's runs. Values are written with
+    ``repr``, so a reader gets the very floats the bench scored."""
+    chosen: dict = {}
+    for r in records:
+        k = (r["row"]["tracker"], r["row"]["clip"])
+        if k not in chosen or r["settings"]["seed"] < chosen[k]["settings"]["seed"]:
+            chosen[k] = r
+    for (tracker, clip), r in chosen.items():
+        folder = out / "otb" / safe_name(tracker)
+        boxes = "".join(",".join(repr(float(v)) for v in b) + "\n" for b in r["boxes"])
+        times = "".join(f"{float(ms) / 1e3!r}\n" for ms in r["ms"])
+        write_atomic(folder / f"{safe_name(clip)}.txt", boxes)
+        write_atomic(folder / f"{safe_name(clip)}_time.txt", times)
 
 
 def _plot(records, out, suffix="", title=""):
