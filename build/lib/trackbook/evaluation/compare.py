@@ -1,0 +1,278 @@
+"""Comparing trackers across clips and against the papers' own figures (chapter 09).
+
+Everything here works on benchmark rows (``trackbook.evaluation.bench.run`` / ``load``): dicts
+with ``tracker``, ``clip``, ``auc``, ``precision20``, ``tracking_rate``, ``ms_median`` and the
+trackers' own extras (``search_rate``, ...). The papers' headline figures live in
+:data:`PAPERS`, transcribed from their tables; :func:`check_claims` tests each paper's central
+claim on our data and says in numbers why it holds or not.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Attributes of the development sequences (OTB codes from the benchmark's annotation; the two
+#: VOT sequences annotated by the same rules from their SOURCE.txt descriptions).
+SEQUENCE_ATTRIBUTES = {
+    "David": ("IV", "OPR", "SV", "OCC", "DEF", "MB", "IPR"),
+    "Jogging1": ("OPR", "OCC", "DEF"),
+    "MotorRolling": ("IV", "SV", "MB", "FM", "IPR", "BC", "LR"),
+    "Couple": ("OPR", "SV", "DEF", "FM", "BC"),
+    "Crossing": ("SV", "DEF", "BC"),
+    "Ball1": ("FM", "BC", "LR"),
+    "Bag": ("DEF", "IPR", "SV", "BC"),
+}
+
+#: What the attribute codes mean, for the difficulties the guide is about.
+DIFFICULTIES = {
+    "IV": "illumination change",
+    "OCC": "occlusion",
+    "FM": "fast motion",
+    "BC": "distractors / clutter",
+    "SV": "scale change",
+    "DEF": "deformation",
+}
+
+#: The papers' headline figures (their tables), and the hardware they were measured on.
+PAPERS = {
+    "000": {
+        "label": "Lee et al. 2012",
+        "paper": "Lee et al. 2012, Table 3",
+        "trackers": ["color-pf", "color-hog-pf", "color-hog-ipca"],
+        "tracking_rate": {"color-pf": 0.711, "color-hog-pf": 0.903, "color-hog-ipca": 0.924},
+        "ms": {"color-pf": 7.0, "color-hog-pf": 13.0, "color-hog-ipca": 55.0},
+        "hardware": "Intel Core 2 Quad Q6600, C++, 640x480",
+        "claim": "tracking rate: Color < Color+HOG < Proposed",
+        "kind": "rate_order",
+    },
+    "001": {
+        "label": "Kim et al. 2016",
+        "paper": "Kim, Kim & Choi 2016, Table 3",
+        "trackers": ["hsi-color-pf", "hog-pf", "edge-ray-pf"],
+        "tracking_rate": {"hsi-color-pf": 0.623, "hog-pf": 0.704, "edge-ray-pf": 0.898},
+        "ms": {},
+        "hardware": "not reported",
+        "claim": "tracking rate: HSI < HOG < edge rays",
+        "kind": "rate_order",
+    },
+    "002": {
+        "label": "Lee 2015",
+        "paper": "Lee 2015, Table 1 (RedCube, 164 frames)",
+        "trackers": ["covariance", "kalman-covariance"],
+        "tracking_rate": {"covariance": 0.871, "kalman-covariance": 0.963},
+        "search_rate": {"covariance": 0.00134, "kalman-covariance": 0.00043},
+        "ms": {},
+        "hardware": "Intel Pentium G2120 3.1 GHz, 320x240",
+        "claim": "the Kalman window detects more and searches less than covariance alone",
+        "kind": "kalman",
+    },
+    "003": {
+        "label": "Cho & Kang 2005",
+        "paper": "Cho & Kang 2005, Table 1 (single target)",
+        "trackers": ["condensation", "mean-shift", "condensation-mean-shift"],
+        "tracking_rate": {},
+        "ms": {"condensation": 84.0, "mean-shift": 7.0, "condensation-mean-shift": 35.0},
+        "hardware": "Pentium 4 1.5 GHz, 320x240",
+        "claim": "5 candidates + mean-shift are faster than Condensation and more accurate "
+                 "than both",
+        "kind": "speed_accuracy",
+    },
+}
+
+
+def _mean(rows, tracker, key, clips=None):
+    v = [r[key] for r in rows if r["tracker"] == tracker and r.get(key) is not None
+         and (clips is None or r["clip"] in clips)]
+    return float(np.mean(v)) if v else float("nan")
+
+
+def table(rows, clips=None, keys=("auc", "precision20", "tracking_rate", "ms_median")) -> list[dict]:
+    """One row per tracker: the mean of each score over ``clips`` (all by default);
+    ``ms_median`` is the median over clips of the per-clip medians."""
+    out = []
+    for t in dict.fromkeys(r["tracker"] for r in rows):
+        row = {"tracker": t}
+        for k in keys:
+            if k == "ms_median":
+                v = [r[k] for r in rows if r["tracker"] == t and (clips is None or r["clip"] in clips)]
+                row[k] = float(np.median(v)) if v else float("nan")
+            else:
+                row[k] = _mean(rows, t, k, clips)
+        out.append(row)
+    return out
+
+
+def markdown(rows: list[dict], fmt: dict | None = None) -> str:
+    """A list of dicts as a markdown table (the book has no pandas)."""
+    if not rows:
+        return ""
+    fmt = fmt or {}
+    cols = list(rows[0])
+    lines = ["| " + " | ".join(cols) + " |", "|" + "|".join("---" for _ in cols) + "|"]
+    for r in rows:
+        cells = []
+        for c in cols:
+            v = r[c]
+            if isinstance(v, float):
+                cells.append("–" if not np.isfinite(v) else fmt.get(c, "{:.3f}").format(v))
+            else:
+                cells.append(str(v))
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
+def per_attribute(rows, attributes: dict, codes=tuple(DIFFICULTIES)) -> list[dict]:
+    """Mean AUC of each tracker over the clips having each attribute, and the best tracker.
+
+    ``attributes`` maps clip name -> attribute codes.
+    """
+    trackers = list(dict.fromkeys(r["tracker"] for r in rows))
+    out = []
+    for code in codes:
+        clips = {c for c, a in attributes.items() if code in a}
+        present = {r["clip"] for r in rows} & clips
+        if not present:
+            continue
+        scores = {t: _mean(rows, t, "auc", present) for t in trackers}
+        best = max(scores, key=lambda t: -1 if np.isnan(scores[t]) else scores[t])
+        out.append({"difficulty": f"{DIFFICULTIES[code]} ({code})", "clips": len(present),
+                    "best": best, "best AUC": scores[best], **{t: scores[t] for t in trackers}})
+    return out
+
+
+#: Each claim as pairwise comparisons ``(better, worse)``: "better scores higher than worse".
+CLAIM_PAIRS = {
+    "000": [("color-hog-pf", "color-pf"), ("color-hog-ipca", "color-hog-pf")],
+    "001": [("hog-pf", "hsi-color-pf"), ("edge-ray-pf", "hog-pf")],
+    "002": [("kalman-covariance", "covariance")],
+    "003": [("condensation-mean-shift", "condensation"),
+            ("condensation-mean-shift", "mean-shift")],
+}
+
+VERDICTS = ("holds", "fails", "inconclusive")
+
+
+def paired_differences(rows, better: str, worse: str, metric: str = "auc",
+                       clips=None) -> dict[str, list[float]]:
+    """Per sequence, the paired differences ``score(better) - score(worse)``, one per seed.
+
+    Rows pair when they share ``clip`` and ``seed`` (a missing ``seed`` counts as 0); a
+    sequence where either tracker has no score is left out.
+    """
+    def key(r):
+        return r["clip"], int(r.get("seed") or 0)
+
+    def scores(name):
+        return {key(r): float(r[metric]) for r in rows
+                if r["tracker"] == name and r.get(metric) is not None
+                and (clips is None or r["clip"] in clips) and np.isfinite(float(r[metric]))}
+
+    b, w = scores(better), scores(worse)
+    out: dict[str, list[float]] = {}
+    for k in sorted(set(b) & set(w)):
+        out.setdefault(k[0], []).append(b[k] - w[k])
+    return out
+
+
+def bootstrap_mean_difference(diffs: dict[str, list[float]], n_boot: int = 10_000,
+                              level: float = 0.95, seed: int = 0) -> tuple[float, float, float]:
+    """Mean paired difference and its percentile bootstrap interval, resampling *sequences*.
+
+    Seeds of one sequence are not independent evidence (the same video, the same difficulty),
+    so the bootstrap draws whole sequences with replacement (a cluster bootstrap) and averages
+    every run of the drawn sequences. Returns ``(mean, low, high)``; NaNs without data.
+    """
+    seqs = [np.asarray(v, dtype=float) for v in diffs.values() if len(v)]
+    if not seqs:
+        return float("nan"), float("nan"), float("nan")
+    sums = np.array([v.sum() for v in seqs])
+    counts = np.array([len(v) for v in seqs], dtype=float)
+    mean = float(sums.sum() / counts.sum())
+    rng = np.random.default_rng(seed)
+    pick = rng.integers(0, len(seqs), size=(n_boot, len(seqs)))
+    boot = sums[pick].sum(axis=1) / counts[pick].sum(axis=1)
+    a = (1.0 - level) / 2.0
+    low, high = np.quantile(boot, [a, 1.0 - a])
+    return mean, float(low), float(high)
+
+
+def verdict(low: float, high: float) -> str:
+    """``holds`` when the whole interval is above 0, ``fails`` when below, else ``inconclusive``."""
+    if not (np.isfinite(low) and np.isfinite(high)):
+        return "inconclusive"
+    if low > 0:
+        return "holds"
+    if high < 0:
+        return "fails"
+    return "inconclusive"
+
+
+def check_claims(rows, metric: str = "auc", clips=None, papers=PAPERS, pairs=CLAIM_PAIRS,
+                 n_boot: int = 10_000, level: float = 0.95, seed: int = 0) -> list[dict]:
+    """Each paper's claim, as paired comparisons with a bootstrap interval and a verdict.
+
+    A claim "A < B < C" is the comparisons B > A and C > B. For each, the per-run differences
+    of ``metric`` (paired by sequence and seed, over ``clips`` or all) are averaged, and a 95 %
+    interval is bootstrapped over sequences (:func:`bootstrap_mean_difference`). The verdict is
+    ``holds`` (interval above 0), ``fails`` (below 0) or ``inconclusive`` (it straddles 0).
+
+    Returns
+    -------
+    rows ``{paper, comparison, metric, sequences, runs, mean_diff, ci_low, ci_high, verdict}``,
+    one per comparison; a comparison whose trackers did not run has ``runs = 0`` and verdict
+    ``inconclusive``.
+    """
+    out = []
+    for key, p in papers.items():
+        for better, worse in pairs.get(key, []):
+            d = paired_differences(rows, better, worse, metric, clips)
+            mean, low, high = bootstrap_mean_difference(d, n_boot, level, seed)
+            out.append({"paper": p.get("label", p["paper"]), "comparison": f"{better} > {worse}",
+                        "metric": metric, "sequences": len(d),
+                        "runs": int(sum(len(v) for v in d.values())), "mean_diff": mean,
+                        "ci_low": low, "ci_high": high, "verdict": verdict(low, high)})
+    return out
+
+
+def loso_select(scores: dict[str, dict[str, float]]) -> dict:
+    """Leave-one-sequence-out choice among configurations, and the figure it earns.
+
+    ``scores[config][sequence]`` is a configuration's score on a sequence (e.g. mean AUC over
+    seeds). For each sequence in turn, the configuration with the best mean over the *other*
+    sequences is chosen and scored on the held-out one. Returns ``{"cv": mean held-out score,
+    "tuned": best mean over all sequences, "tuned_config": its name, "chosen": {sequence:
+    config}}``. ``tuned`` is what a table reports when it picks the default on the same
+    sequences it scores, and overstates what new video gives; ``cv`` does not peek.
+    """
+    configs = list(scores)
+    seqs = sorted(set.intersection(*(set(v) for v in scores.values()))) if configs else []
+    if len(seqs) < 2:
+        raise ValueError("leave-one-sequence-out needs at least two sequences scored by "
+                         "every configuration.")
+    table = np.array([[scores[c][s] for s in seqs] for c in configs])
+    chosen, held = {}, []
+    for j, s in enumerate(seqs):
+        rest = np.delete(table, j, axis=1).mean(axis=1)
+        i = int(np.argmax(rest))
+        chosen[s] = configs[i]
+        held.append(table[i, j])
+    means = table.mean(axis=1)
+    best = int(np.argmax(means))
+    return {"cv": float(np.mean(held)), "tuned": float(means[best]),
+            "tuned_config": configs[best], "chosen": chosen}
+
+
+def speed_ratios(rows, reference: str = "opencv-mil", papers=PAPERS) -> list[dict]:
+    """Per tracker: our median ms/frame, ×MIL on the same clips, the paper's ms and paper/ours."""
+    ours = {r["tracker"]: r["ms_median"] for r in table(rows, keys=("ms_median",))}
+    ref = ours.get(reference, float("nan"))
+    paper_ms = {t: (v, p["hardware"]) for p in papers.values() for t, v in p["ms"].items()}
+    out = []
+    for t, v in ours.items():
+        if t == reference:
+            continue
+        pm, hw = paper_ms.get(t, (float("nan"), ""))
+        out.append({"tracker": t, "ms/frame": v, "÷ MIL": v / ref if ref else float("nan"),
+                    "paper ms": pm, "paper ÷ ours": pm / v if v else float("nan"),
+                    "paper's hardware": hw or "–"})
+    return out

@@ -1,0 +1,150 @@
+"""OTB scores of a run: overlap, centre error, success and precision curves (SPEC section 4).
+
+Every function takes ``(pred, gt)`` as N x 4 arrays of boxes ``(x, y, w, h)`` and scores every
+row whose ground truth is finite. A prediction that is NaN or has w <= 0 or h <= 0 scores
+IoU 0 and an infinite centre error (a tracker that gave up is wrong, not excused). Boxes use
+continuous coordinates: a box covers [x, x + w) x [y, y + h).
+
+Which frames to score is the caller's choice; :func:`trackbook.evaluate` drops frame 0, the
+initialisation, before calling these.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._checks import check_boxes
+
+#: IoU thresholds of the success curve: 0, 0.05, ..., 1.
+SUCCESS_THRESHOLDS = np.linspace(0.0, 1.0, 21)
+#: Centre-error thresholds of the precision curve in pixels: 0, 1, ..., 50.
+PRECISION_THRESHOLDS = np.arange(0, 51, dtype=float)
+
+
+def _pair(pred, gt):
+    p = check_boxes(pred, name="pred")
+    g = check_boxes(gt, name="gt")
+    if p.shape[0] != g.shape[0]:
+        raise ValueError(
+            f"pred has {p.shape[0]} boxes but gt has {g.shape[0]}; give one box per frame each."
+        )
+    return p, g
+
+
+def _valid_pred(p):
+    with np.errstate(invalid="ignore"):
+        return np.all(np.isfinite(p), axis=1) & (p[:, 2] > 0) & (p[:, 3] > 0)
+
+
+def _known_gt(g):
+    with np.errstate(invalid="ignore"):
+        return np.all(np.isfinite(g), axis=1) & (g[:, 2] > 0) & (g[:, 3] > 0)
+
+
+def iou(pred, gt) -> np.ndarray:
+    """Intersection over union per frame.
+
+    Returns an array of length N: IoU in [0, 1] where the ground truth is known, NaN where it
+    is not. Invalid predictions score 0.
+    """
+    p, g = _pair(pred, gt)
+    out = np.full(p.shape[0], np.nan)
+    known = _known_gt(g)
+    ok = known & _valid_pred(p)
+    out[known] = 0.0
+    if ok.any():
+        a, b = p[ok], g[ok]
+        ix = np.clip(np.minimum(a[:, 0] + a[:, 2], b[:, 0] + b[:, 2]) - np.maximum(a[:, 0], b[:, 0]), 0, None)
+        iy = np.clip(np.minimum(a[:, 1] + a[:, 3], b[:, 1] + b[:, 3]) - np.maximum(a[:, 1], b[:, 1]), 0, None)
+        inter = ix * iy
+        union = a[:, 2] * a[:, 3] + b[:, 2] * b[:, 3] - inter
+        out[ok] = np.clip(inter / union, 0.0, 1.0)
+    return out
+
+
+def center_error(pred, gt) -> np.ndarray:
+    """Euclidean distance between box centres per frame, in pixels.
+
+    NaN where the ground truth is unknown; ``inf`` for invalid predictions.
+    """
+    p, g = _pair(pred, gt)
+    out = np.full(p.shape[0], np.nan)
+    known = _known_gt(g)
+    ok = known & _valid_pred(p)
+    out[known] = np.inf
+    if ok.any():
+        cp = p[ok, :2] + p[ok, 2:] / 2
+        cg = g[ok, :2] + g[ok, 2:] / 2
+        out[ok] = np.hypot(*(cp - cg).T)
+    return out
+
+
+def _scored(values: np.ndarray) -> np.ndarray:
+    v = values[~np.isnan(values)]
+    if v.size == 0:
+        raise ValueError(
+            "no frame has a known ground truth box; check the ground truth file "
+            "(rows of NaN or zero size mean 'unknown')."
+        )
+    return v
+
+
+def success_curve(pred, gt, thresholds=SUCCESS_THRESHOLDS):
+    """OTB success plot: fraction of scored frames with IoU **>** t for each threshold t.
+
+    Returns ``(thresholds, rates)``.
+    """
+    v = _scored(iou(pred, gt))
+    t = np.asarray(thresholds, dtype=float)
+    return t, (v[None, :] > t[:, None]).mean(axis=1)
+
+
+def auc(pred, gt) -> float:
+    """Area under the success curve: the mean of its 21 rates (OTB's AUC)."""
+    return float(success_curve(pred, gt)[1].mean())
+
+
+def precision_curve(pred, gt, thresholds=PRECISION_THRESHOLDS):
+    """OTB precision plot: fraction of scored frames with centre error **<=** t, t = 0..50 px.
+
+    Returns ``(thresholds, rates)``.
+    """
+    v = _scored(center_error(pred, gt))
+    t = np.asarray(thresholds, dtype=float)
+    return t, (v[None, :] <= t[:, None]).mean(axis=1)
+
+
+def precision(pred, gt, threshold: float = 20.0) -> float:
+    """The precision score: fraction of scored frames with centre error <= ``threshold`` px."""
+    return float(precision_curve(pred, gt, [threshold])[1][0])
+
+
+def tracking_rate(pred, gt, iou_threshold: float = 0.5) -> float:
+    """The papers' "tracking rate" / "detection rate": fraction of frames with IoU > threshold."""
+    v = _scored(iou(pred, gt))
+    return float((v > iou_threshold).mean())
+
+
+def mean_center_error(pred, gt) -> float:
+    """Mean centre error over scored frames with a valid prediction (lost frames left out)."""
+    v = _scored(center_error(pred, gt))
+    v = v[np.isfinite(v)]
+    return float(v.mean()) if v.size else float("inf")
+
+
+def summary(pred, gt) -> dict:
+    """All headline scores of one run as a dict (what tables print)."""
+    return {
+        "auc": auc(pred, gt),
+        "precision20": precision(pred, gt),
+        "tracking_rate": tracking_rate(pred, gt),
+        "mean_center_error": mean_center_error(pred, gt),
+        "frames_scored": int((~np.isnan(iou(pred, gt))).sum()),
+    }
+
+
+__all__ = [
+    "iou", "center_error", "success_curve", "auc", "precision_curve", "precision",
+    "tracking_rate", "mean_center_error", "summary", "SUCCESS_THRESHOLDS",
+    "PRECISION_THRESHOLDS",
+]

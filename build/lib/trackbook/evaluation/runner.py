@@ -1,0 +1,168 @@
+"""Run a tracker over a clip and score it: ``trackbook.evaluate``."""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+
+import numpy as np
+
+from .. import clips as _clips
+from .. import trackers as _trackers
+from .._checks import as_box, clip_box
+from . import metrics
+
+
+@dataclasses.dataclass
+class Result:
+    """One run of one tracker over one clip.
+
+    Attributes
+    ----------
+    tracker, clip : names
+    boxes : (N, 4) array, frame 0 is the initial box
+    ok : (N,) bool, the tracker's own ``ok`` per frame (frame 0 True)
+    ms : (N,) milliseconds per frame (frame 0 is ``init``); decoding excluded
+    scores : dict of the OTB scores over frames 1..N-1 (see :func:`metrics.summary`),
+        plus ``ms_median`` and ``ms_mean`` over the ``update`` calls
+    params : dict of the tracker's params (empty for foreign trackers)
+    extras : per-frame values a tracker chose to report (e.g. ``search_rate``)
+    """
+
+    tracker: str
+    clip: str
+    boxes: np.ndarray
+    ok: np.ndarray
+    ms: np.ndarray
+    scores: dict
+    params: dict = dataclasses.field(default_factory=dict)
+    extras: dict = dataclasses.field(default_factory=dict)
+
+    def curves(self, gt):
+        """``(success_thresholds, success, precision_thresholds, precision)`` over frames 1..N-1."""
+        ts, s = metrics.success_curve(self.boxes[1:], gt[1:])
+        tp, p = metrics.precision_curve(self.boxes[1:], gt[1:])
+        return ts, s, tp, p
+
+
+def _make(name_or_tracker, seed, params, preset="book"):
+    if isinstance(name_or_tracker, str):
+        return (_trackers.create(name_or_tracker, seed=seed, preset=preset, **params),
+                name_or_tracker)
+    if params or preset != "book":
+        raise ValueError("params can only be given with a tracker name, not a tracker object "
+                         "(and so can preset).")
+    t = name_or_tracker
+    if not (hasattr(t, "init") and hasattr(t, "update")):
+        raise ValueError(
+            f"{t!r} is not a tracker: pass a registered name ({', '.join(_trackers.available())}) "
+            "or an object with OpenCV's init(frame, bbox) / update(frame) methods."
+        )
+    return t, getattr(t, "name", type(t).__name__)
+
+
+def _init_foreign(t, frame, box):
+    # OpenCV's trackers take integer boxes; ours take floats.
+    if type(t).__module__.startswith("cv2"):
+        x, y, w, h = (int(round(v)) for v in box)
+        return t.init(frame, (x, y, max(w, 1), max(h, 1)))
+    return t.init(frame, tuple(float(v) for v in box))
+
+
+def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None = None,
+             init_box=None, on_frame=None, preset: str = "book", **params) -> Result:
+    """Track a clip from its first ground-truth box and score it (frame 0 excluded).
+
+    Parameters
+    ----------
+    name_or_tracker : str or tracker object
+        A registered name (``trackers.available(reference=True)``) or any object with
+        OpenCV's ``init``/``update``, e.g. ``cv2.TrackerMIL_create()``.
+    clip : Clip or str or path
+        Anything :func:`trackbook.clips.load` accepts.
+    seed : int, the tracker's seed (names only).
+    max_frames : int, optional; track only the first frames.
+    init_box : (x, y, w, h), optional; default the first ground-truth box (clipped to the frame).
+    on_frame : callable(i, tracker, frame, box), optional; called after every frame, e.g. to
+        record particles for a drawing.
+    preset : ``"book"`` (the book's defaults) or ``"paper"`` (the printed method; see
+        :func:`trackbook.trackers.departures`), names only; ``params`` override either.
+    **params : the tracker's params (names only).
+    """
+    return evaluate_many([(name_or_tracker, seed, params)], clip, max_frames=max_frames,
+                         init_box=init_box, on_frame=on_frame, preset=preset)[0]
+
+
+def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_frame=None,
+                  preset: str = "book") -> list[Result]:
+    """Several trackers over one clip in lockstep: each frame is decoded once and given to
+    every tracker, so a benchmark decodes a clip once for all its trackers while holding only
+    the current frame (memory stays bounded however long the clip).
+
+    ``runs`` is a list of ``(name_or_tracker, seed, params)``; the results, in that order, are
+    exactly what :func:`evaluate` gives for each run alone (the trackers share nothing but the
+    read-only frame). ``on_frame`` is called as ``on_frame(i, tracker, frame, box)`` for each.
+    """
+    clip = _clips.load(clip)
+    made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
+    if max_frames is not None and (isinstance(max_frames, bool) or not isinstance(
+            max_frames, (int, np.integer))):
+        raise ValueError(f"max_frames = {max_frames!r}: pass an integer (at least 2) or None.")
+    n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
+    if n < 2:
+        raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")
+    frames = iter(clip.frames)
+    first = next(frames)
+    box0 = clip.groundtruth[0] if init_box is None else as_box(init_box, name="init_box")
+    if not np.all(np.isfinite(box0)):
+        raise ValueError(
+            f"clip {clip.name!r} has no ground-truth box on frame 0; give the target's first "
+            "box: init_box=(x, y, w, h) in Python, --box x,y,w,h on the command line (or a "
+            "<video stem>.groundtruth.txt file beside the video)."
+        )
+    box0 = clip_box(box0, first.shape)
+
+    k = len(made)
+    boxes = np.full((k, n, 4), np.nan)
+    ok = np.zeros((k, n), dtype=bool)
+    ms = np.zeros((k, n))
+    extras: list[dict[str, list]] = [{} for _ in made]
+    for j, (tracker, _) in enumerate(made):
+        t0 = time.perf_counter()
+        _init_foreign(tracker, first, box0)
+        ms[j, 0] = (time.perf_counter() - t0) * 1e3
+        boxes[j, 0], ok[j, 0] = box0, True
+        if on_frame is not None:
+            on_frame(0, tracker, first, box0)
+    for i in range(1, n):
+        frame = next(frames)
+        for j, (tracker, _) in enumerate(made):
+            t0 = time.perf_counter()
+            good, box = tracker.update(frame)
+            ms[j, i] = (time.perf_counter() - t0) * 1e3
+            boxes[j, i], ok[j, i] = np.asarray(box, dtype=float), bool(good)
+            report = getattr(tracker, "frame_report", None)
+            if callable(report):
+                for key, v in report().items():
+                    extras[j].setdefault(key, [np.nan] * n)[i] = v
+            if on_frame is not None:
+                on_frame(i, tracker, frame, boxes[j, i])
+
+    gt = clip.groundtruth[:n]
+    results = []
+    for j, (tracker, tname) in enumerate(made):
+        close = getattr(tracker, "close", None)
+        if isinstance(runs[j][0], str) and callable(close):
+            close()  # a tracker we made: free e.g. opencv-mil's child process now
+        try:
+            scores = metrics.summary(boxes[j, 1:], gt[1:])
+        except ValueError:  # no ground truth (a user's video without annotation)
+            scores = {}
+        scores["ms_median"] = float(np.median(ms[j, 1:]))
+        scores["ms_mean"] = float(np.mean(ms[j, 1:]))
+        p = tracker.params if hasattr(tracker, "params") and dataclasses.is_dataclass(
+            getattr(tracker, "params", None)) else None
+        results.append(Result(tname, clip.name, boxes[j], ok[j], ms[j], scores,
+                              params=dataclasses.asdict(p) if p is not None else {},
+                              extras={key: np.asarray(v) for key, v in extras[j].items()}))
+    return results

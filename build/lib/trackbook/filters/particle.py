@@ -1,0 +1,103 @@
+"""The particle filter's pure steps: normalised weights, effective sample size, resamplers, estimate.
+
+Chapter 2 of the book (the Bayes filter, factored sampling, SIR/Condensation, degeneracy and
+resampling). The SIR tracker built from these steps is
+:class:`trackbook.trackers.particle_filter.ParticleFilterTracker`. Resamplers are pure
+functions that take normalised weights and a ``numpy.random.Generator`` and return the indices
+of the particles to keep (as filterpy's ``monte_carlo`` module does, but without the global
+RNG). All four place *pointers* on the cumulative weights c_i and keep, for each pointer r, the
+smallest i with c_i >= r; they differ only in where the pointers go.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+
+def normalize_weights(w) -> tuple[np.ndarray, bool]:
+    """Weights divided by their sum; ``(uniform, False)`` when they are all zero or not finite.
+
+    The second value says whether the weights carried information: a frame in which every
+    particle scored zero is a real event (target occluded or lost) that trackers must survive.
+    """
+    w = np.asarray(w, dtype=float)
+    w = np.where(np.isfinite(w) & (w > 0), w, 0.0)
+    s = w.sum()
+    if not np.isfinite(s) or s <= 0:
+        return np.full(w.shape, 1.0 / w.size), False
+    return w / s, True
+
+
+def effective_sample_size(weights) -> float:
+    """N_eff = 1 / sum w_i^2 of normalised weights: N when uniform, 1 when one particle has all.
+
+    The usual measure of weight degeneracy (Arulampalam et al. 2002); chapter 2 plots it with
+    and without resampling.
+    """
+    w = np.asarray(weights, dtype=float)
+    return float(1.0 / np.sum(w**2))
+
+
+def _cumsum(weights):
+    c = np.cumsum(weights)
+    c[-1] = 1.0  # guard against round-off leaving c_N a hair below 1
+    return c
+
+
+def multinomial_resample(weights, rng: np.random.Generator) -> np.ndarray:
+    """SIR selection of Lee et al. 2012's pseudocode (section V): for each i draw r ~ U[0, 1]
+    and keep the smallest index j with c_j >= r, c the cumulative weights.
+
+    N independent pointers, so particle i gets Binomial(N, w_i) copies: mean N w_i, variance
+    N w_i (1 - w_i).
+    """
+    c = _cumsum(weights)
+    return np.searchsorted(c, rng.random(len(c)), side="left")
+
+
+def systematic_resample(weights, rng: np.random.Generator) -> np.ndarray:
+    """One uniform offset u ~ U[0, 1/N), then the N evenly spaced pointers u + i/N.
+
+    Particle i gets floor(N w_i) or ceil(N w_i) copies, whatever the offset: the least copying
+    noise of the four resamplers.
+    """
+    n = len(weights)
+    positions = (rng.random() + np.arange(n)) / n
+    return np.searchsorted(_cumsum(weights), positions, side="left")
+
+
+def stratified_resample(weights, rng: np.random.Generator) -> np.ndarray:
+    """One pointer (i + u_i)/N in each of the N strata [i/N, (i+1)/N), the u_i ~ U[0, 1)
+    drawn by one ``rng.random(N)`` call."""
+    n = len(weights)
+    positions = (rng.random(n) + np.arange(n)) / n
+    return np.searchsorted(_cumsum(weights), positions, side="left")
+
+
+def residual_resample(weights, rng: np.random.Generator) -> np.ndarray:
+    """floor(N w_i) copies of each particle, the remainder drawn multinomially on the residuals."""
+    w = np.asarray(weights, dtype=float)
+    n = len(w)
+    counts = np.floor(n * w).astype(int)
+    idx = np.repeat(np.arange(n), counts)
+    rest = n - counts.sum()
+    if rest > 0:
+        resid = n * w - counts
+        resid /= resid.sum()
+        idx = np.concatenate([idx, np.searchsorted(_cumsum(resid), rng.random(rest), side="left")])
+    return idx
+
+
+RESAMPLERS = {
+    "multinomial": multinomial_resample,
+    "systematic": systematic_resample,
+    "stratified": stratified_resample,
+    "residual": residual_resample,
+}
+
+
+def weighted_mean(states, weights) -> np.ndarray:
+    """The estimate sum_i w_i x_i of normalised weights (the expectation that closes Lee et
+    al. 2012's pseudocode)."""
+    return np.asarray(weights, dtype=float) @ np.asarray(states, dtype=float)

@@ -1,0 +1,1 @@
+"""On-line appearance learning: incremental SVD (chapter 08)."""

@@ -1,0 +1,289 @@
+"""Tunable parameters as dataclasses.
+
+Every tracker declares its knobs as a frozen dataclass whose fields are made with
+:func:`param`. The metadata (range, step, one-line doc) is what the widgets turn into sliders,
+so a new knob shows up in the book's playground without touching the widget code.
+
+Each field also records what the paper printed (``paper=``) and, where the book's default is
+not that value, why (``why=``). From these :func:`paper_values` builds the printed method
+(``trackers.create(name, preset="paper")``) and :func:`departures` lists the book's departures
+(``trackers.departures(name)``): the chapters' departure tables are generated from them, so
+they cannot drift from the code.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+from numbers import Integral, Real
+from typing import Any
+
+import numpy as np
+
+from ._checks import check_finite_number
+
+
+class _NotPrinted:
+    """Marker for a value the paper does not print (the book had to choose one)."""
+
+    def __repr__(self) -> str:
+        return "not printed"
+
+    def __reduce__(self):
+        return "NOT_PRINTED"
+
+
+#: ``paper=NOT_PRINTED``: the paper gives no value; ``why=`` says what the book chose and why.
+NOT_PRINTED = _NotPrinted()
+#: A knob the paper's method does not have (an addition of the book) is also ``NOT_PRINTED``,
+#: with ``paper_value=`` the setting that switches the addition off.
+_UNSET = object()
+
+
+def param(default: Any, lo: float | None = None, hi: float | None = None,
+          step: float | None = None, doc: str = "", choices: tuple | None = None, *,
+          paper: Any = _UNSET, why: str = "", paper_value: Any = _UNSET):
+    """A dataclass field with a default and the metadata widgets need.
+
+    Parameters
+    ----------
+    default : the book's default.
+    lo, hi, step : slider range for the widgets (and the valid range checked on creation).
+    doc : one line naming the symbol and the equation it belongs to.
+    choices : for string parameters, the allowed values.
+    paper : the value the paper prints, or :data:`NOT_PRINTED` when it prints none.
+    why : required when ``default != paper`` or the paper prints nothing: one line on why the
+        book's default is what it is, and where that was measured.
+    paper_value : the setting ``preset="paper"`` uses when ``paper`` is not a usable value
+        (for :data:`NOT_PRINTED`, or a knob the paper's method does not have, e.g. ``0`` for
+        "off"); defaults to ``paper``, or to ``default`` when the paper prints nothing.
+    """
+    meta = {"lo": lo, "hi": hi, "step": step, "doc": doc, "choices": choices,
+            "paper": paper, "why": why, "paper_value": paper_value}
+    if isinstance(default, (list, dict, set)):
+        raise TypeError("use tuples for sequence defaults so params stay immutable")
+    return dataclasses.field(default=default, metadata=meta)
+
+
+_TRUE = ("true", "yes", "1", "on")
+_FALSE = ("false", "no", "0", "off")
+
+
+def _kind(field: dataclasses.Field):
+    """The Python type of a field: its annotation, else the type of its default."""
+    t = field.type
+    if isinstance(t, str):
+        t = {"int": int, "float": float, "bool": bool, "str": str}.get(t.split("|")[0].strip(),
+                                                                        None)
+    if t in (int, float, bool, str):
+        return t
+    if isinstance(field.default, tuple):
+        return tuple
+    return type(field.default)
+
+
+def _field(cls, name: str) -> dataclasses.Field:
+    fields = {f.name: f for f in dataclasses.fields(cls)}
+    if name not in fields:
+        names = list(fields)
+        near = difflib.get_close_matches(str(name), names, n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        raise ValueError(f"unknown parameter {name!r} for {cls.__qualname__}{hint}; "
+                         f"valid names: {', '.join(names)}.")
+    return fields[name]
+
+
+def _number(name: str, value, kind):
+    """An int or float from a Python/numpy number or a string, refusing bools and NaN/inf."""
+    what = "an integer" if kind is int else "a number"
+    if isinstance(value, str):
+        text = value.strip()
+        try:
+            value = int(text) if kind is int else float(text)
+        except ValueError:
+            if kind is int:
+                try:
+                    f = float(text)
+                except ValueError:
+                    f = None
+                if f is not None and math.isfinite(f):
+                    value = f     # "50.5": fall through to the whole-number check below
+                else:
+                    raise ValueError(
+                        f"parameter {name} = {text!r} is not {what}; pass e.g. "
+                        f"{name}=100.") from None
+            else:
+                raise ValueError(f"parameter {name} = {text!r} is not {what}; pass a finite "
+                                 f"decimal number, e.g. {name}=0.5.") from None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Integral, Real)):
+        raise ValueError(f"parameter {name} = {value!r} ({type(value).__name__}) is not {what}; "
+                         f"pass {what}" + (" (True/False are not numbers here)."
+                                           if isinstance(value, (bool, np.bool_)) else "."))
+    f = float(value)
+    if not math.isfinite(f):
+        raise ValueError(f"parameter {name} = {value!r} is not finite; pass a real number.")
+    if kind is int:
+        if isinstance(value, Integral):
+            return int(value)
+        if f != int(f):
+            raise ValueError(f"parameter {name} = {value!r} is not a whole number; pass an "
+                             f"integer such as {int(f)}.")
+        return int(f)
+    return f
+
+
+def _bool(name: str, value):
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (Integral,)) and int(value) in (0, 1):
+        return bool(int(value))
+    if isinstance(value, str) and value.strip().lower() in _TRUE + _FALSE:
+        return value.strip().lower() in _TRUE
+    raise ValueError(f"parameter {name} = {value!r} is not a yes/no value; pass True or False "
+                     "(on the command line: true/false, yes/no or 1/0).")
+
+
+def _tuple(name: str, value, default: tuple):
+    if isinstance(value, str):
+        text = value.strip().strip("()[]")
+        value = tuple(v for v in (t.strip() for t in text.split(",")) if v)
+    if not isinstance(value, (tuple, list, np.ndarray)):
+        raise ValueError(f"parameter {name} = {value!r} is not a tuple; pass "
+                         f"{len(default)} values like {default!r}.")
+    value = tuple(value)
+    if default and len(value) != len(default):
+        raise ValueError(f"parameter {name} = {value!r} has {len(value)} values; it needs "
+                         f"{len(default)}, like {default!r}.")
+    kinds = [int if isinstance(d, Integral) and not isinstance(d, bool) else float
+             for d in default] or [float] * len(value)
+    return tuple(_number(name, v, k) for v, k in zip(value, kinds))
+
+
+def parse(cls, name: str, value):
+    """Convert ``value`` for the field ``name`` of the params dataclass ``cls``, or raise.
+
+    The one parser behind ``trackers.create(name, **params)`` and the CLI's
+    ``--param NAME=VALUE``: ints and floats accept Python and numpy numbers (and, from the
+    command line, their decimal spelling); bools are not numbers; a float is not an int unless
+    whole; NaN and infinity are refused however spelled; ``true/false/yes/no/1/0`` for bools;
+    tuples from ``(a, b)`` or ``a,b``; the range ``lo..hi`` and the choices are checked for
+    every kind of number. Returns the converted value; raises ``ValueError`` naming the
+    parameter and the fix.
+    """
+    f = _field(cls, name)
+    kind = _kind(f)
+    meta = f.metadata
+    if value is None:
+        raise ValueError(f"parameter {name} = None; pass a value like its default "
+                         f"{f.default!r} (or leave it out for the default).")
+    if kind is bool:
+        out = _bool(name, value)
+    elif kind in (int, float):
+        out = _number(name, value, kind)
+    elif kind is tuple:
+        out = _tuple(name, value, f.default)
+    elif kind is str:
+        if not isinstance(value, str):
+            raise ValueError(f"parameter {name} = {value!r} is not a string; pass one of "
+                             f"{meta.get('choices') or 'the documented values'}.")
+        out = value.strip()
+    else:
+        out = value
+    choices = meta.get("choices")
+    if choices is not None and out not in choices:
+        near = difflib.get_close_matches(str(out), [str(c) for c in choices], n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        raise ValueError(f"parameter {name} = {out!r} is not one of "
+                         f"{', '.join(map(str, choices))}{hint}.")
+    lo, hi = meta.get("lo"), meta.get("hi")
+    for v in (out if isinstance(out, tuple) else (out,)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            continue
+        if lo is not None and v < lo:
+            raise ValueError(f"parameter {name} = {value!r} is below its minimum {lo}; "
+                             f"pass a value in {lo}..{hi}.")
+        if hi is not None and v > hi:
+            raise ValueError(f"parameter {name} = {value!r} is above its maximum {hi}; "
+                             f"pass a value in {lo}..{hi}.")
+    return out
+
+
+def validate(params) -> None:
+    """Check a params dataclass instance: every field as :func:`parse` would accept it."""
+    for f in dataclasses.fields(params):
+        value = getattr(params, f.name)
+        check_finite_number(value, name=f.name)
+        parse(type(params), f.name, value)
+
+
+def make_params(cls, values: dict):
+    """Build ``cls(**values)`` with every value through :func:`parse`, then validate it."""
+    names = [f.name for f in dataclasses.fields(cls)]
+    unknown = sorted(set(values) - set(names))
+    if unknown:
+        hints = [f"{u!r} (did you mean {m[0]!r}?)" if (m := difflib.get_close_matches(
+            str(u), names, n=1)) else repr(u) for u in unknown]
+        raise ValueError(
+            f"unknown parameter(s) {', '.join(hints)} for {cls.__qualname__}; "
+            f"valid names: {names}."
+        )
+    p = cls(**{k: parse(cls, k, v) for k, v in values.items()})
+    validate(p)
+    return p
+
+
+def describe(cls) -> list[dict]:
+    """Rows ``{name, default, lo, hi, step, doc, choices, paper, why}`` for tables and widgets."""
+    rows = []
+    for f in dataclasses.fields(cls):
+        rows.append({"name": f.name, "default": f.default, **f.metadata})
+    return rows
+
+
+def has_paper(field: dataclasses.Field) -> bool:
+    """Whether the field records the paper's value (every field of every tracker must)."""
+    return field.metadata.get("paper", _UNSET) is not _UNSET
+
+
+def paper_value(field: dataclasses.Field) -> Any:
+    """The value ``preset="paper"`` gives this field: the printed value, or the stated setting."""
+    m = field.metadata
+    if m.get("paper_value", _UNSET) is not _UNSET:
+        return m["paper_value"]
+    paper = m.get("paper", _UNSET)
+    if paper is _UNSET or paper is NOT_PRINTED:
+        return field.default
+    return paper
+
+
+def paper_values(cls) -> dict:
+    """``{name: value}`` of the printed method, for ``trackers.create(name, preset="paper")``."""
+    return {f.name: paper_value(f) for f in dataclasses.fields(cls)}
+
+
+def is_departure(field: dataclasses.Field) -> bool:
+    """The book's default is not the printed value, or the paper prints none."""
+    paper = field.metadata.get("paper", _UNSET)
+    if paper is _UNSET:
+        return False
+    return paper is NOT_PRINTED or not _same(field.default, paper_value(field))
+
+
+def _same(a, b) -> bool:
+    """Equal values of the same kind (``True`` is not the number 1 here)."""
+    if isinstance(a, bool) or isinstance(b, bool):
+        return a is b
+    return bool(a == b)
+
+
+def departures(cls) -> list[dict]:
+    """Rows ``{param, paper, book, why}``: every field whose default is the book's choice."""
+    rows = []
+    for f in dataclasses.fields(cls):
+        if is_departure(f):
+            paper = f.metadata["paper"]
+            rows.append({"param": f.name,
+                         "paper": "not printed" if paper is NOT_PRINTED else paper,
+                         "book": f.default, "why": f.metadata.get("why", "")})
+    return rows

@@ -1,0 +1,102 @@
+"""Precomputed step-by-step views (animations) drawn by the playground's viewer module.
+
+An :class:`Animation` holds everything in its data (frames as JPEG, boxes, state, captions, a
+per-step curve); in Jupyter it is the same anywidget as the playground with no kernel work
+after display, and in the HTML book it is embedded in the page like a playground.
+"""
+
+from __future__ import annotations
+
+import os
+
+import anywidget
+import cv2
+import numpy as np
+import traitlets as T
+
+from . import data as D
+from .core import BOOK_ENV, VIEWER_CSS, VIEWER_JS, page_html
+
+GT_BGR = (115, 158, 0)
+EST_BGR = (0, 94, 213)
+
+
+def _jpeg(img) -> str:
+    import base64
+
+    ok, buf = cv2.imencode(".jpg", np.asarray(img), [cv2.IMWRITE_JPEG_QUALITY, D.JPEG_QUALITY])
+    return base64.b64encode(buf.tobytes()).decode("ascii")
+
+
+def _r(a, nd=1):
+    return None if a is None else np.round(np.asarray(a, dtype=float), nd).tolist()
+
+
+def run_entry(label, boxes, *, captions=None, curve=None, curve_label="", curve_x="step",
+              scores="", states=None, extra_boxes=(), est_label="estimate"):
+    """One run of an animation: a box per step (None: no box), captions, a curve in 0..1,
+    the tracker state per step (as :func:`trackbook.playground.data.snapshot` makes it) and
+    extra labelled boxes ``(label, colour, boxes)``."""
+    return {"clip": "", "tracker": label, "animation": True, "values": {},
+            "boxes": [None if b is None or not np.isfinite(b).all() else _r(b) for b in boxes],
+            "ok": [1] * len(boxes), "iou": None, "scores": scores, "est_label": est_label,
+            "captions": list(captions) if captions is not None else None,
+            "curve": None if curve is None else {
+                "label": curve_label, "x": curve_x,
+                "values": [None if v is None or not np.isfinite(v) else round(float(v), 4)
+                           for v in curve]},
+            "extra_boxes": [{"label": lab, "color": col, "dash": [5, 3],
+                             "boxes": [None if b is None else _r(b) for b in bs]}
+                            for lab, col, bs in extra_boxes],
+            "state": D._encode_state(states) if states else {}}
+
+
+class Animation(anywidget.AnyWidget):
+    """A step-by-step view: ``images`` (BGR arrays), ``index`` (step -> image), ``runs``
+    (``{label: run_entry(...)}``, a choice when several), ``gt`` per step (optional)."""
+
+    _esm = T.Unicode(VIEWER_JS.read_text(encoding="utf-8")).tag(sync=True)
+    _css = T.Unicode(VIEWER_CSS.read_text(encoding="utf-8")).tag(sync=True)
+    static_data = T.Dict().tag(sync=True)
+
+    def __init__(self, name, images, runs: dict, index=None, gt=None, note="", **kwargs):
+        super().__init__(**kwargs)
+        h, w = np.asarray(images[0]).shape[:2]
+        n = len(next(iter(runs.values()))["boxes"])
+        clip = {"name": name, "w": int(w), "h": int(h), "frames": [_jpeg(i) for i in images],
+                "index": None if index is None else [int(i) for i in index],
+                "gt": None if gt is None else [None if b is None or not np.isfinite(b).all()
+                                               else _r(b) for b in gt]}
+        if index is None and len(images) != n:
+            raise ValueError(f"{len(images)} images for {n} steps: pass index= (step -> image).")
+        labels = list(runs)
+        self._png_src = (images, index, gt, runs[labels[0]])
+        self.static_data = {
+            "config": {"clips": [{"key": name, "name": name}], "trackers": labels,
+                       "knobs": {k: [] for k in labels}, "n_frames": n},
+            "clips": {name: clip},
+            "runs": {f"{name}|{k}|": {**v, "clip": name} for k, v in runs.items()},
+            "initial": {"clip": name, "tracker": labels[0]}, "note": note}
+
+    def _png(self) -> bytes:
+        """The middle step as a still picture (print / no JavaScript)."""
+        images, index, gt, run = self._png_src
+        i = len(run["boxes"]) // 2
+        img = np.array(images[index[i] if index is not None else i])
+        for b, col in ((gt[i] if gt is not None else None, GT_BGR), (run["boxes"][i], EST_BGR)):
+            if b is not None and np.isfinite(b).all():
+                x, y, w, h = (int(round(v)) for v in b)
+                cv2.rectangle(img, (x, y), (x + w, y + h), col, 2)
+        return cv2.imencode(".png", img)[1].tobytes()
+
+    def static_html(self) -> str:
+        return page_html(self.static_data, self._png(), "one step of the animation")
+
+    def _repr_mimebundle_(self, **kwargs):
+        if os.environ.get(BOOK_ENV):
+            return {"text/plain": "Animation", "text/html": self.static_html()}
+        return super()._repr_mimebundle_(**kwargs)
+
+    def show(self):
+        from IPython.display import display
+        display(self)

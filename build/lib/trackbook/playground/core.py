@@ -1,0 +1,413 @@
+"""The playground: pick a clip, a tracker and its knobs; scrub, play, compare.
+
+One JavaScript module (``viewer.js``, shipped in this package) draws everything on a canvas:
+the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve and the scores.
+
+* In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob change
+  re-runs the tracker in the kernel and sends only boxes and state; the frames travel once as
+  JPEG, so a frame step costs no Python.
+* In the HTML book (built with ``TRACKBOOK_BOOK_BUILD=1``, which ``trackbook.sphinx_playground``
+  sets) the same module runs from the page: the runs for a few values of each knob, one knob
+  at a time around the default, and for every clip and tracker at defaults, are computed at
+  build time and embedded in the page, so it works with no kernel and no network.
+"""
+
+from __future__ import annotations
+
+import base64
+import dataclasses
+import html
+import io
+import json
+import os
+from pathlib import Path
+
+import anywidget
+import numpy as np
+import traitlets as T
+
+from .. import clips as _clips
+from .. import trackers as _trackers
+from . import data as D
+
+HERE = Path(__file__).parent
+VIEWER_JS = HERE / "viewer.js"
+VIEWER_CSS = HERE / "viewer.css"
+#: the environment variable that switches :meth:`Playground._repr_mimebundle_` to the static page
+BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
+#: longest clip the HTML book precomputes (frames), whatever ``n_frames`` says
+STATIC_MAX_FRAMES = 80
+#: the HTML book's samples of a knob the mission does not name, besides its default
+STATIC_OTHER_SAMPLES = 3
+#: most bytes of one playground in the HTML book (the issue's budget is 3 MB)
+MAX_PAGE_BYTES = 2_900_000
+#: the knobs the book's promise names, precomputed first
+_FIRST = ("n_particles", "alpha", "ratio_low", "ratio_high", "ratio_window")
+
+_RUN_CACHE: dict = {}
+
+
+def _cache_key(tracker, clip_name, n, seed, values, init_box):
+    return (tracker, clip_name, n, seed, json.dumps(values, sort_keys=True, default=str),
+            None if init_box is None else tuple(np.round(init_box, 2)))
+
+
+def _load_own(c):
+    """A clip by name or path; an image folder without ground truth (your own frames) loads
+    too, with no boxes: the student drags the target on its first frame."""
+    try:
+        return _clips.load(c)
+    except FileNotFoundError as e:
+        from pathlib import Path as _P
+
+        from ..clips.clip import Clip, ImageFiles
+        from ..clips.loaders import IMAGE_SUFFIXES
+
+        folder = _P(str(c))
+        d = folder / "img" if (folder / "img").is_dir() else folder
+        paths = sorted(p for p in d.iterdir() if p.suffix.lower() in IMAGE_SUFFIXES) \
+            if d.is_dir() else []
+        if "ground truth" not in str(e) or not paths:
+            raise
+        return Clip(folder.name, ImageFiles(paths), np.full((len(paths), 4), np.nan),
+                    source=str(folder))
+
+
+def _params_cls(name):
+    cls = _trackers.get(name)
+    return cls if dataclasses.is_dataclass(getattr(cls, "Params", None)) else None
+
+
+def page_html(payload: dict, png: bytes, alt: str) -> str:
+    """One self-contained fragment: root ``div.tb-playground``, the data as JSON in a
+    ``<script>`` (no fetch, so ``file://`` works), the viewer module inline and ``png`` in a
+    ``<noscript>`` (print, no JavaScript)."""
+    data = json.dumps(payload, separators=(",", ":")).replace("</", "<\\/")
+    b64 = base64.b64encode(png).decode("ascii")
+    js = VIEWER_JS.read_text(encoding="utf-8").replace("</script", "<\\/script")
+    css = VIEWER_CSS.read_text(encoding="utf-8")
+    return (f'<div class="tb-playground" data-tb-static="1">'
+            f'<script type="application/json" class="tb-data">{data}</script>'
+            f'<noscript><img alt="{html.escape(alt)}" src="data:image/png;base64,{b64}">'
+            f'</noscript></div><style>{css}</style><script type="module">{js}</script>')
+
+
+class Playground(anywidget.AnyWidget):
+    """A clip x tracker x params panel drawn in the browser.
+
+    Parameters
+    ----------
+    clips : list of clip names or paths (anything :func:`trackbook.clips.load` takes); a video
+        or image folder without ground truth works too: drag the target's box on the first
+        frame (or pass ``box=``).
+    trackers : list of tracker names (registered or ``"opencv-mil"``)
+    params : names of the params to expose as knobs (those the chosen tracker has)
+    n_frames : track only the first frames (faster in class)
+    seed : the trackers' seed
+    values : initial values of params
+    samples : ``{knob: [values]}``, the values the HTML book precomputes (default: a few around
+        the default within the field's range, see :func:`trackbook.playground.data.sample_values`)
+    box : (x, y, w, h) on the first frame, for a clip without ground truth
+
+    Examples
+    --------
+    >>> pg = Playground(clips=["red-cube"], trackers=["color-pf"], params=["n_particles"],
+    ...                 n_frames=30)                                        # doctest: +SKIP
+    >>> pg.set(n_particles=300).scores["auc"]                               # doctest: +SKIP
+    """
+
+    _esm = T.Unicode(VIEWER_JS.read_text(encoding="utf-8")).tag(sync=True)
+    _css = T.Unicode(VIEWER_CSS.read_text(encoding="utf-8")).tag(sync=True)
+    config = T.Dict().tag(sync=True)
+    clip_data = T.Dict().tag(sync=True)
+    run_data = T.Dict().tag(sync=True)
+    clip = T.Unicode().tag(sync=True)
+    tracker = T.Unicode().tag(sync=True)
+    values = T.Dict().tag(sync=True)
+    init_box = T.List().tag(sync=True)
+    busy = T.Bool(False).tag(sync=True)
+    error = T.Unicode("").tag(sync=True)
+
+    def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None,
+                 samples=None, box=None, **kwargs):
+        clips = [clips] if isinstance(clips, (str, os.PathLike)) else list(clips)
+        trackers = [trackers] if isinstance(trackers, str) else list(trackers)
+        if not clips or not trackers:
+            raise ValueError("Playground needs at least one clip and one tracker, e.g. "
+                             "Playground(clips=['red-cube'], trackers=['color-pf']).")
+        for t in trackers:
+            _trackers.get(t)  # fail early, with the list of names
+        self.param_names = list(params)
+        self.n_frames = n_frames
+        self.seed = seed
+        self._initial = dict(values or {})
+        self._samples = dict(samples or {})
+        self._clips = {}
+        for c in clips:
+            self._clips[str(c)] = _load_own(c)
+        self.result = None
+        self.states: list[dict] = []
+        self.runs = 0
+        super().__init__(**kwargs)
+        self.config = self._config(list(self._clips), trackers)
+        with self.hold_sync():
+            self.tracker = trackers[0]
+            self.clip = list(self._clips)[0]
+            self.values = self._defaults(self.tracker)
+            if box is not None:
+                self.init_box = [float(v) for v in box]
+        self._send_clip()
+        self.observe(self._on_clip, names="clip")
+        self.observe(self._on_tracker, names="tracker")
+        self.observe(self._on_change, names=["values", "init_box"])
+        self._run()
+
+    # -- configuration -------------------------------------------------------------------
+    def _knobs(self, tracker):
+        cls = _params_cls(tracker)
+        out = []
+        for name in self.param_names:
+            spec = D.knob_spec(cls, name, self._initial.get(name)) if cls else None
+            if spec is not None:
+                spec["samples"] = [list(v) if isinstance(v, tuple) else v
+                                   for v in self._samples.get(name, D.sample_values(spec))]
+                if spec["default"] not in spec["samples"]:   # the default is always a stop
+                    spec["samples"].append(spec["default"])
+                out.append(spec)
+        return out
+
+    def _config(self, clip_names, trackers):
+        return {"clips": [{"key": k, "name": self._clips[k].name} for k in clip_names],
+                "trackers": trackers,
+                "knobs": {t: self._knobs(t) for t in trackers},
+                "n_frames": self.n_frames}
+
+    def _defaults(self, tracker):
+        return {k["name"]: k["default"] for k in self.config["knobs"][tracker]}
+
+    def _n(self, clip, cap=None):
+        n = len(clip) if self.n_frames is None else min(int(self.n_frames), len(clip))
+        return n if cap is None else min(n, cap)
+
+    def _send_clip(self):
+        clip = self._clips[self.clip]
+        self.clip_data = D.clip_payload(clip, self._n(clip))
+
+    # -- events (the slider path: JS sets a trait, Python re-runs) -----------------------
+    def _on_clip(self, change):
+        self._send_clip()
+        self.init_box = []
+        self._run()
+
+    def _on_tracker(self, change):
+        self.values = self._defaults(change["new"])   # triggers _on_change -> _run
+
+    def _on_change(self, change):
+        self._run()
+
+    def set(self, **knobs):
+        """Re-run with these knob values (others unchanged) and return the new result,
+        by the path a slider takes (the ``values`` trait)."""
+        unknown = set(knobs) - {k["name"] for k in self.config["knobs"][self.tracker]}
+        if unknown:
+            raise ValueError(f"{sorted(unknown)} are not knobs of this playground's "
+                             f"{self.tracker!r}; it has "
+                             f"{[k['name'] for k in self.config['knobs'][self.tracker]]}.")
+        clean = {k: list(v) if isinstance(v, tuple) else v for k, v in knobs.items()}
+        self.values = {**self.values, **clean}
+        return self.result
+
+    def params(self) -> dict:
+        """The knob values of the current run, as the tracker takes them."""
+        return {k: tuple(v) if isinstance(v, list) else v for k, v in self.values.items()}
+
+    # -- work ----------------------------------------------------------------------------
+    def _init_box(self, clip):
+        if self.init_box:
+            return self.init_box
+        g = np.asarray(clip.groundtruth[0], dtype=float)
+        return None if np.isfinite(g).all() else False
+
+    def _run(self):
+        clip = self._clips[self.clip]
+        box = self._init_box(clip)
+        if box is False:      # your own video: wait for the box the student drags
+            self.run_data = {"clip": clip.name, "tracker": self.tracker, "waiting": True}
+            self.result = None
+            return None
+        self.busy = True
+        try:
+            payload, r, states = D.run_payload(self.tracker, clip, self.params(),
+                                               self._n(clip), self.seed, box)
+            self.error = ""
+        except ValueError as e:   # a knob combination the tracker refuses: say why
+            self.error = str(e)
+            return self.result
+        finally:
+            self.busy = False
+        self.result, self.states = r, states
+        self.runs += 1
+        # the book's precompute starts with this very run (same tracker, clip, values, frames)
+        _RUN_CACHE.setdefault(_cache_key(self.tracker, clip.name, self._n(clip), self.seed,
+                                         self.values, box), payload)
+        self.run_data = payload
+        return r
+
+    @property
+    def scores(self) -> dict:
+        return {} if self.result is None else self.result.scores
+
+    def show(self):
+        """Display the panel (the live widget in Jupyter, the precomputed page in the book)."""
+        from IPython.display import display
+        display(self)
+
+    def _repr_mimebundle_(self, **kwargs):
+        if os.environ.get(BOOK_ENV):
+            return {"text/plain": f"Playground({self.tracker} on {self.clip})",
+                    "text/html": self.static_html()}
+        return super()._repr_mimebundle_(**kwargs)
+
+    # -- the HTML book -------------------------------------------------------------------
+    def _cached_run(self, tracker, key, values, n):
+        clip = self._clips[key]
+        box = self._init_box(clip)
+        if box is False:
+            return None
+        ck = _cache_key(tracker, clip.name, n, self.seed, values, box)
+        if ck not in _RUN_CACHE:
+            try:
+                _RUN_CACHE[ck] = D.run_payload(tracker, clip, {k: tuple(v) if isinstance(
+                    v, list) else v for k, v in values.items()}, n, self.seed, box)[0]
+            except ValueError as e:
+                _RUN_CACHE[ck] = {"error": str(e)}
+        return _RUN_CACHE[ck]
+
+    def static_runs(self, budget: int = 2400, room: int = MAX_PAGE_BYTES) -> dict:
+        """The runs the HTML book embeds, keyed ``clip|tracker|`` (defaults) and
+        ``clip|tracker|knob#i`` (knob at its i-th sample in :meth:`static_knobs`, the others
+        at their defaults).
+
+        Every clip x tracker at defaults first; then, on the first clip and tracker, each knob's
+        samples (the promised knobs first) while the cost stays under ``budget`` tracker-frames
+        (a run of n frames with P particles costs n * max(1, P / default P)): the build stays
+        quick; and while the runs' JSON stays under ``room`` bytes (the page under 3 MB). Knobs
+        left out are marked "Jupyter only" in the page.
+        """
+        runs, cost, size = {}, 0, 0
+        t0, c0 = self.config["trackers"][0], self.config["clips"][0]["key"]
+        for t in self.config["trackers"]:
+            for c in self._clips:
+                n = self._n(self._clips[c], STATIC_MAX_FRAMES)
+                r = self._cached_run(t, c, self._defaults(t), n)
+                if r is not None:
+                    runs[f"{c}|{t}|"] = r
+                    cost += n
+                    size += len(json.dumps(r))
+        knobs = sorted(self.static_knobs(t0),
+                       key=lambda k: (k["name"] not in _FIRST, self.param_names.index(k["name"])))
+        n = self._n(self._clips[c0], STATIC_MAX_FRAMES)
+        defaults = self._defaults(t0)
+        p0 = defaults.get("n_particles") or 1
+        for k in knobs:
+            todo = [(i, v) for i, v in enumerate(k["samples"]) if v != k["default"]]
+            need = sum(n * max(1.0, (v if k["name"] == "n_particles" else p0) / p0)
+                       for _, v in todo)
+            typical = size / max(len(runs), 1)
+            if cost + need > budget or size + typical * len(todo) > room:
+                continue
+            for i, v in todo:
+                r = self._cached_run(t0, c0, {**defaults, k["name"]: v}, n)
+                if r is not None:
+                    runs[f"{c0}|{t0}|{k['name']}#{i}"] = r
+                    size += len(json.dumps(r))
+            cost += need
+        return runs
+
+    def static_knobs(self, tracker) -> list:
+        """The knobs of ``tracker`` as the HTML book offers them: the knobs the mission names
+        (particles, alpha, the ratio window) and those given ``samples=`` keep all their
+        samples; every other knob keeps its default and at most ``STATIC_OTHER_SAMPLES``
+        others (the nearest below and above the default, then the range's ends), so that
+        every knob has runs in the page while the build stays quick."""
+        out = []
+        for k in self.config["knobs"][tracker]:
+            k = {**k, "samples": list(k["samples"])}
+            if k["name"] not in _FIRST and k["name"] not in self._samples:
+                others = [v for v in k["samples"] if v != k["default"]]
+                if len(others) > STATIC_OTHER_SAMPLES and k["kind"] in ("int", "float"):
+                    below = [v for v in others if v < k["default"]]
+                    above = [v for v in others if v > k["default"]]
+                    pick = []
+                    for v in ([below[-1]] if below else []) + ([above[0]] if above else []) \
+                            + [others[0], others[-1]] + others:
+                        if v not in pick and len(pick) < STATIC_OTHER_SAMPLES:
+                            pick.append(v)
+                    k["samples"] = sorted(pick + [k["default"]])
+            out.append(k)
+        return out
+
+    def static_payload(self, budget: int = 2400) -> dict:
+        # the frames take most of the page: lower the JPEG quality until they fit in 2 MB
+        for quality in (D.JPEG_QUALITY, 60, 50, 40, 30):
+            clip_data = {c: D.clip_payload(clip, self._n(clip, STATIC_MAX_FRAMES), quality)
+                         for c, clip in self._clips.items()}
+            if len(json.dumps(clip_data)) <= 2_000_000:
+                break
+        room = MAX_PAGE_BYTES - len(json.dumps(clip_data)) - 150_000   # viewer, PNG, config
+        runs = self.static_runs(budget, room)
+        t0 = self.config["trackers"][0]
+        config = {**self.config, "knobs": {**self.config["knobs"], t0: self.static_knobs(t0)}}
+        return {"config": config, "clips": clip_data, "runs": runs,
+                "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
+
+    def static_html(self, budget: int = 2400) -> str:
+        """The panel as one self-contained HTML fragment: root ``div.tb-playground``, the data
+        in a ``<script type="application/json">``, the viewer module inline (so ``file://``
+        works) and a PNG of the first run in ``<noscript>`` for print and no-JavaScript."""
+        return page_html(self.static_payload(budget), self._static_png(),
+                         "the playground's first run: frames and IoU")
+
+    def _static_png(self) -> bytes:
+        import matplotlib.pyplot as plt
+
+        fig = self.static_figure()
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=60)
+        plt.close(fig)
+        return buf.getvalue()
+
+    def static_figure(self, frames=None):
+        """A static picture of the current run (three frames and the IoU curve): the
+        fallback for print and browsers without JavaScript."""
+        import matplotlib.pyplot as plt
+
+        from ..evaluation import metrics
+        from ..viz.core import EST_COLOR, draw_box, draw_particles, show_frame
+
+        clip = self._clips[self.clip]
+        r = self.result
+        if r is None:
+            fig, ax = plt.subplots(figsize=(3, 2.4))
+            show_frame(clip.frames[0], ax=ax, title="drag the target's box (Jupyter)")
+            return fig
+        n = len(r.boxes)
+        frames = frames or [n // 4, n // 2, n - 1]
+        fig, axes = plt.subplots(1, len(frames) + 1, figsize=(3.0 * (len(frames) + 1), 2.6))
+        for ax, i in zip(axes, frames):
+            show_frame(clip.frames[i], ax=ax, gt=clip.groundtruth[i], title=f"frame {i}")
+            st = self.states[i] if i < len(self.states) else {}
+            if "particles" in st:
+                draw_particles(ax, st["particles"], st.get("weights"), max_size=20)
+            draw_box(ax, r.boxes[i], EST_COLOR, "estimate")
+        gt = clip.groundtruth[:n]
+        if np.isfinite(gt[1:]).all(axis=1).any():
+            axes[-1].plot(metrics.iou(r.boxes, gt), color=EST_COLOR, lw=1)
+            axes[-1].set(xlabel="frame", ylabel="IoU", ylim=(0, 1.02))
+        else:
+            axes[-1].plot(np.asarray(r.ok, float), color=EST_COLOR, lw=1)
+            axes[-1].set(xlabel="frame", ylabel="tracker ok", ylim=(-0.02, 1.02))
+        axes[-1].grid(alpha=0.3)
+        fig.suptitle(html.unescape(D.scores_text(r)), fontsize=9)
+        fig.tight_layout()
+        return fig

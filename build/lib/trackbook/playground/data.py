@@ -1,0 +1,215 @@
+"""What the viewer draws, as compact JSON: frames once as JPEG, and per run only boxes and state.
+
+A *clip payload* holds the frames (base64 JPEG) and the ground truth; a *run payload* holds a
+tracker's boxes, ``ok`` flags, IoU per frame, the scores line and the state the chapter draws
+(particles subsampled and quantised, search window, ellipse, candidates, rays). The same
+payloads feed the Jupyter widget (sent over the comm) and the static HTML book (embedded in the
+page), so one JavaScript module draws both.
+"""
+
+from __future__ import annotations
+
+import base64
+import dataclasses
+import math
+
+import cv2
+import numpy as np
+
+from .. import trackers as _trackers
+from ..evaluation import metrics
+from ..evaluation.runner import evaluate
+
+#: most particles sent per frame: enough to see the cloud, small enough to ship many runs
+MAX_PARTICLES = 40
+#: most candidate boxes sent per frame
+MAX_CANDIDATES = 12
+JPEG_QUALITY = 72
+
+
+def _b64(a: np.ndarray) -> str:
+    return base64.b64encode(np.ascontiguousarray(a).tobytes()).decode("ascii")
+
+
+def clip_payload(clip, n: int, quality: int = JPEG_QUALITY) -> dict:
+    """The first ``n`` frames of ``clip`` as JPEG (encoded once) and their ground truth."""
+    frames = []
+    for i, f in enumerate(clip.frames):
+        if i >= n:
+            break
+        ok, buf = cv2.imencode(".jpg", np.asarray(f),   # clips are BGR, as cv2 wants
+                               [cv2.IMWRITE_JPEG_QUALITY, int(quality)])
+        frames.append(base64.b64encode(buf.tobytes()).decode("ascii"))
+    gt = np.asarray(clip.groundtruth[:len(frames)], dtype=float)
+    has_gt = bool(np.isfinite(gt).all(axis=1).any())
+    w, h = clip.size
+    return {"name": clip.name, "w": int(w), "h": int(h), "frames": frames,
+            "gt": [[round(float(v), 1) for v in b] if np.isfinite(b).all() else None
+                   for b in gt] if has_gt else None}
+
+
+def snapshot(tracker) -> dict:
+    """What to draw for one frame, copied (trackers reuse their arrays)."""
+    snap = {}
+    p = getattr(tracker, "particles", None)
+    if p is not None and len(p):
+        p = np.asarray(p, dtype=float)
+        w = getattr(tracker, "weights", None)
+        w = np.full(len(p), 1.0 / len(p)) if w is None else np.asarray(w, dtype=float)
+        if len(p) > MAX_PARTICLES:     # an even subsample keeps the cloud's shape
+            idx = np.linspace(0, len(p) - 1, MAX_PARTICLES).round().astype(int)
+            p, w = p[idx], w[idx]
+        snap["particles"] = p[:, :2].copy()
+        snap["weights"] = w.copy()
+        pr = getattr(tracker, "particle_rays", None)
+        full_w = getattr(tracker, "weights", None)
+        if pr is not None and len(pr) and full_w is not None and len(full_w) == len(pr):
+            best = int(np.argmax(full_w))
+            snap["rays"] = [*np.asarray(tracker.particles)[best, :2], *np.asarray(pr)[best]]
+    for key in ("search_window", "ellipse"):
+        v = getattr(tracker, key, None)
+        if v is not None:
+            snap[key] = [float(x) for x in np.asarray(v, dtype=float).ravel()[:4]]
+    c = getattr(tracker, "candidates", None)
+    if c is not None and len(c):
+        c = np.asarray(c, dtype=float)[:, :4]
+        if len(c) > MAX_CANDIDATES:
+            c = c[np.linspace(0, len(c) - 1, MAX_CANDIDATES).round().astype(int)]
+        snap["candidates"] = c.copy()
+    return snap
+
+
+def _encode_state(states: list[dict]) -> dict:
+    """Per-frame snapshots -> compact arrays: particles as base64 int16 (x, y in half pixels;
+    weight relative to the frame's largest, 0..1000), the rest rounded to 0.1 px."""
+    out: dict = {}
+    if any("particles" in s for s in states):
+        counts, flat = [], []
+        for s in states:
+            p = s.get("particles")
+            if p is None:
+                counts.append(0)
+                continue
+            w = s["weights"]
+            w = w / w.max() if w.max() > 0 else np.ones_like(w)
+            q = np.column_stack([np.round(p * 2), np.round(w * 1000)])
+            flat.append(np.clip(q, -32768, 32767).astype("<i2").ravel())
+            counts.append(len(p))
+        out["pcount"] = counts
+        out["particles"] = _b64(np.concatenate(flat)) if flat else ""
+
+    def tidy(x):    # 33.0 -> 33: whole-pixel boxes (a stride's grid) cost a third less JSON
+        if isinstance(x, list):
+            return [tidy(v) for v in x]
+        return int(x) if float(x).is_integer() else x
+
+    def rounded(key, reshape=False):
+        if any(key in s for s in states):
+            out[key] = [None if key not in s else
+                        tidy(np.round(np.asarray(s[key], dtype=float), 1).tolist())
+                        for s in states]
+
+    for key in ("search_window", "ellipse", "candidates", "rays"):
+        rounded(key)
+    return out
+
+
+def scores_text(result) -> str:
+    s = result.scores
+    if "auc" in s:
+        return (f"{result.tracker} on {result.clip}: AUC {s['auc']:.3f} · precision@20px "
+                f"{s['precision20']:.3f} · tracking rate {s['tracking_rate']:.1%} · "
+                f"{s['ms_median']:.2f} ms/frame")
+    return f"{result.tracker} on {result.clip}: no ground truth · {s['ms_median']:.2f} ms/frame"
+
+
+def run_payload(tracker: str, clip, values: dict, n: int | None, seed: int = 0,
+                init_box=None) -> tuple[dict, object, list]:
+    """Track ``clip`` with ``tracker`` and ``values``; return (payload, result, snapshots)."""
+    states: list[dict] = []
+    r = evaluate(tracker, clip, seed=seed, max_frames=n, init_box=init_box,
+                 on_frame=lambda i, t, f, b: states.append(snapshot(t)), **values)
+    nb = len(r.boxes)
+    gt = np.asarray(clip.groundtruth[:nb], dtype=float)
+    has_gt = bool(np.isfinite(gt).all(axis=1)[1:].any())
+    iou = metrics.iou(r.boxes, gt) if has_gt else None
+    ok = np.asarray(r.ok, dtype=bool)
+    payload = {
+        "clip": clip.name, "tracker": tracker,
+        "values": {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()},
+        "boxes": np.round(np.asarray(r.boxes, dtype=float), 1).tolist(),
+        "ok": ok.astype(int).tolist(),
+        "iou": None if iou is None else [None if not math.isfinite(v) else round(float(v), 3)
+                                          for v in iou],
+        "scores": scores_text(r),
+        "state": _encode_state(states[:nb] if len(states) >= nb else [{}] + states),
+    }
+    return payload, r, states
+
+
+def knob_spec(cls, name: str, value=None) -> dict | None:
+    """The viewer's description of one knob, from the params field's metadata."""
+    fields = {f.name: f for f in dataclasses.fields(cls.Params)}
+    if name not in fields:
+        return None
+    f = fields[name]
+    m = f.metadata
+    v = f.default if value is None else value
+    spec = {"name": name, "doc": m.get("doc", ""), "default": list(v) if isinstance(v, tuple) else v}
+    if m.get("choices"):
+        spec.update(kind="choice", choices=list(m["choices"]))
+    elif isinstance(v, bool):
+        spec.update(kind="bool")
+    elif isinstance(v, tuple):
+        lo = m.get("lo") if m.get("lo") is not None else 0.0
+        hi = m.get("hi") if m.get("hi") is not None else 2 * max(v)
+        spec.update(kind="pair", lo=lo, hi=hi, step=m.get("step") or (hi - lo) / 100)
+    elif isinstance(v, (int, float)):
+        is_int = isinstance(v, int)
+        lo = m.get("lo") if m.get("lo") is not None else 0
+        hi = m.get("hi") if m.get("hi") is not None else max(2 * v, 1)
+        step = m.get("step") or (1 if is_int else (hi - lo) / 100)
+        spec.update(kind="int" if is_int else "float", lo=lo, hi=hi, step=step)
+    else:
+        spec.update(kind="text")
+    return spec
+
+
+_SAMPLES = {
+    "n_particles": [10, 30, 100, 300, 1000],
+    "alpha": [0.0, 0.1, 0.3, 0.5, 0.9, 1.0],
+}
+_PAIR_SAMPLES = [(0.95, 1.05), (0.9, 1.1), (0.8, 1.2), (0.7, 1.4), (0.5, 2.0)]
+
+
+def sample_values(spec: dict, k: int = 5) -> list:
+    """A few values of a knob around its default, within the field's range: what the HTML
+    book precomputes (Jupyter takes any value)."""
+    d = spec["default"]
+    kind = spec["kind"]
+    if kind == "choice":
+        return list(spec["choices"])
+    if kind == "bool":
+        return [d, not d]
+    if kind == "pair":
+        vals = [list(p) for p in _PAIR_SAMPLES if spec["lo"] <= p[0] and p[1] <= spec["hi"]]
+    elif kind in ("int", "float"):
+        lo, hi = spec["lo"], spec["hi"]
+        if spec["name"] in _SAMPLES:
+            vals = [v for v in _SAMPLES[spec["name"]] if lo <= v <= hi]
+        else:
+            vals = list(np.linspace(lo, hi, k))
+            step = spec["step"]
+            # on the step grid, but never past the field's range (0.01 + 200 * 0.5 = 100.01
+            # would be refused by a q whose maximum is 100)
+            vals = [min(hi, max(lo, lo + round((v - lo) / step) * step)) for v in vals]
+        vals = [int(round(v)) if kind == "int" else round(float(v), 6) for v in vals]
+    else:
+        return [d]
+    if d not in vals:
+        vals.append(d)
+    out = []
+    for v in sorted(vals):
+        if v not in out:
+            out.append(v)
+    return out

@@ -1,0 +1,494 @@
+// trackbook playground viewer: one ES module for the Jupyter widget (anywidget) and the
+// static HTML book. It draws on a canvas the frame, ground truth, estimate, the tracker's
+// state, the IoU-per-frame curve with a cursor and the scores line. Frames arrive once as
+// JPEG; everything else is drawn here, so a frame step costs no Python and no network.
+// Contract: root element .tb-playground, knob inputs [data-knob], frame input [data-frame],
+// play button [data-play].
+
+const COLORS = {
+  gt: "#009E73", est: "#D55E00", particle: "#0072B2", window: "#E69F00",
+  ellipse: "#CC79A7", cand: "#8c8c8c", ray: "#56B4E9", curve: "#D55E00", grid: "#dddddd",
+};
+const SPEEDS = [["slow", 5], ["normal", 12], ["fast", 25]];
+
+function el(tag, attrs, parent) {
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs || {})) {
+    if (k === "text") e.textContent = v;
+    else if (k === "class") e.className = v;
+    else e.setAttribute(k, v);
+  }
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+function fmt(v) {
+  if (Array.isArray(v)) return v.map(fmt).join(", ");
+  if (typeof v === "number") return Number.isInteger(v) ? String(v) : String(+v.toPrecision(3));
+  return String(v);
+}
+
+function same(a, b) { return JSON.stringify(a) === JSON.stringify(b); }
+
+// particles: base64 little-endian int16 triples (2x, 2y, weight*1000), pcount per frame
+function decodeState(run) {
+  const st = (run && run.state) || {};
+  const out = { particles: null };
+  if (st.pcount && st.particles) {
+    const bin = atob(st.particles);
+    const bytes = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+    const a = new Int16Array(bytes.buffer);
+    const per = [];
+    let o = 0;
+    for (const c of st.pcount) { per.push(a.subarray(o, o + 3 * c)); o += 3 * c; }
+    out.particles = per;
+  }
+  for (const k of ["search_window", "ellipse", "candidates", "rays"]) out[k] = st[k] || null;
+  return out;
+}
+
+const RAY_DIRS = [[1, 0], [1, -1], [0, -1], [-1, -1], [-1, 0], [-1, 1], [0, 1], [1, 1]];
+
+class Viewer {
+  constructor(root, host) {
+    this.root = root;
+    this.host = host;
+    this.frame = 0;
+    this.playing = false;
+    this.images = [];
+    this.clipKey = null;
+    this.drag = null;
+    root.classList.add("tb-playground");
+    root.setAttribute("tabindex", "0");
+    const top = el("div", { class: "tb-row tb-choices" }, root);
+    this.clipSel = el("select", { "data-control": "clip", "aria-label": "clip" }, top);
+    this.trackerSel = el("select", { "data-control": "tracker", "aria-label": "tracker" }, top);
+    this.status = el("span", { class: "tb-status" }, top);
+    this.knobBox = el("div", { class: "tb-knobs" }, root);
+    this.note = el("div", { class: "tb-note" }, root);
+    this.canvas = el("canvas", { class: "tb-canvas" }, root);
+    this.ctx = this.canvas.getContext("2d");
+    const tr = el("div", { class: "tb-row tb-transport" }, root);
+    this.playBtn = el("button", { "data-play": "", type: "button", text: "\u25b6 play" }, tr);
+    this.slider = el("input", { type: "range", "data-frame": "", min: 0, max: 0, step: 1,
+                                value: 0, "aria-label": "frame" }, tr);
+    this.frameLabel = el("span", { class: "tb-frame-label" }, tr);
+    this.speedSel = el("select", { "data-speed": "", "aria-label": "speed" }, tr);
+    for (const [name, fps] of SPEEDS) el("option", { value: fps, text: name }, this.speedSel);
+    this.speedSel.value = "12";
+    this.scores = el("div", { class: "tb-scores" }, root);
+    this.slider.addEventListener("input", () => this.seek(+this.slider.value));
+    this.playBtn.addEventListener("click", () => this.togglePlay());
+    root.addEventListener("keydown", (ev) => {
+      if (ev.target.tagName === "INPUT" && ev.target !== this.slider) return;
+      if (ev.key === "ArrowRight") { this.seek(this.frame + 1); ev.preventDefault(); }
+      else if (ev.key === "ArrowLeft") { this.seek(this.frame - 1); ev.preventDefault(); }
+      else if (ev.key === " " && ev.target === root) { this.togglePlay(); ev.preventDefault(); }
+    });
+    this.clipSel.addEventListener("change", () => host.setClip(this.clipSel.value));
+    this.trackerSel.addEventListener("change", () => host.setTracker(this.trackerSel.value));
+    this.canvas.addEventListener("mousedown", (ev) => this.dragStart(ev));
+    this.canvas.addEventListener("mousemove", (ev) => this.dragMove(ev));
+    window.addEventListener("mouseup", (ev) => this.dragEnd(ev));
+    const cfg = host.config();
+    for (const c of cfg.clips) el("option", { value: c.key, text: c.name }, this.clipSel);
+    for (const t of cfg.trackers) el("option", { value: t, text: t }, this.trackerSel);
+    this.clipSel.disabled = cfg.clips.length < 2;
+    this.trackerSel.disabled = cfg.trackers.length < 2;
+  }
+
+  // ---- data arriving -----------------------------------------------------------------
+  update() {
+    const h = this.host;
+    this.clipSel.value = h.clipKey();
+    this.trackerSel.value = h.tracker();
+    const clip = h.clip();
+    if (clip && this.clipKey !== h.clipKey()) this.loadClip(clip, h.clipKey());
+    this.run = h.run();
+    this.state = decodeState(this.run);
+    this.buildKnobs();
+    const n = this.nFrames();
+    this.slider.max = Math.max(0, n - 1);
+    if (this.frame > n - 1) this.frame = Math.max(0, n - 1);
+    this.slider.value = this.frame;
+    const r = this.run || {};
+    const clipHasGt = clip && clip.gt;
+    if (r.animation) this.scores.textContent = r.scores || "";
+    else if (r.waiting) this.scores.textContent =
+      "No ground truth: drag the target's box on frame 0, the tracker starts from it.";
+    else if (r.error) this.scores.textContent = "This setting was refused: " + r.error;
+    else if (!clipHasGt) this.scores.textContent = (r.tracker || "") +
+      " on your clip: no ground truth, so no scores; the curve is the tracker's ok flag.";
+    else this.scores.textContent = r.scores || "";
+    this.note.textContent = h.note();
+    this.status.textContent = h.status();
+    this.draw();
+  }
+
+  loadClip(clip, key) {
+    this.clipKey = key;
+    this.clipInfo = clip;
+    this.frameIndex = clip.index || null;  // animations: step -> image (steps share frames)
+    this.images = clip.frames.map((b64) => {
+      const im = new Image();
+      im.onload = () => { if (this.images === imgs) this.draw(); };
+      im.src = "data:image/jpeg;base64," + b64;
+      return im;
+    });
+    const imgs = this.images;
+    const scale = Math.min(2, 480 / clip.w);
+    this.scale = scale;
+    this.fw = Math.round(clip.w * scale);
+    this.fh = Math.round(clip.h * scale);
+    this.cx0 = this.fw + 16;
+    this.cw = 320;
+    const dpr = window.devicePixelRatio || 1;
+    this.canvas.width = Math.round((this.cx0 + this.cw) * dpr);
+    this.canvas.height = Math.round(this.fh * dpr);
+    this.canvas.style.width = (this.cx0 + this.cw) + "px";
+    this.canvas.style.height = this.fh + "px";
+    this.ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  }
+
+  nFrames() {
+    const r = this.run;
+    if (r && r.boxes) return r.boxes.length;
+    return this.clipInfo ? this.clipInfo.frames.length : 1;
+  }
+
+  buildKnobs() {
+    const specs = this.host.knobs();
+    const sig = JSON.stringify([this.host.tracker(), this.host.clipKey(), specs.map((k) => k.name),
+                                this.host.live]);
+    if (sig !== this.knobSig) {
+      this.knobSig = sig;
+      this.knobBox.textContent = "";
+      this.inputs = {};
+      for (const k of specs) this.inputs[k.name] = this.makeKnob(k);
+    }
+    for (const k of specs) this.showKnob(k, this.inputs[k.name]);
+  }
+
+  makeKnob(k) {
+    const h = this.host;
+    const lab = el("label", { class: "tb-knob", title: k.doc || "" }, this.knobBox);
+    el("span", { class: "tb-knob-name", text: k.name }, lab);
+    let input;
+    if (!h.live) {
+      input = el("input", { type: "range", "data-knob": k.name, min: 0,
+                            max: k.samples.length - 1, step: 1 }, lab);
+      if (!h.sampled(k)) { input.disabled = true; lab.title = "Jupyter only: " + (k.doc || ""); }
+      input.addEventListener("input", () => h.setKnob(k.name, k.samples[+input.value]));
+    } else if (k.kind === "choice") {
+      input = el("select", { "data-knob": k.name }, lab);
+      for (const c of k.choices) el("option", { value: c, text: c }, input);
+      input.addEventListener("change", () => h.setKnob(k.name, input.value));
+    } else if (k.kind === "bool") {
+      input = el("input", { type: "checkbox", "data-knob": k.name }, lab);
+      input.addEventListener("change", () => h.setKnob(k.name, input.checked));
+    } else if (k.kind === "int" || k.kind === "float") {
+      input = el("input", { type: "range", "data-knob": k.name, min: k.lo, max: k.hi,
+                            step: k.step }, lab);
+      input.addEventListener("change", () =>
+        h.setKnob(k.name, k.kind === "int" ? Math.round(+input.value) : +input.value));
+      input.addEventListener("input", () => { lab.lastChild.textContent = fmt(+input.value); });
+    } else {
+      input = el("input", { type: "text", "data-knob": k.name, size: 9 }, lab);
+      input.addEventListener("change", () => {
+        const parts = input.value.split(",").map((s) => +s.trim());
+        h.setKnob(k.name, k.kind === "pair" ? parts : input.value);
+      });
+    }
+    el("span", { class: "tb-knob-value" }, lab);
+    return input;
+  }
+
+  showKnob(k, input) {
+    const v = this.host.value(k.name);
+    const lab = input.parentNode;
+    if (!this.host.live) {
+      let i = k.samples.findIndex((s) => same(s, v));
+      if (i < 0) i = 0;
+      input.value = i;
+    } else if (k.kind === "bool") input.checked = !!v;
+    else if (k.kind === "pair" || k.kind === "text") input.value = fmt(v);
+    else input.value = v;
+    lab.lastChild.textContent = fmt(v);
+  }
+
+  // ---- frames --------------------------------------------------------------------------
+  seek(i) {
+    const n = this.nFrames();
+    this.frame = Math.max(0, Math.min(n - 1, i | 0));
+    this.slider.value = this.frame;
+    this.draw();
+  }
+
+  togglePlay() {
+    this.playing = !this.playing;
+    this.playBtn.textContent = this.playing ? "\u275a\u275a pause" : "\u25b6 play";
+    if (!this.playing) return;
+    if (this.frame >= this.nFrames() - 1) this.seek(0);
+    let last = performance.now();
+    const tick = (now) => {
+      if (!this.playing || !this.root.isConnected) { this.playing = false; return; }
+      const dt = 1000 / +this.speedSel.value;
+      if (now - last >= dt) {
+        last = now;
+        if (this.frame >= this.nFrames() - 1) { this.togglePlay(); return; }
+        this.seek(this.frame + 1);
+      }
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }
+
+  // ---- drawing -------------------------------------------------------------------------
+  box(b, color, width, dash) {
+    if (!b) return;
+    const c = this.ctx, s = this.scale;
+    c.save();
+    c.strokeStyle = color; c.lineWidth = width; c.setLineDash(dash || []);
+    c.strokeRect(b[0] * s, b[1] * s, b[2] * s, b[3] * s);
+    c.restore();
+  }
+
+  draw() {
+    const c = this.ctx, s = this.scale, i = this.frame;
+    if (!this.clipInfo) return;
+    c.fillStyle = "#fff";
+    c.fillRect(0, 0, this.cx0 + this.cw, this.fh);
+    const im = this.images[this.frameIndex ? this.frameIndex[i] : i];
+    if (im && im.complete && im.naturalWidth) c.drawImage(im, 0, 0, this.fw, this.fh);
+    else { c.fillStyle = "#222"; c.fillRect(0, 0, this.fw, this.fh); }
+    const gt = this.clipInfo.gt;
+    if (gt && gt[i]) this.box(gt[i], COLORS.gt, 2);
+    const extra = this.run && this.run.extra_boxes;   // animations: e.g. the measurement
+    if (extra) for (const e of extra) if (e.boxes[i]) this.box(e.boxes[i], e.color, 2, e.dash);
+    const r = this.run, st = this.state || {};
+    if (r && r.boxes) {
+      if (st.search_window && st.search_window[i]) this.box(st.search_window[i], COLORS.window, 1.5, [5, 4]);
+      if (st.candidates && st.candidates[i]) for (const b of st.candidates[i]) this.box(b, COLORS.cand, 1);
+      if (st.particles && st.particles[i]) {
+        const p = st.particles[i];
+        c.fillStyle = COLORS.particle;
+        for (let j = 0; j < p.length; j += 3) {
+          const rad = 1.5 + 4 * Math.sqrt(Math.max(0, p[j + 2]) / 1000);
+          c.globalAlpha = 0.35 + 0.5 * p[j + 2] / 1000;
+          c.beginPath(); c.arc(p[j] / 2 * s, p[j + 1] / 2 * s, rad, 0, 2 * Math.PI); c.fill();
+        }
+        c.globalAlpha = 1;
+      }
+      if (st.ellipse && st.ellipse[i]) {
+        const e = st.ellipse[i];
+        c.save(); c.strokeStyle = COLORS.ellipse; c.lineWidth = 2;
+        c.beginPath(); c.ellipse(e[0] * s, e[1] * s, Math.abs(e[2]) * s, Math.abs(e[3]) * s, 0, 0, 2 * Math.PI);
+        c.stroke(); c.restore();
+      }
+      if (st.rays && st.rays[i]) {
+        const q = st.rays[i];
+        c.save(); c.strokeStyle = COLORS.ray; c.lineWidth = 1.5;
+        for (let j = 0; j < 8 && j + 2 < q.length; j++) {
+          const [dx, dy] = RAY_DIRS[j], n = Math.hypot(dx, dy);
+          c.beginPath(); c.moveTo(q[0] * s, q[1] * s);
+          c.lineTo((q[0] + dx / n * q[j + 2]) * s, (q[1] + dy / n * q[j + 2]) * s); c.stroke();
+        }
+        c.restore();
+      }
+      if (r.boxes[i]) this.box(r.boxes[i], COLORS.est, 2.5);
+    }
+    if (this.drag && this.drag.b) this.box(this.drag.b, COLORS.est, 2, [4, 3]);
+    this.legend();
+    this.curve();
+    const iou = r && r.iou ? r.iou[i] : null;
+    this.frameLabel.textContent = `frame ${i} / ${Math.max(0, this.nFrames() - 1)}` +
+      (iou !== null && iou !== undefined ? ` \u00b7 IoU ${iou.toFixed(2)}` : "") +
+      (r && r.ok ? (r.ok[i] ? "" : " \u00b7 lost") : "") +
+      (r && r.captions && r.captions[i] ? " \u00b7 " + r.captions[i] : "");
+  }
+
+  legend() {
+    const c = this.ctx;
+    c.font = "11px sans-serif";
+    let x = 6;
+    const items = [[(this.run && this.run.est_label) || "estimate", COLORS.est]];
+    if (this.clipInfo.gt) items.unshift(["ground truth", COLORS.gt]);
+    for (const e of (this.run && this.run.extra_boxes) || []) items.push([e.label, e.color]);
+    for (const [name, col] of items) {
+      const w = c.measureText(name).width + 18;
+      c.fillStyle = "rgba(255,255,255,0.8)"; c.fillRect(x - 2, this.fh - 18, w, 15);
+      c.fillStyle = col; c.fillRect(x, this.fh - 13, 10, 5);
+      c.fillStyle = "#000"; c.fillText(name, x + 13, this.fh - 7);
+      x += w + 4;
+    }
+  }
+
+  curve() {
+    const c = this.ctx, x0 = this.cx0 + 34, y0 = 12, w = this.cw - 44, h = this.fh - 40;
+    const r = this.run, n = this.nFrames();
+    c.strokeStyle = "#000"; c.lineWidth = 1; c.strokeRect(x0, y0, w, h);
+    c.fillStyle = "#000"; c.font = "11px sans-serif";
+    const custom = r && r.curve;          // animations: any per-step series, 0..1
+    const useIou = !custom && r && r.iou;
+    c.save(); c.translate(this.cx0 + 10, y0 + h / 2); c.rotate(-Math.PI / 2);
+    c.textAlign = "center";
+    c.fillText(custom ? custom.label : useIou ? "IoU with ground truth" : "tracker ok", 0, 0);
+    c.restore();
+    c.fillText(custom && custom.x ? custom.x : "frame", x0 + w / 2 - 14, y0 + h + 24);
+    c.fillText("0", x0 - 3, y0 + h + 12); c.fillText(String(n - 1), x0 + w - 12, y0 + h + 12);
+    c.fillText("1", x0 - 10, y0 + 8); c.fillText("0", x0 - 10, y0 + h);
+    const X = (k) => x0 + (n > 1 ? k / (n - 1) : 0) * w, Y = (v) => y0 + h - v * h;
+    c.strokeStyle = COLORS.grid; c.setLineDash([4, 3]);
+    c.beginPath(); c.moveTo(x0, Y(0.5)); c.lineTo(x0 + w, Y(0.5)); c.stroke(); c.setLineDash([]);
+    const ys = custom ? custom.values : useIou ? r.iou : (r && r.ok ? r.ok : null);
+    if (ys) {
+      c.strokeStyle = COLORS.curve; c.lineWidth = 1.5; c.beginPath();
+      let pen = false;
+      ys.forEach((v, k) => {
+        if (v === null || v === undefined) { pen = false; return; }
+        if (pen) c.lineTo(X(k), Y(v)); else c.moveTo(X(k), Y(v));
+        pen = true;
+      });
+      c.stroke();
+    }
+    c.strokeStyle = "#000"; c.lineWidth = 1; c.setLineDash([2, 2]);
+    c.beginPath(); c.moveTo(X(this.frame), y0); c.lineTo(X(this.frame), y0 + h); c.stroke();
+    c.setLineDash([]);
+  }
+
+  // ---- your own video: drag the target's box on frame 0 (Jupyter) ----------------------
+  canDrag() { return this.host.live && this.clipInfo && !this.clipInfo.gt && this.frame === 0; }
+
+  pos(ev) {
+    const r = this.canvas.getBoundingClientRect();
+    return [(ev.clientX - r.left) / this.scale, (ev.clientY - r.top) / this.scale];
+  }
+
+  dragStart(ev) {
+    if (!this.canDrag()) return;
+    const [x, y] = this.pos(ev);
+    if (x > this.clipInfo.w) return;
+    this.drag = { x, y, b: null };
+  }
+
+  dragMove(ev) {
+    if (!this.drag) return;
+    const [x, y] = this.pos(ev);
+    const cx = Math.max(0, Math.min(this.clipInfo.w, x)), cy = Math.max(0, Math.min(this.clipInfo.h, y));
+    this.drag.b = [Math.min(cx, this.drag.x), Math.min(cy, this.drag.y),
+                   Math.abs(cx - this.drag.x), Math.abs(cy - this.drag.y)];
+    this.draw();
+  }
+
+  dragEnd() {
+    if (!this.drag) return;
+    const b = this.drag.b;
+    this.drag = null;
+    if (b && b[2] >= 4 && b[3] >= 4) this.host.setBox(b.map((v) => Math.round(v * 10) / 10));
+    this.draw();
+  }
+}
+
+// ---- the static HTML book: every run precomputed, embedded in the page -------------------
+function staticHost(data) {
+  const cfg = data.config;
+  let clipKey = data.initial.clip, tracker = data.initial.tracker, values = {};
+  let viewer = null;
+  const knobs = () => cfg.knobs[tracker] || [];
+  const defaults = () => Object.fromEntries(knobs().map((k) => [k.name, k.default]));
+  values = defaults();
+  let key = `${clipKey}|${tracker}|`;
+  const host = {
+    live: false,
+    config: () => cfg,
+    clipKey: () => clipKey,
+    tracker: () => tracker,
+    clip: () => data.clips[clipKey],
+    run: () => data.runs[key] || null,
+    knobs,
+    value: (name) => values[name],
+    sampled: (k) => k.samples.some((v, i) => `${clipKey}|${tracker}|${k.name}#${i}` in data.runs),
+    note: () => data.note !== undefined ? data.note : "This page holds runs for a few sampled values of each knob, one knob at a " +
+      "time around the default (the others return to their defaults); in Jupyter the " +
+      "playground re-runs the tracker for any value." +
+      (knobs().some((k) => !host.sampled(k)) ? " Greyed knobs: Jupyter only." : ""),
+    status: () => (data.runs[key] ? "" : "(no precomputed run for this choice)"),
+    setClip(c) { clipKey = c; values = defaults(); key = `${clipKey}|${tracker}|`; viewer.update(); },
+    setTracker(t) { tracker = t; values = defaults(); key = `${clipKey}|${tracker}|`; viewer.update(); },
+    setKnob(name, v) {
+      values = defaults();
+      const k = knobs().find((q) => q.name === name);
+      const i = k.samples.findIndex((s) => same(s, v));
+      values[name] = v;
+      key = same(v, k.default) ? `${clipKey}|${tracker}|` : `${clipKey}|${tracker}|${name}#${i}`;
+      viewer.update();
+    },
+    setBox() {},
+  };
+  return { host, attach: (v) => { viewer = v; } };
+}
+
+function mountStatic(root) {
+  const script = root.querySelector("script.tb-data");
+  if (!script) return;
+  const data = JSON.parse(script.textContent);
+  const { host, attach } = staticHost(data);
+  const v = new Viewer(root, host);
+  attach(v);
+  v.update();
+}
+
+function mountAll() {
+  document.querySelectorAll(".tb-playground[data-tb-static]:not([data-tb-ready])").forEach((r) => {
+    r.setAttribute("data-tb-ready", "1");
+    mountStatic(r);
+  });
+}
+
+if (typeof document !== "undefined") {
+  if (document.readyState === "loading") document.addEventListener("DOMContentLoaded", mountAll);
+  else mountAll();
+}
+
+// ---- Jupyter (anywidget): the kernel re-runs on a knob change ------------------------------
+function render({ model, el: root }) {
+  const fixed = model.get("static_data");
+  if (fixed && fixed.runs) {              // an animation: everything precomputed, no kernel
+    const { host, attach } = staticHost(fixed);
+    const v = new Viewer(root, host);
+    attach(v);
+    v.update();
+    return () => { v.playing = false; };
+  }
+  const cfg = () => model.get("config");
+  const host = {
+    live: true,
+    config: cfg,
+    clipKey: () => model.get("clip"),
+    tracker: () => model.get("tracker"),
+    clip: () => model.get("clip_data"),
+    run: () => model.get("run_data"),
+    knobs: () => cfg().knobs[model.get("tracker")] || [],
+    value: (name) => model.get("values")[name],
+    sampled: () => true,
+    note: () => "",
+    status: () => (model.get("busy") ? "running\u2026" : model.get("error") ? "\u26a0 " + model.get("error") : ""),
+    setClip(c) { model.set("clip", c); model.save_changes(); },
+    setTracker(t) { model.set("tracker", t); model.save_changes(); },
+    setKnob(name, v) {
+      model.set("values", { ...model.get("values"), [name]: v });
+      model.save_changes();
+      v_.status.textContent = "running\u2026";
+    },
+    setBox(b) { model.set("init_box", b); model.save_changes(); v_.status.textContent = "running\u2026"; },
+  };
+  const v_ = new Viewer(root, host);
+  const up = () => v_.update();
+  for (const ev of ["change:run_data", "change:clip_data", "change:busy", "change:error"]) model.on(ev, up);
+  v_.update();
+  return () => { v_.playing = false; for (const ev of ["change:run_data", "change:clip_data", "change:busy", "change:error"]) model.off(ev, up); };
+}
+
+export { Viewer, decodeState, mountAll };
+export default { render };

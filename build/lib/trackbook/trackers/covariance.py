@@ -1,0 +1,483 @@
+"""Lee (2015): region-covariance tracking, with and without a Kalman search window.
+
+``covariance`` (the paper's baseline, Fig. 3)
+    compares the target's covariance (eq. 4) with every candidate window of the target's size
+    around the last position (Förstner distance d_F = ρ, eq. 5–6); the smallest ρ wins. When
+    even the best ρ is above ``threshold`` the target is lost and the whole frame is searched
+    (the paper describes this whole-frame search for covariance alone, Fig. 3, frame 160).
+``kalman-covariance`` (proposed, Fig. 1)
+    predicts the target's centre with a constant-velocity Kalman filter (eq. 7–13), searches
+    only inside the predicted search window, takes the best candidate's centre as the
+    measurement and updates the filter. The paper says that when the match is poor it
+    searches *again inside the Kalman window* (``fallback="window"``, the paper preset); it
+    never sizes the window from S. Both are the book's: the window's half-size of ``gate`` σ
+    of the innovation covariance S = H P⁻ Hᵀ + R, the ``threshold``, and the whole-frame
+    fallback of the book default (``fallback="frame"``).
+    Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
+    target has probably changed velocity (a bounce); the window is searched again as if the
+    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 7, "The bounce").
+
+Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
+``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
+the "averaging search rate" of Table 1 once averaged over the frames.
+
+>>> from trackbook import trackers, clips
+>>> clip = clips.load("red-cube")                                              # doctest: +SKIP
+>>> t = trackers.create("kalman-covariance")                                   # doctest: +SKIP
+>>> t.init(clip.frames[0], clip.groundtruth[0]); ok, box = t.update(clip.frames[1])  # doctest: +SKIP
+>>> t.search_window, t.kalman.x, t.frame_report()                              # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+
+import numpy as np
+
+from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
+                                   feature_dimension, feature_planes, forstner_distance)
+from ..features.motion import find_moving_region
+from ..filters.kalman import constant_velocity
+from ..params import NOT_PRINTED, param
+from .base import Tracker
+from .registry import register
+
+#: How many accepted frames the relative gate's median ρ looks back (one second at 25 fps).
+RHO_HISTORY = 25
+
+
+@dataclasses.dataclass(frozen=True)
+class CovarianceParams:
+    # Section numbers are those of Lee (2015), J. KIICE 19(6), pp. 1477-1484.
+    features: str = param(
+        "xyI|Ix||Iy|", doc="feature vector f_k: eq. 2 with |Ix|, |Iy| (default), eq. 2 as "
+        "printed ('xyIIxIy'), eq. 3 ('rI|Ix||Iy|') or colour ('xyRGB|Ix||Iy|')",
+        choices=FEATURE_SETS,
+        paper="xyIIxIy",   # sec. 2.1, eq. 2: f_k = [x y I(x,y) I_x(x,y) ...], signed gradients
+        why="|Ix|, |Iy| as in Tuzel et al. (2006): a dark-on-light and a light-on-dark edge "
+            "give the same feature (chapter 7)")
+    stride: int = param(
+        1, 1, 8, 1, doc="pixels between neighbouring candidate windows",
+        paper=NOT_PRINTED,   # sec. 2.1 and 3 give no candidate spacing
+        why="every pixel (1), the finest grid; the search rate of Table 1 is counted at it")
+    search_radius: int = param(
+        8, 1, 64, 1, doc="candidates' centres within ±radius px of the last position",
+        paper=NOT_PRINTED,   # sec. 2.3 names a "search range" with no size
+        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (chapter 7 "
+            "compares the search rates)")
+    threshold: float = param(
+        3.0, 0.1, 20.0, 0.1, doc="d_F (eq. 5) above which the match is poor: the target is "
+        "lost and `fallback` says where to search again",
+        paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
+        why="on RedCube the tracked cube scores d_F ≈ 0.5 and background windows above 4; 3 lies "
+            "between (chapter 7 measures it)")
+    fallback: str = param(
+        "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
+        "frame ('frame') or nowhere else, keeping the prediction ('window')",
+        choices=("frame", "window"),
+        paper="frame")     # sec. 3, Fig. 3, frame 160: covariance alone searches the whole frame
+    global_stride: int = param(
+        4, 1, 16, 1, doc="stride of the coarse whole-frame search (refined at `stride` "
+        "around its best window)",
+        paper=NOT_PRINTED, paper_value=1,   # sec. 3: every window of the frame is a candidate
+        why="coarse-to-fine (4 px, then refined at `stride` around the best window) evaluates "
+            "about 16 times fewer windows than the exhaustive search")
+    eps: float = param(
+        1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6",
+        paper=NOT_PRINTED,   # eq. 5-6 assume positive-definite matrices
+        why="a flat window has a singular C (zero gradient variance); εI keeps eq. 6 solvable")
+    model_update: float = param(
+        0.0, 0.0, 1.0, 0.05, doc="α of C_model ← (1−α)C_model + αC_best (0: fixed model)",
+        paper=NOT_PRINTED, paper_value=0.0,   # sec. 2.3: the target's covariance is computed once
+        why="the paper describes no model update; 0 keeps the model fixed, as the paper does")
+
+
+@dataclasses.dataclass(frozen=True)
+class KalmanCovarianceParams(CovarianceParams):
+    fallback: str = param(
+        "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
+        "frame ('frame') or only the next, larger Kalman window ('window')",
+        choices=("frame", "window"),
+        paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
+        why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
+            "the yellow ball again after its first bounce; 'window' is the paper's (chapter 7)")
+    q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
+                     paper=1.0)   # sec. 2.2: Q = I_4 printed
+    r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
+                     paper=1.0)   # sec. 2.2: R = I_2 printed
+    p0: float = param(
+        1.0, 0.01, 1000.0, 1.0, doc="P₀ = p0·I, the initial state covariance",
+        paper=NOT_PRINTED,   # sec. 2.2 prints F, H, Q, R but no P_0
+        why="P₀ = I, the same scale as Q and R; the window settles within a few frames")
+    gate: float = param(
+        3.0, 0.5, 10.0, 0.5, doc="search-window half-size in σ of S = HP⁻Hᵀ + R",
+        paper=NOT_PRINTED,   # Fig. 2 draws the window; the paper never sizes it from S
+        why="the book sizes the window from S: 3σ holds the measurement 99 % of the time if "
+            "the model is right")
+    min_radius: int = param(
+        4, 0, 64, 1, doc="smallest search-window half-size in px",
+        paper=NOT_PRINTED,   # no window size printed
+        why="a floor under the gate (with Q = R = I, 3σ of S settles near ±7 px); 4 px keeps a "
+            "search area if q, r are set small")
+    manoeuvre_gate: float = param(
+        3.0, 0.0, 10.0, 0.5, doc="κ: a best d_F above κ·(median d_F of the last accepted "
+        "frames) signals a manoeuvre; 0 = never",
+        paper=NOT_PRINTED, paper_value=0.0,   # not in the paper; 0 switches it off
+        why="the book's addition: a ball's bounce leaves the constant-velocity window while d_F "
+            "stays below `threshold` (chapter 7, the bounce)")
+    manoeuvre_sigma: float = param(
+        8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity change allowed on a "
+        "manoeuvre: the second, larger window",
+        paper=NOT_PRINTED,   # not in the paper; unused when manoeuvre_gate = 0
+        why="the book's addition: 8 px/frame, about a bouncing ball's speed change")
+    motion_threshold: float = param(
+        10.0, 1.0, 100.0, 1.0, doc="grey-level change that counts as motion in "
+        "`init_from_motion`'s frame difference",
+        paper=NOT_PRINTED,   # sec. 2.3 / Fig. 2: frame differencing, no threshold printed
+        why="at 25 grey levels RedCube's 1.6 px move between frames 0 and 1 leaves only its "
+            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube (chapter 7)")
+    init_size: int = param(
+        24, 4, 128, 1, doc="side (px) of the model window centred on the moving region "
+        "when initialising without a box (`init_from_motion`)",
+        paper=24)   # sec. 3, Table 1: "tracked with a 24x24 area"
+
+
+def n_windows(frame_shape, size, stride: int) -> int:
+    """All windows of ``size = (w, h)`` at ``stride`` in a frame: the search-rate denominator."""
+    H, W = frame_shape[:2]
+    w, h = size
+    return ((W - w) // stride + 1) * ((H - h) // stride + 1)
+
+
+def grid_boxes(frame_shape, size, center, radius, stride: int) -> np.ndarray:
+    """Integer boxes of ``size`` whose centres lie within ±radius of ``center`` at ``stride``.
+
+    The grid is anchored at the window centred on ``center`` (clamped into the frame) and
+    keeps only windows wholly inside the frame; every box is distinct, so ``len`` is the exact
+    number of candidates.
+    """
+    H, W = frame_shape[:2]
+    w, h = size
+    rx, ry = radius
+    x0 = int(np.clip(round(center[0] - w / 2.0), 0, W - w))
+    y0 = int(np.clip(round(center[1] - h / 2.0), 0, H - h))
+    kx = int(rx // stride)
+    ky = int(ry // stride)
+    xs = x0 + stride * np.arange(-kx, kx + 1)
+    ys = y0 + stride * np.arange(-ky, ky + 1)
+    xs = xs[(xs >= 0) & (xs <= W - w)]
+    ys = ys[(ys >= 0) & (ys <= H - h)]
+    X, Y = np.meshgrid(xs, ys)
+    n = X.size
+    return np.column_stack([X.ravel(), Y.ravel(), np.full(n, w), np.full(n, h)]).astype(np.int64)
+
+
+class _CovarianceSearch(Tracker):
+    """What both trackers of Lee (2015) share: the model, candidate scoring, whole-frame search.
+
+    Attributes (read-only, for drawing)
+    -----------------------------------
+    model : d x d covariance of the target (eq. 4)
+    candidates : (n, 4) boxes evaluated on the last frame
+    distances : (n,) their ρ (eq. 5)
+    search_window : (x, y, w, h) the area the last local search covered
+    best_rho : ρ of the chosen window on the last frame
+
+    Lost rule
+    ---------
+    Besides ρ > ``threshold``, a chosen window whose feature covariance is (near) singular --
+    smallest eigenvalue at most ``singular_tol`` times the largest, e.g. no intensity or
+    gradient variation at all in an all-black, all-white or constant frame -- carries no
+    information about the target: the regularised ρ of eq. 5-6 against such a window is only
+    a number produced by ε, so the frame is reported lost (``ok=False``) and the model is not
+    updated.
+    """
+
+    Params = CovarianceParams
+    #: λ_min / λ_max at or below this: the window's covariance is singular (no information).
+    singular_tol = 1e-10
+
+    def _informative(self, frame, box) -> bool:
+        """Whether the window ``box`` has a non-singular feature covariance (see Lost rule)."""
+        C = self._covariances(frame, np.asarray(box, dtype=np.int64)[None])[0]
+        ev = np.linalg.eigvalsh((C + C.T) / 2.0)
+        return bool(np.all(np.isfinite(ev)) and ev[-1] > 0
+                    and ev[0] > self.singular_tol * ev[-1])
+
+    # -- scoring -------------------------------------------------------------------------
+    def _covariances(self, frame, boxes):
+        """C_R of integer ``boxes`` from integral images of the smallest crop holding them."""
+        H, W = frame.shape[:2]
+        x0, y0 = boxes[:, 0].min(), boxes[:, 1].min()
+        x1, y1 = (boxes[:, 0] + boxes[:, 2]).max(), (boxes[:, 1] + boxes[:, 3]).max()
+        # One pixel of context so the [-1 0 1] gradients at the crop's edge are the frame's.
+        cx0, cy0 = max(x0 - 1, 0), max(y0 - 1, 0)
+        cx1, cy1 = min(x1 + 1, W), min(y1 + 1, H)
+        if not hasattr(self, "_workspace"):
+            self._workspace = Workspace()
+        ws, features = self._workspace, self.params.features
+        radial = features == "rI|Ix||Iy|"
+        d = feature_dimension(features) - (1 if radial else 0)
+        F = feature_planes(frame[cy0:cy1, cx0:cx1], features,
+                           out=ws.get("features", (d, cy1 - cy0, cx1 - cx0)))
+        ic = IntegralCovariance(F, origin=(cx0, cy0), radial=radial, workspace=ws,
+                                channels_first=True)
+        return ic.covariances(boxes)
+
+    def _score(self, frame, boxes):
+        rho = forstner_distance(self._model, self._covariances(frame, boxes), self.params.eps)
+        self._n_evaluated += len(boxes)
+        return rho
+
+    def _search(self, frame, center, radius):
+        """Best window around ``center``; returns (box, ρ, boxes, ρs)."""
+        boxes = grid_boxes(frame.shape, self._size, center, radius, self.params.stride)
+        rho = self._score(frame, boxes)
+        i = int(np.argmin(rho))
+        return boxes[i].astype(float), float(rho[i]), boxes, rho
+
+    def _whole_frame_search(self, frame):
+        """Coarse search over the whole frame at ``global_stride``, refined at ``stride``."""
+        H, W = frame.shape[:2]
+        w, h = self._size
+        g = self.params.global_stride
+        centre = (W / 2.0, H / 2.0)
+        box, rho, _, _ = self._search_with_stride(frame, centre, (W, H), g)
+        if g > self.params.stride:
+            c = (box[0] + w / 2.0, box[1] + h / 2.0)
+            box2, rho2, _, _ = self._search(frame, c, (g - 1, g - 1))
+            if rho2 < rho:
+                box, rho = box2, rho2
+        return box, rho
+
+    def _search_with_stride(self, frame, center, radius, stride):
+        H, W = frame.shape[:2]
+        w, h = self._size
+        xs = np.arange(0, W - w + 1, stride)
+        ys = np.arange(0, H - h + 1, stride)
+        X, Y = np.meshgrid(xs, ys)
+        boxes = np.column_stack([X.ravel(), Y.ravel(), np.full(X.size, w), np.full(X.size, h)])
+        rho = self._score(frame, boxes)
+        i = int(np.argmin(rho))
+        return boxes[i].astype(float), float(rho[i]), boxes, rho
+
+    # -- shared bookkeeping ----------------------------------------------------------------
+    def _init_model(self, frame, box):
+        H, W = frame.shape[:2]
+        w = int(np.clip(round(box[2]), 2, W))
+        h = int(np.clip(round(box[3]), 2, H))
+        x = int(np.clip(round(box[0]), 0, W - w))
+        y = int(np.clip(round(box[1]), 0, H - h))
+        self._size = (w, h)
+        self._model = self._covariances(frame, np.array([[x, y, w, h]]))[0]
+        self._n_evaluated = 0
+        self._n_all = n_windows(frame.shape, self._size, self.params.stride)
+        self.candidates = np.zeros((0, 4))
+        self.distances = np.zeros(0)
+        self.search_window = (float(x), float(y), float(w), float(h))
+        self.best_rho = 0.0
+        self._recent_rho = collections.deque(maxlen=RHO_HISTORY)
+        return np.array([x, y, w, h], dtype=float)
+
+    def typical_rho(self) -> float:
+        """Median best ρ of the last accepted frames (NaN before the first one)."""
+        return float(np.median(self._recent_rho)) if self._recent_rho else float("nan")
+
+    def _accept(self, frame, box, rho):
+        self._recent_rho.append(rho)
+        a = self.params.model_update
+        if a > 0:
+            C = self._covariances(frame, np.asarray(box, dtype=np.int64)[None])[0]
+            self._model = (1 - a) * self._model + a * C
+
+    def _window_of(self, center, radius):
+        w, h = self._size
+        return (center[0] - w / 2.0 - radius[0], center[1] - h / 2.0 - radius[1],
+                w + 2.0 * radius[0], h + 2.0 * radius[1])
+
+    def frame_report(self) -> dict:
+        """Per-frame numbers for Table 1: search rate, candidate count, best ρ."""
+        return {"search_rate": self._n_evaluated / self._n_all,
+                "candidates": self._n_evaluated, "rho": self.best_rho}
+
+    @property
+    def model(self):
+        return self._model
+
+
+@register
+class CovarianceTracker(_CovarianceSearch):
+    """Baseline of Lee 2015 (Fig. 3): covariance search around the last position.
+
+    Candidates are target-sized windows whose centres lie within ±``search_radius`` px of
+    the last box's centre (every ``stride`` px). If the best ρ exceeds ``threshold`` the
+    whole frame is searched; if that fails too, ``ok`` is False and the box stays put.
+    """
+
+    name = "covariance"
+    Params = CovarianceParams
+
+    def _init(self, frame, box):
+        b = self._init_model(frame, box)
+        self._center = (b[0] + b[2] / 2.0, b[1] + b[3] / 2.0)
+
+    def _update(self, frame):
+        self._n_evaluated = 0
+        r = self.params.search_radius
+        box, rho, boxes, rhos = self._search(frame, self._center, (r, r))
+        self.candidates, self.distances = boxes, rhos
+        self.search_window = self._window_of(self._center, (r, r))
+        if rho > self.params.threshold and self.params.fallback == "frame":
+            gbox, grho = self._whole_frame_search(frame)
+            if grho < rho:
+                box, rho = gbox, grho
+        self.best_rho = rho
+        if rho > self.params.threshold or not self._informative(frame, box):
+            return False, np.asarray(self.bbox, dtype=float)
+        self._accept(frame, box, rho)
+        self._center = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
+        return True, box
+
+
+@register
+class KalmanCovarianceTracker(_CovarianceSearch):
+    """Proposed tracker of Lee 2015 (Fig. 1): covariance search inside a Kalman window.
+
+    Per frame: predict (eq. 9–10); the search window is the predicted centre ±
+    max(``gate``·σ, ``min_radius``) with σ² the diagonal of S = H P⁻ Hᵀ + R; the best
+    candidate's centre is the measurement y_k (eq. 8) and updates the filter (eq. 11–13).
+    Best ρ above ``threshold`` → with ``fallback="frame"`` (the book's) a whole-frame search;
+    still above, or with ``fallback="window"`` (the paper's), ``ok`` is False, no update (P keeps
+    growing, so the next Kalman window, searched again, is larger) and the box follows the
+    prediction. ``gate``, ``threshold`` and the whole-frame fallback are the book's choices.
+
+    Manoeuvre (the book's addition, off with ``manoeuvre_gate=0``): a constant-velocity model
+    with Q = I cannot follow a bounce (the velocity reverses in one frame), and the best
+    window inside the small Kalman window is then some background whose ρ can still be
+    below ``threshold``. So when the best ρ exceeds ``manoeuvre_gate`` times the median ρ of
+    the last accepted frames, the prediction is redone from the previous posterior with
+    σ_v² = ``manoeuvre_sigma``² added to the velocity variance (an impulsive process noise,
+    the "adjustable process noise" of manoeuvring-target tracking). Its S and window are
+    larger, and if its best window is better the update uses that P⁻, whose larger
+    velocity gain lets the velocity estimate jump with the target.
+
+    Attributes (read-only, for drawing)
+    -----------------------------------
+    kalman : the :class:`~trackbook.filters.kalman.KalmanFilter` (``kalman.x``, ``kalman.P``)
+    prediction : (x⁻, P⁻) of the last frame, before the update (the manoeuvre one if used)
+    manoeuvre : True when the last frame's measurement came from the manoeuvre window
+    ellipse : (cx, cy, hx, hy, angle°) the predicted position's ``gate``-σ uncertainty ellipse
+    search_window, candidates, distances, best_rho, model : as for ``covariance``
+    """
+
+    name = "kalman-covariance"
+    Params = KalmanCovarianceParams
+
+    def _init(self, frame, box):
+        b = self._init_model(frame, box)
+        p = self.params
+        self._kf = constant_velocity((b[0] + b[2] / 2.0, b[1] + b[3] / 2.0), q=p.q, r=p.r,
+                                     p0=p.p0)
+        self.prediction = (self._kf.x.copy(), self._kf.P.copy())
+        self.manoeuvre = False
+
+    def init_from_motion(self, frame0, frame1, **kwargs):
+        """Initialise with no box: the moving region between two frames (Fig. 1 of Lee 2015).
+
+        Section 2.3 of Lee (2015): the moving region's *centre* becomes the centre of the first
+        Kalman search window. Its *box* is not the target: a difference image covers where
+        the object was and where it is, and a flat object changes only at its leading and
+        trailing edges (on red-cube, frames 0→1 give a 19×3 strip). So the model window is
+        ``init_size`` × ``init_size`` px (the paper's 24×24, Table 1) centred on the region's
+        centre, measured on ``frame1``; the Kalman filter starts there with zero velocity.
+
+        ``kwargs`` go to :func:`~trackbook.features.motion.find_moving_region` (its
+        ``threshold`` defaults to ``motion_threshold``). Returns the
+        model box ``(x, y, w, h)`` (the tracker is then initialised on ``frame1``); raises
+        ``ValueError`` if nothing moved.
+        """
+        kwargs.setdefault("threshold", self.params.motion_threshold)
+        region = find_moving_region(frame0, frame1, **kwargs)
+        if region is None:
+            raise ValueError("no moving region between the two frames; lower `threshold` or "
+                             "pass a box to init(frame, bbox).")
+        self.motion_region = region
+        s = float(self.params.init_size)
+        cx, cy = region[0] + region[2] / 2.0, region[1] + region[3] / 2.0
+        box = (cx - s / 2.0, cy - s / 2.0, s, s)
+        self.init(frame1, box)
+        # The model window is whole pixels; the filter starts at the region's exact centre.
+        self._kf.x[:2] = (cx, cy)
+        self.prediction = (self._kf.x.copy(), self._kf.P.copy())
+        return tuple(float(v) for v in self.bbox)
+
+    @property
+    def kalman(self):
+        return self._kf
+
+    @property
+    def ellipse(self):
+        """(cx, cy, hx, hy, angle°): the ``gate``-σ ellipse of S = HP⁻Hᵀ + R at the prediction."""
+        x, P = self.prediction
+        S = self._kf.H @ P @ self._kf.H.T + self._kf.R
+        ev, V = np.linalg.eigh(S)
+        angle = float(np.degrees(np.arctan2(V[1, 1], V[0, 1])))
+        g = self.params.gate
+        return (float(x[0]), float(x[1]), g * float(np.sqrt(ev[1])), g * float(np.sqrt(ev[0])),
+                angle)
+
+    def _predict_window(self, frame_shape):
+        """Predict (eq. 9–10) and return the search window's centre and half-size from S."""
+        H, W = frame_shape[:2]
+        kf, p = self._kf, self.params
+        kf.predict()
+        # A prediction that left the frame cannot be searched; stop it at the border.
+        cx, cy = float(np.clip(kf.x[0], 0, W - 1)), float(np.clip(kf.x[1], 0, H - 1))
+        if (cx, cy) != (kf.x[0], kf.x[1]):
+            kf.x[:2] = (cx, cy)
+            kf.x[2:] = 0.0
+        sigma = np.sqrt(np.diag(kf.innovation_covariance()))
+        radius = (max(p.gate * sigma[0], p.min_radius), max(p.gate * sigma[1], p.min_radius))
+        return (cx, cy), radius
+
+    def _update(self, frame):
+        self._n_evaluated = 0
+        kf, p = self._kf, self.params
+        posterior = (kf.x.copy(), kf.P.copy())
+        centre, radius = self._predict_window(frame.shape)
+        box, rho, boxes, rhos = self._search(frame, centre, radius)
+        self.manoeuvre = False
+        typical = self.typical_rho()
+        if p.manoeuvre_gate > 0 and p.manoeuvre_sigma > 0 and rho > p.manoeuvre_gate * typical:
+            # Much worse than usual: the target probably changed velocity (a bounce, a turn).
+            # Re-predict as if the velocity had been uncertain by σ_v — P⁺'s velocity block
+            # grows by σ_v² — so S, the window, and on update the velocity gain grow with it.
+            first = (kf.x.copy(), kf.P.copy(), centre, radius)
+            kf.x, kf.P = posterior[0].copy(), posterior[1].copy()
+            kf.P[2:, 2:] += p.manoeuvre_sigma ** 2 * np.eye(2)
+            centre2, radius2 = self._predict_window(frame.shape)
+            box2, rho2, boxes2, rhos2 = self._search(frame, centre2, radius2)
+            if rho2 < rho:
+                box, rho, boxes, rhos, centre, radius = box2, rho2, boxes2, rhos2, centre2, radius2
+                self.manoeuvre = True
+            else:
+                kf.x, kf.P = first[0], first[1]
+        self.prediction = (kf.x.copy(), kf.P.copy())
+        self.candidates, self.distances = boxes, rhos
+        self.search_window = self._window_of(centre, radius)
+        if rho > p.threshold and p.fallback == "frame":
+            gbox, grho = self._whole_frame_search(frame)
+            if grho < rho:
+                box, rho = gbox, grho
+        self.best_rho = rho
+        w, h = self._size
+        if rho > p.threshold or not self._informative(frame, box):
+            return False, np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h])
+        self._accept(frame, box, rho)
+        kf.update((box[0] + w / 2.0, box[1] + h / 2.0))
+        return True, box
+
+
+__all__ = ["CovarianceTracker", "KalmanCovarianceTracker", "CovarianceParams",
+           "KalmanCovarianceParams", "n_windows", "grid_boxes", "find_moving_region"]

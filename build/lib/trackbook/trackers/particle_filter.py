@@ -1,0 +1,233 @@
+"""The SIR particle-filter tracker (chapter 2): the frame every particle tracker fills in.
+
+The estimation steps it calls (weights, resamplers, estimate) are pure functions in
+:mod:`trackbook.filters.particle`; this class only strings them together behind the
+``init``/``update`` contract of :class:`trackbook.trackers.base.Tracker`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..filters.particle import RESAMPLERS, normalize_weights, weighted_mean
+from ..params import NOT_PRINTED, param
+from .base import Tracker, readonly
+
+
+def lost_below_param():
+    """The ``lost_below`` field of a particle tracker's params (the distance gate, see
+    :class:`ParticleFilterTracker`); a function so every params class gets its own field."""
+    return param(0.7, 0.0, 1.0, 0.05, "a frame can be lost only if its best match 1 - D^2 is "
+                 "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
+                 why="the paper reports no lost frames; the book's gate (chapter 2), chosen so "
+                 "that on the seven public sequences it fires where the box has left the target")
+
+
+def lost_k_param():
+    """The ``lost_k`` field: how far above the recent range a lost frame's D^2 lies."""
+    return param(3.0, 0.5, 20.0, 0.5, "... and its D^2 above median + k max(1.4826 MAD, "
+                 "median / 2) of recent frames", paper=NOT_PRINTED,
+                 why="the paper reports no lost frames; 3 robust standard deviations, the "
+                 "book's choice (only used when lost_below > 0)")
+
+
+class ParticleFilterTracker(Tracker):
+    """Sequential importance resampling (SIR, Condensation) as in Lee et al. 2012's
+    pseudocode, for subclasses.
+
+    Each ``update``: select (resample by the previous weights) -> predict -> [refine] ->
+    weight -> normalise -> estimate. Subclasses implement
+
+    - ``_initial_particles(frame, box) -> (N, d) states`` and ``_model(frame, box)`` (reference),
+    - ``_predict(particles) -> particles`` (the motion model, using ``self.rng``),
+    - ``_likelihood(frame, particles) -> (N,)`` unnormalised, >= 0 (and, for the distance
+      gate, ``self._match = 1 - D^2`` of every particle),
+    - ``_state_to_box(state) -> (x, y, w, h)``,
+
+    and may override ``_on_lost()`` (e.g. widen the spread) and ``_refine(frame, particles) ->
+    particles`` (move the predicted particles before weighting, e.g. uphill by mean-shift as
+    Cho & Kang 2005 do; the default leaves them where the motion model put them). The params dataclass must have
+    ``n_particles`` and ``resampler``.
+
+    Attributes
+    ----------
+    particles : (N, d) array, the particles after the last update (read-only view).
+    weights : (N,) normalised weights of the last update.
+    likelihoods : (N,) the unnormalised likelihoods of the last update.
+    estimate : (d,) the weighted-mean state.
+    lost : bool, whether the last frame was lost (all weights zero, a constant frame, or the
+        distance gate below).
+    match : (N,) how well each particle of the last frame matches the target, 1 - D^2 in
+        [0, 1] (the Bhattacharyya coefficient rho for a histogram model); NaN where a
+        tracker's model has no such number.
+
+    Lost rule
+    ---------
+    A frame whose grey levels span at most ``flat_range`` (a constant frame: all black, all
+    white, one grey) carries no information at all -- no colour to compare, no gradient for a
+    HOG or an edge -- so it is not scored: ``update`` returns ``ok=False``, keeps the last
+    estimate and calls ``_on_lost()`` (which widens the search), instead of following the
+    least-bad particle. (The likelihood alone cannot tell: the HOG of a gradient-free patch is
+    a flat histogram that scores above a real but hard frame.)
+
+    Second rule, the distance gate (trackers whose params have ``lost_below`` > 0): a frame is
+    lost when its *best* particle both matches poorly, ``1 - D^2 < lost_below``, and is far
+    outside the recent range, ``D^2 > med + lost_k * max(1.4826 MAD, med / 2)`` over the
+    best ``D^2`` of the last ``gate_window`` frames that were not lost (the first five frames
+    always pass). The gate is on the distance, not on the likelihood: ``exp(-D^2 / 2 sigma^2)``
+    of a given match changes by orders of magnitude with sigma, ``D^2`` does not. Both tests
+    are needed: on the Crossing sequence a box still on the pedestrian (IoU 0.6-0.8) has a
+    best HOG match of only 0.66, and a colour distance that rises from 0.02 to 0.17; the two
+    together marked 145 frames of ``color-pf`` and ``hsi-color-pf`` lost on the seven
+    sequences (seed 0), 4 of them with the box still on the target (chapter 2). After
+    ``gate_patience`` lost frames in a row the recent range is forgotten and rebuilt, so a
+    target whose look changed for good is not reported lost for ever.
+
+    Recovery: while lost, every prediction moves ``scatter_fraction`` of the particles to
+    uniform positions over the whole frame (``_scatter``), so that a target that comes back
+    somewhere else is found; the rest stay around the last estimate for a target that
+    reappears where it vanished. On a frame that is never lost nothing is scattered and no
+    random number is drawn for it, so trackers that never lose the target run exactly as
+    without the rule.
+    """
+
+    #: Below this the weights are treated as carrying no information (frame "lost").
+    min_total_likelihood = 0.0
+    #: While lost, this fraction of the particles is scattered over the whole frame.
+    scatter_fraction = 0.8
+    #: The distance gate's memory: best D^2 of this many recent frames that were not lost.
+    gate_window = 30
+    #: After this many lost frames in a row the gate forgets its range and rebuilds it.
+    gate_patience = 30
+
+    def _init(self, frame, box):
+        self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
+        self._model(frame, box)
+        self._particles = np.asarray(self._initial_particles(frame, box), dtype=float)
+        n = self._particles.shape[0]
+        self._weights = np.full(n, 1.0 / n)
+        self._likelihoods = np.ones(n)
+        self.estimate = self._box_to_state(box)
+        self.lost = False
+        self._match = np.ones(n)
+        self._gate_d2 = []          # best D^2 of recent frames that were not lost
+        self._lost_in_a_row = 0
+
+    def _update(self, frame):
+        resample = RESAMPLERS[self.params.resampler]
+        idx = resample(self._weights, self.rng)
+        particles = self._particles[idx]
+        if self.lost and self.scatter_fraction > 0:
+            particles = self._scatter(np.array(particles, dtype=float))
+        particles = self._predict(particles)
+        particles = np.asarray(self._refine(frame, particles), dtype=float)
+        self._match = np.full(particles.shape[0], np.nan)   # a subclass's _likelihood fills it
+        if self._is_flat(frame):
+            lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
+        else:
+            lik = np.asarray(self._likelihood(frame, particles), dtype=float)
+        w, informative = normalize_weights(lik)
+        if informative and lik.sum() <= self.min_total_likelihood:
+            informative = False
+        if informative and self._gated_out():
+            informative = False                     # the distance gate (see "Lost rule")
+        self._lost_in_a_row = 0 if informative else self._lost_in_a_row + 1
+        self._particles, self._likelihoods = particles, lik
+        if not informative:
+            # Nothing in this frame looks like the target: keep the last estimate, spread the
+            # particles evenly (uniform weights) and let the subclass widen its search.
+            self._weights = w
+            self.lost = True
+            self._on_lost()
+            return False, self._state_to_box(self.estimate)
+        self._weights = w
+        self.lost = False
+        self.estimate = weighted_mean(particles, w)
+        return True, self._state_to_box(self.estimate)
+
+    # read-only views for the book's drawings -------------------------------------------
+    @property
+    def particles(self) -> np.ndarray:
+        return readonly(self._particles)
+
+    @property
+    def weights(self) -> np.ndarray:
+        return readonly(self._weights)
+
+    @property
+    def likelihoods(self) -> np.ndarray:
+        return readonly(self._likelihoods)
+
+    @property
+    def match(self) -> np.ndarray:
+        return readonly(self._match)
+
+    @property
+    def best_match(self) -> float:
+        """max over particles of ``match`` (1 - D^2) in the last frame; NaN if unknown."""
+        m = self._match
+        return float(np.nanmax(m)) if m.size and np.isfinite(m).any() else float("nan")
+
+    def _on_lost(self):
+        """Hook: called on a frame where every particle scored zero."""
+
+    def _gated_out(self) -> bool:
+        """The distance gate of the class docstring: True if this frame's best match is both
+        below ``lost_below`` and far above the recent range of ``D^2``. Records the frame's
+        ``D^2`` in the range when it passes."""
+        below = float(getattr(self.params, "lost_below", 0.0))
+        m = self._match
+        if below <= 0 or not (m.size and np.isfinite(m).any()):
+            return False
+        d2 = 1.0 - float(np.nanmax(m))
+        hist = self._gate_d2
+        if self._lost_in_a_row >= self.gate_patience:
+            hist.clear()                    # the look changed for good: rebuild the range
+        if len(hist) >= 5 and 1.0 - d2 < below:
+            v = np.asarray(hist)
+            med = float(np.median(v))
+            spread = max(1.4826 * float(np.median(np.abs(v - med))), med / 2.0)
+            if d2 > med + float(getattr(self.params, "lost_k", 3.0)) * spread:
+                return True
+        hist.append(d2)
+        del hist[:-self.gate_window]
+        return False
+
+    def _scatter(self, particles):
+        """Recovery while lost: move a random ``scatter_fraction`` of the particles to uniform
+        positions over the frame (state columns 0-1 are the centre in every tracker here) and
+        let ``_scatter_reset`` clear what should not carry over (e.g. velocities)."""
+        n = particles.shape[0]
+        k = int(round(self.scatter_fraction * n))
+        if k <= 0:
+            return particles
+        idx = self.rng.choice(n, size=k, replace=False)
+        particles[idx, 0:2] = self.rng.uniform(0.0, 1.0, size=(k, 2)) * self._frame_wh
+        self._scatter_reset(particles, idx)
+        return particles
+
+    def _scatter_reset(self, particles, idx):
+        """Hook: clear the parts of scattered particles' states that should not carry over."""
+
+    def _refine(self, frame, particles):
+        """Hook: move the predicted particles before they are weighted (default: don't)."""
+        return particles
+
+    # subclass interface ----------------------------------------------------------------
+    def _model(self, frame, box):  # pragma: no cover
+        raise NotImplementedError
+
+    def _initial_particles(self, frame, box):  # pragma: no cover
+        raise NotImplementedError
+
+    def _predict(self, particles):  # pragma: no cover
+        raise NotImplementedError
+
+    def _likelihood(self, frame, particles):  # pragma: no cover
+        raise NotImplementedError
+
+    def _box_to_state(self, box):  # pragma: no cover
+        raise NotImplementedError
+
+    def _state_to_box(self, state):  # pragma: no cover
+        raise NotImplementedError

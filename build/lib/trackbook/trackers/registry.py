@@ -1,0 +1,42 @@
+"""The name -> tracker class registry behind ``trackers.available()`` and ``trackers.create``."""
+
+from __future__ import annotations
+
+from .base import Tracker
+
+_REGISTRY: dict[str, type[Tracker]] = {}
+
+
+def register(cls: type[Tracker]) -> type[Tracker]:
+    """Class decorator: make ``cls`` available under ``cls.name``."""
+    if not (isinstance(cls, type) and issubclass(cls, Tracker)):
+        raise TypeError("register() takes a Tracker subclass")
+    if cls.name in _REGISTRY and _REGISTRY[cls.name] is not cls:
+        raise ValueError(f"tracker name {cls.name!r} is registered twice")
+    _REGISTRY[cls.name] = cls
+    return cls
+
+
+def available() -> list[str]:
+    """Names of the registered trackers, in the order the book introduces them."""
+    return list(_REGISTRY)
+
+
+def get(name: str) -> type[Tracker]:
+    """The tracker class registered as ``name``."""
+    if not isinstance(name, str) or name not in _REGISTRY:
+        raise ValueError(
+            f"unknown tracker {name!r}; registered trackers: {', '.join(available()) or '(none)'}."
+        )
+    return _REGISTRY[name]
+
+
+def create(name: str, seed: int | None = 0, **params) -> Tracker:
+    """Create the tracker registered as ``name`` with a seed and its params.
+
+    Examples
+    --------
+    >>> from trackbook import trackers
+    >>> t = trackers.create("color-hog-ipca", seed=0, n_particles=100)  # doctest: +SKIP
+    """
+    return get(name)(seed=seed, **params)

@@ -1,0 +1,221 @@
+"""Drawing trackers on frames: boxes, particles, ellipses, search windows, curves, animations.
+
+Everything draws on a matplotlib ``Axes`` and returns it, so chapters compose figures freely.
+Frames are BGR (as OpenCV reads them); ``show_frame`` converts to RGB for display.
+"""
+
+from __future__ import annotations
+
+import matplotlib
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib import patches as mpatches
+
+from ..evaluation import metrics
+
+class Palette(list):
+    """A list of colours that can also be indexed by name: ``p[5] == p["blue"]``."""
+
+    def __init__(self, named: dict):
+        super().__init__(named.values())
+        self.names = dict(named)
+
+    def __getitem__(self, key):
+        return self.names[key] if isinstance(key, str) else super().__getitem__(key)
+
+
+#: The book's one palette: Okabe & Ito's eight colours, distinguishable with the common
+#: colour-vision deficiencies; index it by position or by name.
+OKABE_ITO = Palette({"black": "#000000", "orange": "#E69F00", "sky blue": "#56B4E9",
+                     "bluish green": "#009E73", "yellow": "#F0E442", "blue": "#0072B2",
+                     "vermillion": "#D55E00", "reddish purple": "#CC79A7"})
+#: Ground truth bluish green, the estimate vermillion, everything else from the palette; trackers
+#: that a comparison plot is not about are drawn in GREY.
+GT_COLOR = "#009E73"
+EST_COLOR = "#D55E00"
+GREY = "#BBBBBB"
+CYCLE = ["#D55E00", "#0072B2", "#E69F00", "#CC79A7", "#56B4E9", "#000000", "#009E73",
+         "#F0E442"]
+
+def bgr2rgb(frame: np.ndarray) -> np.ndarray:
+    """BGR (OpenCV) to RGB (matplotlib)."""
+    return np.ascontiguousarray(frame[..., ::-1])
+
+
+def _axes(ax, figsize=(4.8, 3.6)):
+    if ax is None:
+        _, ax = plt.subplots(figsize=figsize)
+    return ax
+
+
+def draw_box(ax, box, color=EST_COLOR, label=None, lw=1.8, ls="-"):
+    """Draw a box ``(x, y, w, h)`` (continuous coordinates) on ``ax``; NaN boxes are skipped."""
+    box = np.asarray(box, dtype=float)
+    if box.shape != (4,) or not np.all(np.isfinite(box)):
+        return ax
+    x, y, w, h = box
+    # Continuous box [x, x+w) drawn on pixel centres: shift by half a pixel.
+    ax.add_patch(mpatches.Rectangle((x - 0.5, y - 0.5), w, h, fill=False, ec=color, lw=lw,
+                                    ls=ls, label=label))
+    return ax
+
+
+def show_frame(frame, ax=None, boxes=None, title=None, gt=None):
+    """Show a BGR frame with optional boxes.
+
+    Parameters
+    ----------
+    boxes : dict label -> box, or a single box (drawn as the estimate)
+    gt : box, drawn dashed in green as the ground truth
+    """
+    ax = _axes(ax)
+    ax.imshow(bgr2rgb(frame))
+    ax.set_xticks([])
+    ax.set_yticks([])
+    if gt is not None:
+        draw_box(ax, gt, GT_COLOR, "ground truth", ls="--")
+    if boxes is not None:
+        if not isinstance(boxes, dict):
+            boxes = {"estimate": boxes}
+        for i, (label, b) in enumerate(boxes.items()):
+            draw_box(ax, b, CYCLE[i % len(CYCLE)], label)
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
+
+
+def draw_particles(ax, xy, weights=None, color="#ffdd00", max_size=40.0):
+    """Particles as dots whose area grows with their weight."""
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    if weights is None:
+        s = np.full(len(xy), 6.0)
+    else:
+        w = np.asarray(weights, dtype=float)
+        s = 2.0 + max_size * w / (w.max() if w.max() > 0 else 1.0)
+    ax.scatter(xy[:, 0], xy[:, 1], s=s, c=color, edgecolors="k", linewidths=0.3, alpha=0.85)
+    return ax
+
+
+def draw_ellipse(ax, cx, cy, hx, hy, angle=0.0, color=EST_COLOR, lw=1.5, ls="-"):
+    """An ellipse with centre (cx, cy), half-axes (hx, hy) and rotation ``angle`` in degrees."""
+    ax.add_patch(mpatches.Ellipse((cx, cy), 2 * hx, 2 * hy, angle=angle, fill=False, ec=color,
+                                  lw=lw, ls=ls))
+    return ax
+
+
+def draw_search_window(ax, box, color="#17becf", label="search window"):
+    """A search window as a dotted box."""
+    return draw_box(ax, box, color, label, lw=1.2, ls=":")
+
+
+def filmstrip(clip, boxes=None, frames=None, n=6, ncols=None, size=2.4, title=None):
+    """A row of frames of ``clip`` with ground truth and tracker boxes.
+
+    Parameters
+    ----------
+    boxes : dict name -> (N, 4) boxes or ``Result`` (anything with ``.boxes``)
+    frames : frame indices; default ``n`` evenly spaced
+    """
+    if frames is None:
+        frames = np.linspace(0, len(clip) - 1, n).round().astype(int)
+    frames = list(frames)
+    ncols = ncols or len(frames)
+    nrows = int(np.ceil(len(frames) / ncols))
+    w, h = clip.size
+    fig, axes = plt.subplots(nrows, ncols, figsize=(size * ncols, size * ncols * h / w / ncols * nrows + 0.3),
+                             squeeze=False)
+    boxes = {k: getattr(v, "boxes", v) for k, v in (boxes or {}).items()}
+    for ax, i in zip(axes.ravel(), frames):
+        show_frame(clip.frames[i], ax=ax, gt=clip.groundtruth[i],
+                   boxes={k: b[i] for k, b in boxes.items()} or None, title=f"frame {i}")
+    for ax in axes.ravel()[len(frames):]:
+        ax.axis("off")
+    handles, labels = axes.ravel()[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8,
+                   frameon=False, bbox_to_anchor=(0.5, -0.02))
+    if title:
+        fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def plot_curves(results, gt=None, axes=None):
+    """Success and precision plots (OTB) for several runs.
+
+    Parameters
+    ----------
+    results : dict label -> Result, or list of Result; scores over frames 1..N-1
+    gt : (N, 4) ground truth; default: each result's clip loaded by name
+    """
+    from .. import clips as _clips
+
+    if not isinstance(results, dict):
+        results = {r.tracker: r for r in results}
+    if axes is None:
+        _, axes = plt.subplots(1, 2, figsize=(9, 3.4))
+    ax_s, ax_p = axes
+    for i, (label, r) in enumerate(results.items()):
+        g = gt if gt is not None else _clips.load(r.clip).groundtruth
+        g = g[: len(r.boxes)]
+        ts, s = metrics.success_curve(r.boxes[1:], g[1:])
+        tp, p = metrics.precision_curve(r.boxes[1:], g[1:])
+        c = CYCLE[i % len(CYCLE)]
+        ax_s.plot(ts, s, color=c, label=f"{label} [{s.mean():.3f}]")
+        ax_p.plot(tp, p, color=c, label=f"{label} [{p[20]:.3f}]")
+    ax_s.set(xlabel="overlap threshold", ylabel="success rate", title="Success plot (AUC)",
+             xlim=(0, 1), ylim=(0, 1.02))
+    ax_p.set(xlabel="centre error threshold (px)", ylabel="precision",
+             title="Precision plot (at 20 px)", xlim=(0, 50), ylim=(0, 1.02))
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="lower right")
+    return axes
+
+
+def animate(clip, boxes=None, frames=None, step=None, max_frames=40, width=3.6, interval=120):
+    """A compact animation (JS/HTML with embedded frames) for the HTML book.
+
+    Returns an ``IPython.display.HTML`` object; frames are subsampled to at most
+    ``max_frames`` so a page stays light.
+    """
+    from IPython.display import HTML
+    from matplotlib import animation
+
+    n = len(clip)
+    if frames is None:
+        step = step or max(1, int(np.ceil(n / max_frames)))
+        frames = list(range(0, n, step))
+    boxes = {k: getattr(v, "boxes", v) for k, v in (boxes or {}).items()}
+    w, h = clip.size
+    fig, ax = plt.subplots(figsize=(width, width * h / w))
+    fig.subplots_adjust(0, 0, 1, 1)
+
+    def draw(i):
+        ax.clear()
+        show_frame(clip.frames[i], ax=ax, gt=clip.groundtruth[i],
+                   boxes={k: b[i] for k, b in boxes.items()} or None)
+        ax.text(4, 12, f"{i}", color="w", fontsize=8,
+                bbox=dict(facecolor="k", alpha=0.5, pad=1, lw=0))
+        return []
+
+    anim = animation.FuncAnimation(fig, draw, frames=frames, interval=interval, blit=False)
+    with matplotlib.rc_context({"animation.embed_limit": 30}):
+        html = anim.to_jshtml(default_mode="loop")
+    plt.close(fig)
+    return HTML(html)
+
+
+def draw_tracker_state(ax, tracker):
+    """Whatever a tracker exposes for drawing: particles, ellipse, search window."""
+    p = getattr(tracker, "particles", None)
+    if p is not None and len(p):
+        draw_particles(ax, np.asarray(p)[:, :2], getattr(tracker, "weights", None))
+    sw = getattr(tracker, "search_window", None)
+    if sw is not None:
+        draw_search_window(ax, sw)
+    el = getattr(tracker, "ellipse", None)
+    if el is not None:
+        draw_ellipse(ax, *el)
+    return ax

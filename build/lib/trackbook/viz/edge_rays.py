@@ -1,0 +1,108 @@
+"""Drawings of chapter 03 (edge rays, Kim, Kim & Choi 2016)."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from ..features import edge_rays as er
+from .core import EST_COLOR, GT_COLOR, bgr2rgb, draw_box
+
+RAY_COLORS = plt.get_cmap("tab10").colors[:8]
+
+
+def draw_rays(ax, xy, dists, color=None, lw=1.5, labels=False):
+    """Draw the 8 rays of eq. 1/4 from point ``xy`` with lengths ``dists`` (order E..SE)."""
+    x, y = xy
+    for j, ((dx, dy), d) in enumerate(zip(er.DIRECTIONS, dists)):
+        u = np.array([dx, dy], float) / np.hypot(dx, dy)
+        c = color or RAY_COLORS[j]
+        ax.plot([x, x + u[0] * d], [y, y + u[1] * d], color=c, lw=lw)
+        ax.plot(x + u[0] * d, y + u[1] * d, "o", color=c, ms=3)
+        if labels:
+            ax.text(x + u[0] * (d + 6), y + u[1] * (d + 6), er.DIRECTION_NAMES[j], color=c,
+                    fontsize=7, ha="center", va="center")
+
+
+def show_edges(frame, edges, ax=None, title=None, box=None):
+    """The frame dimmed, with the Canny edges drawn in white on top."""
+    if ax is None:
+        _, ax = plt.subplots(figsize=(4.8, 3.6))
+    img = bgr2rgb(frame).astype(float) / 255 * 0.45
+    img[edges] = 1.0
+    ax.imshow(img)
+    if box is not None:
+        draw_box(ax, box, GT_COLOR)
+    ax.set_axis_off()
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
+
+
+def plot_sorted_rays(m_dis, p_dis, ax=None, labels=("model M", "particle p")):
+    """Sorted distances of two ray sets with the 4th/5th pair (eq. 5) highlighted."""
+    if ax is None:
+        _, ax = plt.subplots(figsize=(4.2, 2.6))
+    k = np.arange(1, 9)
+    for dis, lab, off, c in ((m_dis, labels[0], -0.2, GT_COLOR), (p_dis, labels[1], 0.2, EST_COLOR)):
+        s = np.sort(dis)
+        ax.bar(k + off, s, width=0.4, color=c, alpha=0.5, label=lab)
+        ax.bar([4 + off, 5 + off], s[3:5], width=0.4, color=c)
+        ax.axhline(er.median_pair_mean(dis), color=c, ls="--", lw=1)
+    ax.set_xlabel("rank after sorting (4th, 5th: the median pair)")
+    ax.set_ylabel("distance to edge (px)")
+    ax.set_xticks(k)
+    ax.legend(fontsize=8)
+    return ax
+
+
+def plot_weight_map(frame, wmap, box=None, ax=None, title=None):
+    """The eq. 6 weight of every pixel (0 outside the Ratio window) over the dimmed frame."""
+    if ax is None:
+        _, ax = plt.subplots(figsize=(4.8, 3.6))
+    ax.imshow(bgr2rgb(frame), alpha=0.5)
+    m = np.ma.masked_where(wmap <= 0, wmap)
+    im = ax.imshow(m, cmap="inferno", vmin=0, vmax=1, alpha=0.85)
+    if box is not None:
+        draw_box(ax, box, GT_COLOR)
+    ax.set_axis_off()
+    if title:
+        ax.set_title(title, fontsize=9)
+    plt.colorbar(im, ax=ax, fraction=0.035, label="w (eq. 6)")
+    return ax
+
+
+def plot_center_errors(results: dict, gt, ax=None, title=None):
+    """Centre error per frame for several runs (Fig. 5 of Kim et al. 2016)."""
+    from ..evaluation import metrics
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 2.8))
+    for name, r in results.items():
+        boxes = r.boxes if hasattr(r, "boxes") else np.asarray(r)
+        ce = metrics.center_error(boxes, gt)
+        ax.plot(np.arange(len(ce)), np.where(np.isfinite(ce), ce, np.nan),
+                label=f"{name} (mean {np.nanmean(ce[1:][np.isfinite(ce[1:])]):.0f} px)")
+    ax.set_xlabel("frame")
+    ax.set_ylabel("centre error (px)")
+    ax.legend(fontsize=8)
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
+
+
+def md_table(rows, digits: int = 3):
+    """A list of dicts (or a dict of dicts: row name -> values) as a Markdown table for display."""
+    from IPython.display import Markdown
+    if isinstance(rows, dict):
+        rows = [{"": k, **v} if isinstance(v, dict) else {"": k, "value": v} for k, v in rows.items()]
+    cols = list(dict.fromkeys(c for r in rows for c in r))
+
+    def fmt(v):
+        if isinstance(v, (bool, np.bool_)):
+            return "yes" if v else "no"
+        if isinstance(v, (float, np.floating)):
+            return f"{v:.{digits}f}"
+        return str(v)
+    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    lines += ["| " + " | ".join(fmt(r.get(c, "")) for c in cols) + " |" for r in rows]
+    return Markdown("\n".join(lines))
