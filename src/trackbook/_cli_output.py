@@ -136,15 +136,15 @@ def open_video(path, fps, size):
 
 
 def settings_hash(settings: dict) -> str:
-    """Six hex digits of the SHA-1 of the run's settings (tracker, params, seed, ...)."""
+    """Six hex digits of the SHA-1 of the run's settings (tracker, seed, params)."""
     text = json.dumps(settings, sort_keys=True, default=repr)
     return hashlib.sha1(text.encode()).hexdigest()[:6]
 
 
 def output_stem(tracker: str, clip: str, settings: dict, default_settings: dict) -> str:
     """``tracker_clip`` for a run with the default settings, else ``tracker_clip_<hash>``: a
-    run with other params, seed, preset or frames gets its own files instead of silently
-    overwriting another run's."""
+    run with other params, seed or preset gets its own files instead of silently overwriting
+    another run's (a shorter run, ``--max-frames``, is the same run cut short)."""
     stem = f"{tracker}_{clip}"
     if settings_hash(settings) == settings_hash(default_settings):
         return stem

@@ -198,19 +198,18 @@ def _load_imports(specs) -> None:
         plugins.load(spec)
 
 
-def _track_settings(args, cls, params, init_box) -> tuple[dict, dict]:
-    """The run's full settings (every param resolved from the preset) and the same run with
-    the defaults, for the output name."""
+def _track_settings(args, cls, params) -> tuple[dict, dict]:
+    """What the output name's hash covers: the tracker, its seed and every param resolved
+    from the preset (what changes the boxes); and the same for the default run."""
     from .params import make_params, paper_values
 
     def values(p):
         return dataclasses.asdict(p) if dataclasses.is_dataclass(p) else repr(p)
 
     base = paper_values(cls.Params) if args.preset == "paper" else {}
-    full = {"tracker": args.tracker, "seed": args.seed, "max_frames": args.max_frames,
-            "box": init_box, "params": values(make_params(cls.Params, {**base, **params}))}
-    default = {**full, "seed": 0, "max_frames": None, "box": None,
-               "params": values(make_params(cls.Params, {}))}
+    full = {"tracker": args.tracker, "seed": args.seed,
+            "params": values(make_params(cls.Params, {**base, **params}))}
+    default = {**full, "seed": 0, "params": values(make_params(cls.Params, {}))}
     return full, default
 
 
@@ -239,7 +238,7 @@ def cmd_track(args) -> int:
             from .params import paper_values
             params = {**paper_values(cls.Params), **params}
         return _track_all_targets(args, clip, params, out)
-    settings, default = _track_settings(args, cls, params, init_box)
+    settings, default = _track_settings(args, cls, params)
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
                  init_box=init_box, preset=args.preset, **params)
@@ -249,9 +248,9 @@ def cmd_track(args) -> int:
         w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
         for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms)):
             w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"])
-    (out / f"{stem}.json").write_text(json.dumps({**settings, "clip": clip.name,
-                                                  "preset": args.preset}, indent=1,
-                                                 default=repr) + "\n")
+    record = {**settings, "preset": args.preset, "clip": clip.name,
+              "max_frames": args.max_frames, "box": init_box}
+    (out / f"{stem}.json").write_text(json.dumps(record, indent=1, default=repr) + "\n")
     width, height = clip.size
     colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
     writer, codec = _out.open_video(out / f"{stem}.mp4", clip.fps, (width, height))
@@ -274,13 +273,12 @@ def _load_clip(name, groundtruth):
     from . import clips
 
     if groundtruth is not None:
+        if not Path(groundtruth).is_file():
+            raise ValueError(f"--groundtruth {groundtruth}: no such file; give a text file with "
+                             "one x,y,w,h line per frame.")
         if isinstance(name, str) and name in clips.available():
             raise ValueError(f"--groundtruth is for a video or image folder of your own; the "
                              f"sample clip {name!r} carries its ground truth.")
-        gt = Path(groundtruth)
-        if not gt.is_file():
-            raise ValueError(f"--groundtruth {groundtruth}: no such file; give a text file with "
-                             "one x,y,w,h line per frame.")
     return clips.load(name, groundtruth=groundtruth)
 
 
@@ -295,9 +293,8 @@ def _track_all_targets(args, clip, params, out) -> int:
 
     res = track_clip(args.tracker, clip, seed=args.seed, max_frames=args.max_frames, **params)
     ms, oks = res.pop("_ms"), res.pop("_ok")
-    settings = {"tracker": args.tracker, "seed": args.seed, "max_frames": args.max_frames,
-                "params": params}
-    default = {**settings, "seed": 0, "max_frames": None, "params": {}}
+    settings = {"tracker": args.tracker, "seed": args.seed, "params": params}
+    default = {**settings, "seed": 0, "params": {}}
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     out = _out_dir(out)
     for name, boxes in res.items():
@@ -484,7 +481,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.set_defaults(fn=cmd_bench)
 
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")
-    n.add_argument("--book", default="book")
+    n.add_argument("--book", default=None, help="the folder of the chapters (default: ./book, else the chapters installed with trackbook)")
     n.add_argument("--out", default="notebooks")
     n.set_defaults(fn=cmd_notebooks)
     return p
