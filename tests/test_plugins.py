@@ -160,3 +160,14 @@ def test_broken_entry_point_warns_and_others_still_load(tmp_path, clean_registry
         assert any("no_such_mod_abc" in str(x.message) for x in w)
     finally:
         sys.modules.pop("fake_good_mod", None)
+
+
+def test_a_class_defined_again_replaces_itself(clean_registry):
+    """A notebook cell run twice defines the class twice: the second replaces the first; a
+    different class under a taken name is still refused."""
+    ns1, ns2 = {"__name__": "nb_cell"}, {"__name__": "nb_cell"}
+    exec(TRACKER_SRC.format(name="still-twice"), ns1)
+    exec(TRACKER_SRC.format(name="still-twice"), ns2)
+    assert trackers.get("still-twice") is ns2["Still"]
+    with pytest.raises(ValueError, match="registered twice"):
+        exec(TRACKER_SRC.format(name="still-twice"), {"__name__": "another_module"})
