@@ -286,3 +286,22 @@ def test_notebooks_without_jupytext_names_the_extra(tmp_path, monkeypatch, capsy
     line = _one_line(capsys, cli.main(["notebooks", "--out", "nb"]))
     assert "trackbook[book]" in line and "bug" not in line
     assert not (tmp_path / "nb").exists()
+
+
+def test_clips_listing_cuts_descriptions_at_a_word(capsys):
+    assert cli.main(["clips"]) == 0
+    lines = [ln for ln in capsys.readouterr().out.splitlines() if " frames " in ln]
+    assert len(lines) == len(clips.available())
+    for ln, name in zip(lines, clips.available()):
+        full = " ".join(clips.describe(name).split(": ", 1)[1].split())
+        shown = ln.split(" frames ", 1)[1].split("  ", 1)[1].strip()
+        # either the whole description, or whole words of it followed by " ..."
+        assert shown == full or (shown.endswith(" ...") and
+                                 full.startswith(shown[:-4]) and full[len(shown) - 4] == " ")
+
+
+def test_trackers_import_shows_your_params(tmp_path, clean_registry, capsys):
+    f = tmp_path / "still.py"
+    f.write_text(STILL)
+    assert cli.main(["trackers", "still-cli", "--import", str(f)]) == 0
+    assert "A box that never moves" in capsys.readouterr().out
