@@ -1,1 +1,0 @@
-"""On-line appearance learning: incremental SVD (chapter 08)."""

@@ -1,7 +1,0 @@
-"""OTB scores (SPEC section 4): ``from trackbook import metrics``.
-
-The implementation lives in :mod:`trackbook.evaluation.metrics`; this module is the short name
-assignments use.
-"""
-from .evaluation.metrics import *  # noqa: F401,F403
-from .evaluation.metrics import __all__  # noqa: F401
