@@ -123,6 +123,18 @@ def test_track_import_runs_a_tracker_from_a_file(tmp_path, clean_registry, capsy
         assert np.allclose([float(r[k]) for k in "xywh"], box0, atol=1e-3)
 
 
+def test_track_import_of_a_file_without_tracker_warns_in_one_line(tmp_path, clean_registry,
+                                                                  capsys):
+    f = tmp_path / "nothing.py"
+    f.write_text("X = 1\n")
+    rc = cli.main(["track", "still-cli", "red-cube", "--import", str(f),
+                   "--out", str(tmp_path / "o")])
+    lines = capsys.readouterr().err.splitlines()
+    assert rc == 2 and len(lines) == 2
+    assert lines[0].startswith("trackbook: warning:") and "@trackers.register" in lines[0]
+    assert lines[1].startswith("trackbook: error: unknown tracker 'still-cli'")
+
+
 def test_track_import_errors(tmp_path, clean_registry, capsys):
     line = _one_line(capsys, cli.main(["track", "x", "red-cube", "--import", "nope/none.py",
                                        "--out", str(tmp_path / "o")]))
@@ -199,6 +211,7 @@ def test_output_name_of_a_default_run(tmp_path):
 @pytest.mark.parametrize("argv, word", [
     (["track", "mean-shift", "red-cube", "--box", "1,2"], "--box"),
     (["track", "mean-shift", "red-cube", "--box", "0,0,5000,10"], "--box"),
+    (["track", "mean-shift", "red-cube", "--box", "nan,0,10,10"], "--box"),
     (["track", "mean-shift", "red-cube", "--max-frames", "1"], "--max-frames"),
     (["track", "mean-shift", "red-cube", "--no-such-flag"], "--no-such-flag"),
     (["track", "mean-shift", "red-cube", "--seed", "x"], "--seed"),

@@ -181,9 +181,11 @@ def _parse_box(text: str, clip) -> tuple:
     try:
         x, y, w, h = (float(v) for v in text.replace(" ", "").split(","))
     except ValueError:
-        raise ValueError(f"--box {text!r}: expected four numbers x,y,w,h, e.g. --box 40,30,24,24") from None
+        raise ValueError(f"--box {text!r}: expected four numbers x,y,w,h, e.g. "
+                         "--box 40,30,24,24") from None
     width, height = clip.size
-    if w <= 0 or h <= 0 or x < 0 or y < 0 or x + w > width or y + h > height:
+    # written so that NaN (every comparison False) is refused too
+    if not (w > 0 and h > 0 and x >= 0 and y >= 0 and x + w <= width and y + h <= height):
         raise ValueError(f"--box {text!r} is not a box inside the {width}x{height} first frame; "
                          "give x,y of its top-left corner and a positive width and height.")
     return (x, y, w, h)
@@ -192,10 +194,16 @@ def _parse_box(text: str, clip) -> tuple:
 def _load_imports(specs) -> None:
     """``--import MODULE_OR_FILE`` (repeatable): load the user's trackers before any name is
     looked up."""
+    import warnings
+
     from .trackers import plugins
 
     for spec in specs or []:
-        plugins.load(spec)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            plugins.load(spec)
+        for w in caught:          # e.g. "registered no new tracker": one line, not two
+            print(f"trackbook: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
 
 
 def _track_settings(args, cls, params) -> tuple[dict, dict]:
