@@ -318,3 +318,19 @@ def test_trackers_import_shows_your_params(tmp_path, clean_registry, capsys):
     f.write_text(STILL)
     assert cli.main(["trackers", "still-cli", "--import", str(f)]) == 0
     assert "A box that never moves" in capsys.readouterr().out
+
+
+def test_install_story_in_pyproject_and_readme():
+    import tomllib
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    meta = tomllib.loads((root / "pyproject.toml").read_text())
+    assert any(d.replace(" ", "").startswith("jupyterlab>=4,<5")
+               for d in meta["project"]["optional-dependencies"]["book"])
+    assert "_book/*.md" in meta["tool"]["setuptools"]["package-data"]["trackbook"]
+    readme = (root / "README.md").read_text()
+    plain = readme.index("pip install -e .  ")
+    assert plain < readme.index('pip install -e ".[book]"')
+    assert "git+" in readme[plain - 200:plain + 400]
+    assert "book/appendix_own_tracker.md" in readme
