@@ -1,10 +1,13 @@
 """The ``trackbook`` command (also ``python -m trackbook``).
 
+    trackbook trackers                    the tracker names; trackbook trackers color-pf: its params
     trackbook clips                       list the sample clips (and sequences found)
     trackbook clips export red-cube out/red-cube.mp4
     trackbook track kalman-covariance red-cube --out out/
     trackbook track condensation-mean-shift two-faces --all-targets --out out/
     trackbook track color-pf my_video.mp4 --box 120,80,40,60   your own video, no ground truth
+    trackbook track color-pf my_video.mp4 --groundtruth my_boxes.txt --preset paper
+    trackbook track lab-color-pf red-cube --import my_tracker.py   a tracker of your own
     trackbook bench --trackers color-pf,kalman-covariance --clips samples --out bench-results/
     trackbook notebooks --out notebooks/  export the book's chapters to .ipynb for class
 """
@@ -12,10 +15,15 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
+import textwrap
 from pathlib import Path
 
 import numpy as np
+
+from . import _cli_output as _out
+from ._cli_output import annotate  # noqa: F401  (trackbook.cli.annotate, used by the book)
 
 
 class CLIError(Exception):
@@ -60,19 +68,76 @@ def _track_params(tracker: str, items) -> dict:
     return params
 
 
-def _out_dir(path) -> Path:
-    """``--out``: an existing folder or a new one; a file in the way is named in the error."""
+def _check_out_dir(path) -> Path:
+    """``--out`` checked before any work (a file in the way is named in the error); the
+    folder itself is made by :func:`_out_dir` once there is something to write, so a failing
+    command leaves no empty folder behind."""
     out = Path(path)
     for p in (out, *out.parents):
         if p.exists() and not p.is_dir():
             raise ValueError(f"--out {path}: {p} is a file, not a folder; pass a folder name "
                              "(it is created if missing).")
+    return out
+
+
+def _out_dir(path) -> Path:
+    """``--out``: an existing folder or a new one; a file in the way is named in the error."""
+    out = _check_out_dir(path)
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
         raise ValueError(f"--out {path}: cannot create the folder ({e.strerror}); pass a "
                          "writable folder.") from None
     return out
+
+
+def cmd_trackers(args) -> int:
+    """``trackbook trackers [NAME]``: the registered names (and the reference), or one
+    tracker's params with their doc, allowed range, book default and the paper's value."""
+    from . import params as _params
+    from . import trackers
+    from .params import NOT_PRINTED
+
+    _load_imports(args.imports)
+    if not args.name:
+        for name in trackers.available(reference=True):
+            doc = (trackers.get(name).__doc__ or "").strip().split("\n\n")[0]
+            doc = doc.removeprefix(f"``{name}``:").strip()
+            print(f"{name:24s} {textwrap.shorten(' '.join(doc.split()), 100, placeholder=' ...')}")
+        print("\ntrackbook trackers NAME lists a tracker's params.")
+        return 0
+    cls = trackers.get(args.name)
+    doc = " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
+    print(f"{args.name}: {doc}")
+    if not dataclasses.is_dataclass(cls.Params) or not dataclasses.fields(cls.Params):
+        print("(no params)")
+        return 0
+    rows = []
+    for f in dataclasses.fields(cls.Params):
+        m = f.metadata
+        if m.get("choices"):
+            rng = " | ".join(str(c) for c in m["choices"])
+        elif m.get("lo") is not None or m.get("hi") is not None:
+            rng = f"{m.get('lo')} .. {m.get('hi')}"
+        elif isinstance(f.default, bool):
+            rng = "true | false"
+        else:
+            rng = "any"
+        paper = m.get("paper", None)
+        if paper is NOT_PRINTED:
+            paper_txt = "not printed"
+        elif _params.has_paper(f):
+            paper_txt = repr(paper)
+        else:
+            paper_txt = "-"
+        rows.append((f.name, rng, repr(f.default), paper_txt, " ".join(m.get("doc", "").split())))
+    heads = ("param", "allowed", "book", "paper")
+    widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(heads)]
+    print("  ".join(h.ljust(w) for h, w in zip(heads, widths)) + "  doc")
+    for r in rows:
+        print("  ".join(v.ljust(w) for v, w in zip(r[:4], widths)) + "  " + r[4])
+    print(f"\nset one with --param NAME=VALUE; --preset paper starts from the paper column.")
+    return 0
 
 
 def cmd_clips(args) -> int:
@@ -97,77 +162,114 @@ def cmd_clips(args) -> int:
     return 0
 
 
-def annotate(frame, boxes: dict, gt=None):
-    """Draw boxes on a copy of a BGR frame (OpenCV drawing, for videos)."""
-    import cv2
-
-    img = frame.copy()
-    colors = [(40, 39, 214), (180, 119, 31), (14, 127, 255), (189, 103, 148)]
-    if gt is not None and np.all(np.isfinite(gt)):
-        x, y, w, h = (int(round(v)) for v in gt)
-        cv2.rectangle(img, (x, y), (x + w, y + h), (44, 160, 44), 1, cv2.LINE_AA)
-    for i, (label, b) in enumerate(boxes.items()):
-        if b is None or not np.all(np.isfinite(b)):
-            continue
-        x, y, w, h = (int(round(v)) for v in b)
-        c = colors[i % len(colors)]
-        cv2.rectangle(img, (x, y), (x + w, y + h), c, 2, cv2.LINE_AA)
-        cv2.putText(img, label, (x, max(y - 4, 10)), cv2.FONT_HERSHEY_SIMPLEX, 0.4, c, 1,
-                    cv2.LINE_AA)
-    return img
-
-
 def _parse_box(text: str, clip) -> tuple:
     """``--box x,y,w,h`` (pixels of the first frame) -> a float tuple, checked against the
     frame size so a typo fails with a clear message rather than a lost tracker."""
     try:
         x, y, w, h = (float(v) for v in text.replace(" ", "").split(","))
     except ValueError:
-        raise SystemExit(f"--box {text!r}: expected four numbers x,y,w,h, e.g. --box 40,30,24,24")
+        raise ValueError(f"--box {text!r}: expected four numbers x,y,w,h, e.g. "
+                         "--box 40,30,24,24") from None
     width, height = clip.size
-    if w <= 0 or h <= 0 or x < 0 or y < 0 or x + w > width or y + h > height:
-        raise SystemExit(f"--box {text!r} is not a box inside the {width}x{height} first frame; "
+    # written so that NaN (every comparison False) is refused too
+    if not (w > 0 and h > 0 and x >= 0 and y >= 0 and x + w <= width and y + h <= height):
+        raise ValueError(f"--box {text!r} is not a box inside the {width}x{height} first frame; "
                          "give x,y of its top-left corner and a positive width and height.")
     return (x, y, w, h)
 
 
+def _load_imports(specs) -> None:
+    """``--import MODULE_OR_FILE`` (repeatable): load the user's trackers before any name is
+    looked up."""
+    import warnings
+
+    from .trackers import plugins
+
+    for spec in specs or []:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            plugins.load(spec)
+        for w in caught:          # e.g. "registered no new tracker": one line, not two
+            print(f"trackbook: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
+
+
+def _track_settings(args, cls, params) -> tuple[dict, dict]:
+    """What the output name's hash covers: the tracker, its seed and every param resolved
+    from the preset (what changes the boxes); and the same for the default run."""
+    from .params import make_params, paper_values
+
+    def values(p):
+        return dataclasses.asdict(p) if dataclasses.is_dataclass(p) else repr(p)
+
+    base = paper_values(cls.Params) if args.preset == "paper" else {}
+    full = {"tracker": args.tracker, "seed": args.seed,
+            "params": values(make_params(cls.Params, {**base, **params}))}
+    default = {**full, "seed": 0, "params": values(make_params(cls.Params, {}))}
+    return full, default
+
+
 def cmd_track(args) -> int:
     import csv
+    import json
 
-    from . import clips
+    from . import clips, trackers
     from ._checks import check_max_frames
-    from .clips.loaders import write_video
     from .evaluation.metrics import scores_line
     from .evaluation.runner import evaluate
 
-    from . import trackers
-
-    trackers.get(args.tracker)          # unknown name: one line before any work
+    _load_imports(args.imports)
+    cls = trackers.get(args.tracker)          # unknown name: one line before any work
     check_max_frames(args.max_frames, name="--max-frames")
+    if args.preset not in trackers.PRESETS:
+        raise ValueError(f"--preset {args.preset!r}: use one of {', '.join(trackers.PRESETS)}.")
     params = _track_params(args.tracker, args.param)
-    clip = clips.load(args.clip)
-    out = _out_dir(args.out)
+    clip = _load_clip(args.clip, args.groundtruth)
+    out = _check_out_dir(args.out)
     init_box = _parse_box(args.box, clip) if args.box else None
     if args.all_targets:
         if init_box is not None:
             raise ValueError("--box starts one target; it cannot be combined with --all-targets.")
+        if args.preset == "paper":
+            from .params import paper_values
+            params = {**paper_values(cls.Params), **params}
         return _track_all_targets(args, clip, params, out)
-    stem = f"{args.tracker}_{clip.name}"
+    settings, default = _track_settings(args, cls, params)
+    stem = _out.output_stem(args.tracker, clip.name, settings, default)
     r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
-                 init_box=init_box, **params)
+                 init_box=init_box, preset=args.preset, **params)
+    out = _out_dir(out)
     with open(out / f"{stem}.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
         for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms)):
             w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"])
+    record = {**settings, "preset": args.preset, "clip": clip.name,
+              "max_frames": args.max_frames, "box": init_box}
+    (out / f"{stem}.json").write_text(json.dumps(record, indent=1, default=repr) + "\n")
+    colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
+    codec = _out.video_codec()
     write_video(out / f"{stem}.mp4", (annotate(frame, {args.tracker: r.boxes[i]},
-                                               clip.groundtruth[i])
+                                               clip.groundtruth[i], colors)
                                       for i, frame in zip(range(len(r.boxes)), clip.frames)),
-                clip.fps, clip.size)     # raises, naming the file, when the writer failed
-    s = r.scores
-    print(f"{args.tracker} on {clip.name}: {scores_line(s, sep=', ')}")
-    print(f"wrote {out / (stem + '.csv')} and {out / (stem + '.mp4')}")
+                clip.fps, clip.size, fourcc=codec)   # raises, naming the file, on failure
+    print(f"{args.tracker} on {clip.name}: {scores_line(r.scores, sep=', ')}")
+    print(f"wrote {out / (stem + '.csv')}, {stem}.json (the settings) and {stem}.mp4 "
+          f"({codec}: {_out.CODEC_NOTE[codec]})")
     return 0
+
+
+def _load_clip(name, groundtruth):
+    """``track CLIP [--groundtruth FILE]``: the ground truth of a video or folder of your own."""
+    from . import clips
+
+    if groundtruth is not None:
+        if not Path(groundtruth).is_file():
+            raise ValueError(f"--groundtruth {groundtruth}: no such file; give a text file with "
+                             "one x,y,w,h line per frame.")
+        if isinstance(name, str) and name in clips.available():
+            raise ValueError(f"--groundtruth is for a video or image folder of your own; the "
+                             f"sample clip {name!r} carries its ground truth.")
+    return clips.load(name, groundtruth=groundtruth)
 
 
 def _track_all_targets(args, clip, params, out) -> int:
@@ -182,7 +284,10 @@ def _track_all_targets(args, clip, params, out) -> int:
 
     res = track_clip(args.tracker, clip, seed=args.seed, max_frames=args.max_frames, **params)
     ms, oks = res.pop("_ms"), res.pop("_ok")
-    stem = f"{args.tracker}_{clip.name}"
+    settings = {"tracker": args.tracker, "seed": args.seed, "params": params}
+    default = {**settings, "seed": 0, "params": {}}
+    stem = _out.output_stem(args.tracker, clip.name, settings, default)
+    out = _out_dir(out)
     for name, boxes in res.items():
         with open(out / f"{stem}_{name}.csv", "w", newline="") as f:
             w = csv.writer(f)
@@ -190,14 +295,19 @@ def _track_all_targets(args, clip, params, out) -> int:
             for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms)):
                 w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"])
     video = out / f"{stem}.mp4"
+    colors = _out.estimate_colors(clip.frames[0], [b[0] for b in res.values()])
+    codec = _out.video_codec()
     n = len(ms)
-    write_video(video, (annotate(frame, {name: boxes[i] for name, boxes in res.items()})
-                        for i, frame in zip(range(n), clip.frames)), clip.fps, clip.size)
+    write_video(video, (annotate(frame, {name: boxes[i] for name, boxes in res.items()},
+                                 colors=colors)
+                        for i, frame in zip(range(n), clip.frames)), clip.fps, clip.size,
+                fourcc=codec)
     for name, boxes in res.items():
         gt = clip.targets[name][:n]
         print(f"{args.tracker} on {clip.name}/{name}: AUC {metrics.auc(boxes[1:], gt[1:]):.3f}")
     print(f"{float(np.median(ms[1:])) if n > 1 else 0.0:.2f} ms/frame for {len(res)} targets; "
-          f"wrote {len(res)} CSVs ({stem}_<target>.csv) and {video}")
+          f"wrote {len(res)} CSVs ({stem}_<target>.csv) and {video} ({codec}: "
+          f"{_out.CODEC_NOTE[codec]})")
     return 0
 
 
@@ -256,14 +366,35 @@ def _bench_param(tracker: str, kv: str, flag: str = "") -> dict:
     return _parse_params([f"{name}={value}"])
 
 
-def cmd_notebooks(args) -> int:
-    import jupytext
+def _chapters(book: Path) -> list[Path]:
+    return (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
+            + sorted(book.glob("lab_notes_*.md")))
 
-    book = Path(args.book)
-    chapters = (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
-                + sorted(book.glob("lab_notes_*.md")))
+
+def find_book(book=None) -> Path:
+    """The folder of the book's chapters: ``--book`` if given; else ``./book``; else the
+    chapters installed with the package (``trackbook/_book``, or the repository's ``book/``
+    beside ``src/`` in an editable install)."""
+    if book is not None:
+        return Path(book)
+    here = Path(__file__).resolve().parent
+    for cand in (Path("book"), here / "_book", here.parents[1] / "book"):
+        if _chapters(cand):
+            return cand
+    return here / "_book"
+
+
+def cmd_notebooks(args) -> int:
+    try:
+        import jupytext
+    except ImportError:
+        raise CLIError("trackbook notebooks needs jupytext, which the book extra installs: "
+                       "pip install 'trackbook[book]' (or pip install jupytext).") from None
+    book = find_book(args.book)
+    chapters = _chapters(book)
     if not chapters:
-        raise ValueError(f"no chapters in {book}; run from the repository root or pass --book.")
+        raise ValueError(f"no chapters in {book}; pass --book FOLDER (the book/ folder of the "
+                         "repository).")
     out = _out_dir(args.out)
     for md in chapters:
         nb = jupytext.read(md)
@@ -272,10 +403,29 @@ def cmd_notebooks(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with the command's error style: one line on stderr, exit code 2."""
+
+    def error(self, message):
+        print(f"trackbook: error: {' '.join(message.split())} (see {self.prog} --help)",
+              file=sys.stderr)
+        raise SystemExit(2)
+
+
+_IMPORT_HELP = ("MODULE_OR_FILE: load a tracker of your own first (a .py file or a dotted "
+                "module that uses @trackers.register); repeatable")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="trackbook", description=__doc__,
-                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = _Parser(prog="trackbook", description=__doc__,
+                formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="command", required=True)
+
+    k = sub.add_parser("trackers", help="list the trackers, or one tracker's params")
+    k.add_argument("name", nargs="?", help="a tracker name: show its params")
+    k.add_argument("--import", dest="imports", action="append", metavar="MODULE_OR_FILE",
+                   help=_IMPORT_HELP)
+    k.set_defaults(fn=cmd_trackers)
 
     c = sub.add_parser("clips", help="list or export sample clips")
     c.add_argument("action", nargs="?", choices=["list", "export"], default="list")
@@ -290,6 +440,12 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--max-frames", type=int)
     t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
+    t.add_argument("--preset", default="book", help="'book' (the book's defaults) or 'paper' "
+                   "(the values the paper prints; see trackbook trackers NAME)")
+    t.add_argument("--groundtruth", metavar="FILE", help="ground truth of your own video or "
+                   "folder: one x,y,w,h line per frame (comma, tab or space separated)")
+    t.add_argument("--import", dest="imports", action="append", metavar="MODULE_OR_FILE",
+                   help=_IMPORT_HELP)
     t.add_argument("--box", help="x,y,w,h: the target on the first frame, for a video without "
                    "ground truth (your own video); scores are then left out")
     t.add_argument("--all-targets", action="store_true",
@@ -328,7 +484,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.set_defaults(fn=cmd_bench)
 
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")
-    n.add_argument("--book", default="book")
+    n.add_argument("--book", default=None, help="the folder of the chapters (default: ./book, else the chapters installed with trackbook)")
     n.add_argument("--out", default="notebooks")
     n.set_defaults(fn=cmd_notebooks)
     return p
@@ -351,21 +507,68 @@ def _one_line_warnings():
     warnings.showwarning = show
 
 
+def _made_folders(path) -> list[Path]:
+    """The folders of ``path`` that do not exist yet (deepest last)."""
+    if path is None:
+        return []
+    p, missing = Path(path), []
+    while not p.exists() and p != p.parent:
+        missing.append(p)
+        p = p.parent
+    return missing[::-1]
+
+
+def _remove_if_empty(folders) -> None:
+    """After a failed command: remove the ``--out`` folders it created if they are empty."""
+    for d in reversed(folders):
+        try:
+            d.rmdir()          # only succeeds on an empty folder
+        except OSError:
+            return
+
+
 def main(argv=None) -> int:
     """Run one subcommand; every error is one line on stderr and a non-zero exit code."""
     args = build_parser().parse_args(argv)
     _one_line_warnings()
+    new_folders = _made_folders(getattr(args, "out", None))
     try:
-        return args.fn(args)
+        rc = args.fn(args)
+    except BaseException:
+        _remove_if_empty(new_folders)
+        return _report(sys.exc_info()[1])
+    if rc:
+        _remove_if_empty(new_folders)
+    return rc
+
+
+def _report(e: BaseException) -> int:
+    """One line on stderr for an exception of a subcommand; the exit code."""
+    try:
+        raise e
     except KeyboardInterrupt:
         print("trackbook: interrupted (Ctrl-C).", file=sys.stderr)
         return 130
+    except BrokenPipeError:    # the reader went away (trackbook trackers | head): not an error
+        import os
+        try:
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        except (OSError, ValueError):
+            pass
+        return 0
     except (ValueError, CLIError, OSError, KeyError) as e:
         msg = e.args[0] if isinstance(e, KeyError) and e.args else e
         if isinstance(e, OSError) and e.filename is not None and e.strerror:
             msg = f"{e.filename}: {e.strerror}"
         print(f"trackbook: error: {' '.join(str(msg).split())}", file=sys.stderr)
         return 2
+    except ImportError as e:   # an optional package (an extra) is not installed
+        print(f"trackbook: error: this needs the package {e.name or e}, which is not installed; "
+              "pip install it, or the extra that has it (pip install 'trackbook[book]').",
+              file=sys.stderr)
+        return 2
+    except SystemExit:
+        raise
     except Exception as e:  # noqa: BLE001  a bug, still reported in one line
         print(f"trackbook: error: {type(e).__name__}: {' '.join(str(e).split())} (this is a "
               "bug; please report it with the command line)", file=sys.stderr)

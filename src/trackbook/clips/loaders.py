@@ -160,8 +160,9 @@ def _count_frames(path) -> tuple[int, int]:
     return n, listed
 
 
-def write_video(path, frames, fps: float, size) -> int:
-    """Write BGR ``frames`` of ``size`` (width, height) to ``path`` (mp4v); return the count.
+def write_video(path, frames, fps: float, size, fourcc: str = "mp4v") -> int:
+    """Write BGR ``frames`` of ``size`` (width, height) to ``path`` with the codec ``fourcc``
+    (``"mp4v"``, or ``"avc1"`` where OpenCV has H.264); return the count.
 
     Raises ``ValueError`` naming the file when OpenCV's writer cannot open it (a codec that
     refuses the size, e.g. a 2 x 20000 clip, or a folder that cannot be written) or when the
@@ -169,9 +170,10 @@ def write_video(path, frames, fps: float, size) -> int:
     """
     path = Path(path)
     w, h = (int(v) for v in size)
-    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*"mp4v"), float(fps), (w, h))
+    writer = cv2.VideoWriter(str(path), cv2.VideoWriter_fourcc(*fourcc), float(fps or 25),
+                             (w, h))
     if not writer.isOpened():
-        raise ValueError(f"cannot write video {path}: OpenCV's mp4v writer refused a {w}x{h} "
+        raise ValueError(f"cannot write video {path}: OpenCV's {fourcc} writer refused a {w}x{h} "
                          "video (MPEG-4 needs sides of 16..8190 px and a writable folder); "
                          "the CSV beside it holds the boxes.")
     n = 0

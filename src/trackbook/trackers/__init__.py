@@ -15,6 +15,7 @@ import difflib
 
 from .. import params as _params
 from .._checks import clip_box
+from . import plugins
 from . import registry as _registry
 from .base import Tracker
 from .multi import MultiTracker
@@ -30,23 +31,32 @@ from . import condensation_mean_shift  # noqa: E402,F401  seed 003: condensation
 
 
 def available(reference: bool = False) -> list[str]:
-    """Registered tracker names; with ``reference=True`` also OpenCV's ``opencv-mil``."""
+    """Registered tracker names; with ``reference=True`` also OpenCV's ``opencv-mil``.
+
+    The first call also registers the trackers of installed packages (entry-point group
+    ``trackbook.trackers``, see :mod:`trackbook.trackers.plugins`)."""
+    plugins.ensure_entry_points()
     names = _registry.available()
     return names + list(REFERENCE) if reference else names
 
 
 def get(name: str) -> type[Tracker]:
     """The tracker class for a registered (or reference) name."""
+    plugins.ensure_entry_points()
     if name in REFERENCE:
         return REFERENCE[name]
     try:
         return _registry.get(name)
     except ValueError:
         near = difflib.get_close_matches(str(name), available(reference=True), n=1)
+        if not near and str(name).lower().replace("_", "-") in ("mil", "trackermil", "cv-mil"):
+            near = ["opencv-mil"]           # OpenCV's name for it
         hint = f" (did you mean {near[0]!r}?)" if near else ""
         raise ValueError(
             f"unknown tracker {name!r}{hint}; registered trackers: "
-            f"{', '.join(available()) or '(none)'}; reference: {', '.join(REFERENCE)}."
+            f"{', '.join(available()) or '(none)'}; reference: {', '.join(REFERENCE)}; a "
+            "tracker of your own is known once its module is loaded (--import my_tracker.py, "
+            "or trackbook.trackers.plugins.load)."
         ) from None
 
 
@@ -79,5 +89,5 @@ def departures(name: str) -> list[dict]:
 
 register = _registry.register
 
-__all__ = ["MultiTracker", "Tracker", "available", "create", "departures", "get", "register",
-           "clip_box"]
+__all__ = ["MultiTracker", "Tracker", "available", "create", "departures", "get", "plugins",
+           "register", "clip_box"]
