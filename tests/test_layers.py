@@ -35,7 +35,7 @@ LAYERS = {
     "evaluation": 4, "metrics": 4, "results": 4,
     "viz": 5,
     "playground": 6,
-    "widgets": 7, "cli": 7, "__main__": 7, "exercises": 7,
+    "widgets": 7, "cli": 7, "_cli_output": 7, "__main__": 7, "exercises": 7,
 }
 
 

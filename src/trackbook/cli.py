@@ -212,8 +212,9 @@ def cmd_track(args) -> int:
     import csv
     import json
 
-    from . import clips, trackers
+    from . import trackers
     from ._checks import check_max_frames
+    from .clips.loaders import write_video
     from .evaluation.metrics import scores_line
     from .evaluation.runner import evaluate
 
