@@ -24,3 +24,40 @@ def textured_frame(rng):
     import cv2
     small = rng.integers(0, 256, (30, 40, 3), dtype=np.uint8)
     return cv2.resize(small, (320, 240), interpolation=cv2.INTER_CUBIC)
+
+
+def write_sequence(root, name, n, *, seed, size=(160, 120), side=24, x0=20, y0=40, dx=3,
+                   dy=1, ext="png"):
+    """An OTB-style folder ``root/name`` (``img/0001.<ext>`` … and ``groundtruth_rect.txt``):
+    a random-texture square of ``side`` px moving by ``(dx, dy)`` px a frame over a random
+    background of ``size`` (width, height); returns the folder."""
+    import cv2
+
+    g = np.random.default_rng(seed)
+    bg = cv2.resize(g.integers(0, 255, (12, 16, 3), dtype=np.uint8), size)
+    obj = cv2.resize(g.integers(0, 255, (4, 4, 3), dtype=np.uint8), (side, side),
+                     interpolation=cv2.INTER_NEAREST)
+    img = root / name / "img"
+    img.mkdir(parents=True)
+    rows = []
+    for i in range(n):
+        f = bg.copy()
+        x, y = x0 + dx * i, y0 + dy * i
+        f[y:y + side, x:x + side] = obj
+        cv2.imwrite(str(img / f"{i + 1:04d}.{ext}"), f)
+        rows.append(f"{x},{y},{side},{side}")
+    (root / name / "groundtruth_rect.txt").write_text("\n".join(rows) + "\n")
+    return root / name
+
+
+@pytest.fixture
+def clean_registry(monkeypatch):
+    """Restore the tracker registry and the plugin loader's memory after the test."""
+    from trackbook.trackers import plugins
+    from trackbook.trackers import registry
+
+    saved = dict(registry._REGISTRY)
+    monkeypatch.setattr(plugins, "_loaded", {})
+    yield
+    registry._REGISTRY.clear()
+    registry._REGISTRY.update(saved)

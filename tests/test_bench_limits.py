@@ -9,30 +9,16 @@ import threading
 import time
 import types
 
-import cv2
 import numpy as np
 import pytest
 
+from .conftest import write_sequence
 from trackbook import cli
 from trackbook.evaluation import bench, parallel, runs
 
 
 def _folder(root, name, n=12):
-    rng = np.random.default_rng(11)
-    bg = cv2.resize(rng.integers(0, 255, (12, 16, 3), dtype=np.uint8), (160, 120))
-    obj = cv2.resize(rng.integers(0, 255, (4, 4, 3), dtype=np.uint8), (24, 24),
-                     interpolation=cv2.INTER_NEAREST)
-    img = root / name / "img"
-    img.mkdir(parents=True)
-    rows = []
-    for i in range(n):
-        f = bg.copy()
-        x, y = 20 + 2 * (i % 50), 40 + i % 40
-        f[y:y + 24, x:x + 24] = obj
-        cv2.imwrite(str(img / f"{i + 1:04d}.png"), f)
-        rows.append(f"{x},{y},24,24")
-    (root / name / "groundtruth_rect.txt").write_text("\n".join(rows) + "\n")
-    return root / name
+    return write_sequence(root, name, n, seed=11, dx=2)
 
 
 # ----------------------------------------------------------------------- loopback servers

@@ -5,9 +5,9 @@ import shutil
 import stat
 
 import cv2
-import numpy as np
 import pytest
 
+from .conftest import write_sequence
 from trackbook import cli
 from trackbook.evaluation import bench, parallel
 
@@ -15,21 +15,7 @@ TRACKERS = ["mean-shift", "covariance"]
 
 
 def _folder(root, name, n=10, shift=0):
-    rng = np.random.default_rng(7 + shift)
-    bg = cv2.resize(rng.integers(0, 255, (12, 16, 3), dtype=np.uint8), (160, 120))
-    obj = cv2.resize(rng.integers(0, 255, (4, 4, 3), dtype=np.uint8), (24, 24),
-                     interpolation=cv2.INTER_NEAREST)
-    img = root / name / "img"
-    img.mkdir(parents=True)
-    rows = []
-    for i in range(n):
-        f = bg.copy()
-        x, y = 20 + 3 * i + shift, 40 + i
-        f[y:y + 24, x:x + 24] = obj
-        cv2.imwrite(str(img / f"{i + 1:04d}.png"), f)
-        rows.append(f"{x},{y},24,24")
-    (root / name / "groundtruth_rect.txt").write_text("\n".join(rows) + "\n")
-    return root / name
+    return write_sequence(root, name, n, seed=7 + shift, x0=20 + shift)
 
 
 @pytest.fixture

@@ -9,6 +9,7 @@ import cv2
 import numpy as np
 import pytest
 
+from .conftest import write_sequence
 from trackbook import params as _params
 from trackbook import trackers
 from trackbook.evaluation import bench
@@ -42,21 +43,8 @@ def _tracker_file(folder, name, shift=0):
 
 
 def _folder(root, name, n=8, ext="png"):
-    rng = np.random.default_rng(5)
-    bg = cv2.resize(rng.integers(0, 255, (12, 16, 3), dtype=np.uint8), (120, 90))
-    obj = cv2.resize(rng.integers(0, 255, (4, 4, 3), dtype=np.uint8), (20, 20),
-                     interpolation=cv2.INTER_NEAREST)
-    img = root / name / "img"
-    img.mkdir(parents=True)
-    rows = []
-    for i in range(n):
-        f = bg.copy()
-        x, y = 10 + 4 * i, 30 + i
-        f[y:y + 20, x:x + 20] = obj
-        cv2.imwrite(str(img / f"{i + 1:04d}.{ext}"), f)
-        rows.append(f"{x},{y},20,20")
-    (root / name / "groundtruth_rect.txt").write_text("\n".join(rows) + "\n")
-    return root / name
+    return write_sequence(root, name, n, seed=5, size=(120, 90), side=20, x0=10, y0=30, dx=4,
+                          ext=ext)
 
 
 def _env():

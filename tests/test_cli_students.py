@@ -16,8 +16,6 @@ from skimage.color import rgb2lab
 from trackbook import cli, clips
 from trackbook import _cli_output as out_mod
 from trackbook.evaluation.runner import evaluate
-from trackbook.trackers import plugins
-from trackbook.trackers import registry as _registry
 
 STILL = textwrap.dedent("""
     from trackbook import trackers
@@ -47,15 +45,6 @@ def _one_line(capsys, rc):
 def _rows(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
-
-
-@pytest.fixture
-def clean_registry(monkeypatch):
-    saved = dict(_registry._REGISTRY)
-    monkeypatch.setattr(plugins, "_loaded", {})
-    yield
-    _registry._REGISTRY.clear()
-    _registry._REGISTRY.update(saved)
 
 
 @pytest.fixture

@@ -30,16 +30,6 @@ TRACKER_SRC = textwrap.dedent("""
 """)
 
 
-@pytest.fixture
-def clean_registry(monkeypatch):
-    """Restore the registry and the loader's memory after the test."""
-    saved = dict(_registry._REGISTRY)
-    monkeypatch.setattr(plugins, "_loaded", {})
-    yield
-    _registry._REGISTRY.clear()
-    _registry._REGISTRY.update(saved)
-
-
 def test_load_file_registers_once(tmp_path, clean_registry):
     f = tmp_path / "still_tracker.py"
     f.write_text(TRACKER_SRC.format(name="still-file"))
