@@ -317,8 +317,8 @@ def test_prediction_moves_the_position_by_the_new_noised_velocity():
     frame = np.full((80, 100, 3), 90, np.uint8)
     frame[30:50, 40:60] = (40, 60, 200)
     t.init(frame, (40, 30, 20, 20))
-    s0 = np.array(t._initial_particles(frame, (40, 30, 20, 20)), dtype=float)
+    s0 = np.array(t.initial_particles(frame, (40, 30, 20, 20)), dtype=float)
     s0[:, 2:4] = [1.5, -0.5]                      # a known previous velocity
-    s1 = t._predict(s0.copy())
+    s1 = t.predict(s0.copy())
     np.testing.assert_allclose(s1[:, 0:2] - s0[:, 0:2], s1[:, 2:4], atol=1e-9)
     assert not np.allclose(s1[:, 2:4], s0[:, 2:4])  # the velocity did receive noise

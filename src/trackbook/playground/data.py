@@ -16,6 +16,7 @@ import math
 import cv2
 import numpy as np
 
+from .. import params as _params
 from .. import trackers as _trackers
 from ..evaluation import metrics
 from ..evaluation.runner import evaluate
@@ -156,18 +157,20 @@ def knob_spec(cls, name: str, value=None) -> dict | None:
     m = f.metadata
     v = f.default if value is None else value
     spec = {"name": name, "doc": m.get("doc", ""), "default": list(v) if isinstance(v, tuple) else v}
-    if m.get("choices"):
-        spec.update(kind="choice", choices=list(m["choices"]))
+    choices = _params.choices_of(f)
+    lo, hi = _params.slider_of(f)       # the slider's range, not the (wider) allowed one
+    if choices:
+        spec.update(kind="choice", choices=list(choices))
     elif isinstance(v, bool):
         spec.update(kind="bool")
     elif isinstance(v, tuple):
-        lo = m.get("lo") if m.get("lo") is not None else 0.0
-        hi = m.get("hi") if m.get("hi") is not None else 2 * max(v)
+        lo = lo if lo is not None else 0.0
+        hi = hi if hi is not None else 2 * max(v)
         spec.update(kind="pair", lo=lo, hi=hi, step=m.get("step") or (hi - lo) / 100)
     elif isinstance(v, (int, float)):
         is_int = isinstance(v, int)
-        lo = m.get("lo") if m.get("lo") is not None else 0
-        hi = m.get("hi") if m.get("hi") is not None else max(2 * v, 1)
+        lo = lo if lo is not None else 0
+        hi = hi if hi is not None else max(2 * v, 1)
         step = m.get("step") or (1 if is_int else (hi - lo) / 100)
         spec.update(kind="int" if is_int else "float", lo=lo, hi=hi, step=step)
     else:

@@ -22,7 +22,9 @@ from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
-from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
+from . import color_pf  # noqa: E402,F401  lee2012: color-pf (02_particle_filters)
+from . import color_hog_pf  # noqa: E402,F401  lee2012: color-hog-pf (03_hog)
+from . import color_hog_ipca  # noqa: E402,F401  lee2012: color-hog-ipca (04_incremental_svd)
 from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
 from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
 from . import covariance  # noqa: E402,F401  seed 002: covariance, kalman-covariance
