@@ -40,7 +40,8 @@ class Tracker:
         the same boxes.
     **params
         Values for the fields of the tracker's ``Params`` dataclass; the rest keep the
-        paper's defaults.
+        book's defaults (``trackers.create(name, preset="paper")`` starts from the values
+        the paper prints instead).
 
     Attributes
     ----------

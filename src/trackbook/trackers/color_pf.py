@@ -57,7 +57,8 @@ class ColorPFParams:
     """
 
     # N = 100: section V, the sentence after the pseudocode.
-    n_particles: int = param(100, 10, 1000, 10, "N, number of particles (section V)",
+    n_particles: int = param(100, 1, 100_000, 10, "N, number of particles (section V)",
+                             slider=(10, 1000),
                              paper=100)
     # sigma_color = 0.4: section V, the sentence after eq. 12-13 ("all sigma ... 0.4").
     sigma_color: float = param(0.2, 0.02, 1.0, 0.02, "sigma_color of eq. 10 (and 12): width of "

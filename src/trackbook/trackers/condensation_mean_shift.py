@@ -106,8 +106,8 @@ class CondensationParams(EllipseColourParams):
     noise w of A."""
 
     # Cho & Kang 2005 §5.1
-    n_particles: int = param(100, 1, 2000, 1, "N, number of candidates (100 in Cho & Kang 2005 "
-                             "§5.1, after Nummiaro)", paper=100)
+    n_particles: int = param(100, 1, 100_000, 1, "N, number of candidates (100 in Cho & Kang "
+                             "2005 §5.1, after Nummiaro)", paper=100, slider=(1, 2000))
     noise_position: float = param(0.15, 0.0, 2.0, 0.01,
                                   "std of w_x, w_y of eq. 9, in half-axes (the noise of A)",
                                   paper=NOT_PRINTED,
@@ -135,8 +135,8 @@ class CondensationMeanShiftParams(CondensationParams):
     """Tunables of ``condensation-mean-shift`` (Cho & Kang 2005): those of ``condensation``
     with 5 candidates, plus the mean-shift of every candidate and the motion vector."""
 
-    n_particles: int = param(5, 1, 500, 1, "N, number of candidates (5 in Cho & Kang 2005 "
-                             "§5.1)", paper=5)
+    n_particles: int = param(5, 1, 100_000, 1, "N, number of candidates (5 in Cho & Kang 2005 "
+                             "§5.1)", paper=5, slider=(1, 500))
     # §4, eq. 12-13: one mean-shift step moves each candidate, printed once per candidate.
     max_iter: int = param(10, 0, 100, 1, "mean-shift iterations per candidate at most "
                           "(eq. 12-13)",
