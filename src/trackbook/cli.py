@@ -137,6 +137,7 @@ def cmd_track(args) -> int:
 
     from . import clips
     from .evaluation.runner import evaluate
+    from .viz.core import draw_state_cv
 
     from . import trackers
 
@@ -153,8 +154,10 @@ def cmd_track(args) -> int:
             raise ValueError("--box starts one target; it cannot be combined with --all-targets.")
         return _track_all_targets(args, clip, params, out)
     stem = f"{args.tracker}_{clip.name}"
+    states = []     # what the tracker shows of itself on each frame, drawn on the video
     r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
-                 init_box=init_box, **params)
+                 init_box=init_box, on_frame=lambda i, t, f, b: states.append(t.state()),
+                 **params)
     with open(out / f"{stem}.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
@@ -166,7 +169,8 @@ def cmd_track(args) -> int:
     for i, frame in enumerate(clip.frames):
         if i >= len(r.boxes):
             break
-        writer.write(annotate(frame, {args.tracker: r.boxes[i]}, clip.groundtruth[i]))
+        writer.write(draw_state_cv(annotate(frame, {args.tracker: r.boxes[i]},
+                                            clip.groundtruth[i]), states[i]))
     writer.release()
     s = r.scores
     print(f"{args.tracker} on {clip.name}: " + (

@@ -49,29 +49,30 @@ def clip_payload(clip, n: int, quality: int = JPEG_QUALITY) -> dict:
                    for b in gt] if has_gt else None}
 
 
-def snapshot(tracker) -> dict:
-    """What to draw for one frame, copied (trackers reuse their arrays)."""
+def snapshot(state) -> dict:
+    """What to draw for one frame, from a tracker's :class:`~trackbook.trackers.TrackerState`
+    (``tracker.state()``), subsampled for the viewer."""
     snap = {}
-    p = getattr(tracker, "particles", None)
+    p = state.particles
     if p is not None and len(p):
         p = np.asarray(p, dtype=float)
-        w = getattr(tracker, "weights", None)
+        w = state.weights
         w = np.full(len(p), 1.0 / len(p)) if w is None else np.asarray(w, dtype=float)
+        full_w = w
         if len(p) > MAX_PARTICLES:     # an even subsample keeps the cloud's shape
             idx = np.linspace(0, len(p) - 1, MAX_PARTICLES).round().astype(int)
             p, w = p[idx], w[idx]
         snap["particles"] = p[:, :2].copy()
         snap["weights"] = w.copy()
-        pr = getattr(tracker, "particle_rays", None)
-        full_w = getattr(tracker, "weights", None)
-        if pr is not None and len(pr) and full_w is not None and len(full_w) == len(pr):
+        pr = state.rays
+        if pr is not None and len(pr) and state.weights is not None and len(full_w) == len(pr):
             best = int(np.argmax(full_w))
-            snap["rays"] = [*np.asarray(tracker.particles)[best, :2], *np.asarray(pr)[best]]
+            snap["rays"] = [*np.asarray(state.particles)[best, :2], *np.asarray(pr)[best]]
     for key in ("search_window", "ellipse"):
-        v = getattr(tracker, key, None)
+        v = getattr(state, key)
         if v is not None:
             snap[key] = [float(x) for x in np.asarray(v, dtype=float).ravel()[:4]]
-    c = getattr(tracker, "candidates", None)
+    c = state.candidates
     if c is not None and len(c):
         c = np.asarray(c, dtype=float)[:, :4]
         if len(c) > MAX_CANDIDATES:
@@ -129,7 +130,7 @@ def run_payload(tracker: str, clip, values: dict, n: int | None, seed: int = 0,
     """Track ``clip`` with ``tracker`` and ``values``; return (payload, result, snapshots)."""
     states: list[dict] = []
     r = evaluate(tracker, clip, seed=seed, max_frames=n, init_box=init_box,
-                 on_frame=lambda i, t, f, b: states.append(snapshot(t)), **values)
+                 on_frame=lambda i, t, f, b: states.append(snapshot(t.state())), **values)
     nb = len(r.boxes)
     gt = np.asarray(clip.groundtruth[:nb], dtype=float)
     has_gt = bool(np.isfinite(gt).all(axis=1)[1:].any())

@@ -16,7 +16,7 @@ import difflib
 from .. import params as _params
 from .._checks import clip_box
 from . import registry as _registry
-from .base import Tracker
+from .base import Tracker, TrackerState
 from .multi import MultiTracker
 from .reference import REFERENCE
 
@@ -81,5 +81,5 @@ def departures(name: str) -> list[dict]:
 
 register = _registry.register
 
-__all__ = ["MultiTracker", "Tracker", "available", "create", "departures", "get", "register",
+__all__ = ["MultiTracker", "Tracker", "TrackerState", "available", "create", "departures", "get", "register",
            "clip_box"]

@@ -305,6 +305,13 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
         e = self.estimate
         return (float(e[0]), float(e[1]), float(e[4]), float(e[5]))
 
+    def state(self):
+        """The particle filter's state plus the estimate's ``ellipse`` (cx, cy, Hx, Hy)."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, ellipse=self.ellipse)
+
 
 @register
 class CondensationMeanShift(Condensation):
@@ -544,3 +551,12 @@ class MeanShift(_EllipseColourModel, Tracker):
     @property
     def trajectory(self) -> np.ndarray:
         return readonly(self._trajectory)
+
+    def state(self):
+        """The box, ``ok``, the ``ellipse`` (cx, cy, Hx, Hy) and its single candidate as a
+        particle of weight 1."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, ellipse=self.ellipse, particles=self.particles,
+                                   weights=self.weights)

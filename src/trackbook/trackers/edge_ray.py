@@ -92,6 +92,13 @@ class EdgeRayPF(CentreParticleFilter):
         self.particle_rays = np.zeros((0, 8))
         self.ratios = np.zeros(0)
 
+    def state(self):
+        """The particle filter's state plus ``rays``: pDis of every particle (eq. 4)."""
+        st = super().state()
+        if st.particles is None or len(self.particle_rays) != len(st.particles):
+            return st                   # before the first weighted frame (or a flat one)
+        return dataclasses.replace(st, rays=self.particle_rays)
+
     def _rays(self, xy):
         """pDis_j (eq. 4) of centres ``xy`` (N, 2) in the current edge map, capped at max_ray.
 

@@ -7,12 +7,14 @@ The estimation steps it calls (weights, resamplers, estimate) are pure functions
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ..filters.particle import (check_indices, get_resampler, normalize_weights,
                                 resampler_names, weighted_mean)
 from ..params import NOT_PRINTED, param
-from .base import Tracker, readonly
+from .base import Tracker, TrackerState, readonly
 
 
 def lost_below_param():
@@ -170,6 +172,13 @@ class ParticleFilterTracker(Tracker):
         return True, self.state_to_box(self.estimate)
 
     # read-only views for the book's drawings -------------------------------------------
+    def state(self) -> TrackerState:
+        """The box, ``ok``, and the particles with their normalised weights."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, particles=self._particles, weights=self._weights)
+
     @property
     def particles(self) -> np.ndarray:
         return readonly(self._particles)

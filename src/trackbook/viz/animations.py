@@ -50,6 +50,7 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
     Arulampalam et al. (2002); the trackers' loop is :class:`ParticleFilterTracker`."""
     from .. import trackers as _trackers
     from ..filters.particle import RESAMPLERS
+    from ..trackers import TrackerState
 
     clip = _clips.load(clip)
     t = _trackers.create(tracker, seed=seed, n_particles=n_particles)
@@ -76,7 +77,7 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
                 (resampled, np.full(n, 1 / n), "resample: drawn in proportion to weight"),
                 (predicted, np.full(n, 1 / n), "predict: moved by the motion model"),
                 (predicted, w, "weigh: scored by the likelihood"))):
-            states.append(snapshot(_Snap(p, ww)))
+            states.append(snapshot(TrackerState(particles=p, weights=ww)))
             index.append(img)
             gts.append(clip.groundtruth[k])
             est = t.state_to_box(np.average(p, axis=0, weights=ww))
