@@ -182,19 +182,19 @@ def cmd_track(args) -> int:
 
 def _track_all_targets(args, clip, params, out) -> int:
     """``track --all-targets``: one tracker per annotated target of the clip (e.g. the two
-    faces of ``two-faces``), run by :func:`trackbook.trackers.multi.track_clip`; one CSV per
+    faces of ``two-faces``), run by ``trackbook.evaluate(..., targets="all")``; one CSV per
     target and one video with every target's box."""
     import csv
 
     import cv2
 
-    from .evaluation import metrics
-    from .trackers.multi import track_clip
+    from .evaluation.runner import evaluate
 
-    res = track_clip(args.tracker, clip, seed=args.seed, max_frames=args.max_frames, **params)
-    ms, oks = res.pop("_ms"), res.pop("_ok")
+    res = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
+                   targets="all", **params)
+    ms, oks, boxes_of = res.ms, res.ok, res.boxes
     stem = f"{args.tracker}_{clip.name}"
-    for name, boxes in res.items():
+    for name, boxes in boxes_of.items():
         with open(out / f"{stem}_{name}.csv", "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])   # ms: all targets' update
@@ -208,13 +208,12 @@ def _track_all_targets(args, clip, params, out) -> int:
     for i, frame in enumerate(clip.frames):
         if i >= n:
             break
-        writer.write(annotate(frame, {name: boxes[i] for name, boxes in res.items()}))
+        writer.write(annotate(frame, {name: boxes[i] for name, boxes in boxes_of.items()}))
     writer.release()
-    for name, boxes in res.items():
-        gt = clip.targets[name][:n]
-        print(f"{args.tracker} on {clip.name}/{name}: AUC {metrics.auc(boxes[1:], gt[1:]):.3f}")
-    print(f"{float(np.median(ms[1:])) if n > 1 else 0.0:.2f} ms/frame for {len(res)} targets; "
-          f"wrote {len(res)} CSVs ({stem}_<target>.csv) and {video}")
+    for name, r in res.results.items():
+        print(f"{args.tracker} on {clip.name}/{name}: AUC {r.scores.get('auc', float('nan')):.3f}")
+    print(f"{float(np.median(ms[1:])) if n > 1 else 0.0:.2f} ms/frame for {len(boxes_of)} targets; "
+          f"wrote {len(boxes_of)} CSVs ({stem}_<target>.csv) and {video}")
     return 0
 
 
