@@ -1,7 +1,7 @@
 """Trackers: the registry, the shared base class and the papers' trackers.
 
 >>> from trackbook import trackers
->>> trackers.available()          # the eleven registered names (SPEC section 2)  # doctest: +SKIP
+>>> trackers.available()          # the eleven registered names  # doctest: +SKIP
 >>> t = trackers.create("color-hog-ipca", seed=0, n_particles=100)  # doctest: +SKIP
 >>> t.init(frame, (x, y, w, h)); ok, box = t.update(next_frame)     # doctest: +SKIP
 
@@ -25,10 +25,10 @@ from .reference import REFERENCE
 from . import color_pf  # noqa: E402,F401  lee2012: color-pf (02_particle_filters)
 from . import color_hog_pf  # noqa: E402,F401  lee2012: color-hog-pf (03_hog)
 from . import color_hog_ipca  # noqa: E402,F401  lee2012: color-hog-ipca (04_incremental_svd)
-from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
-from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
-from . import covariance  # noqa: E402,F401  seed 002: covariance, kalman-covariance
-from . import condensation_mean_shift  # noqa: E402,F401  seed 003: condensation, mean-shift, condensation-mean-shift
+from . import hsi_hog_pf  # noqa: E402,F401  kim2016: hsi-color-pf, hog-pf
+from . import edge_ray  # noqa: E402,F401  kim2016: edge-ray-pf
+from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covariance
+from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 
 
 def available(reference: bool = False) -> list[str]:

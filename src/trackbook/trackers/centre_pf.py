@@ -25,8 +25,7 @@ class CentrePFParams:
     # Kim et al. (2016), section 3 before eq. 2: "at most 999 particles" (the seed text has no
     # page numbers; the comments name the passage).
     n_particles: int = param(
-        300, 1, 100_000, 1, "N, number of particles (Kim et al. 2016: up to 999)", paper=999,
-        slider=(1, 999),
+        300, 1, 999, 1, "N, number of particles (Kim et al. 2016: up to 999)", paper=999,
         why="300 keeps a chapter's clips within seconds; the paper prints only its maximum, 999")
     sigma: float = param(
         4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction (and of the Gaussian start "
