@@ -165,7 +165,7 @@ class ColorHogIPCA(ColorHogPF):
             d2[k] = d2_sub if beta == 0 else beta * d2_ref + (1.0 - beta) * d2_sub
         return d2
 
-
+    # -- learning ------------------------------------------------------------------------
     def _update(self, frame):
         ok, box = super()._update(frame)
         if ok:

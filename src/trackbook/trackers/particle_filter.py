@@ -68,9 +68,10 @@ class ParticleFilterTracker(Tracker):
     ``fn(weights, rng)`` of :data:`trackbook.filters.particle.RESAMPLERS`, must return N
     integer indices in 0..N-1 on every call. An "ESS-triggered" resampler that resamples only
     when the effective sample size is low must return the identity ``np.arange(N)`` on the
-    frames it skips (the weights are then still rebuilt from the likelihood: the frame never
-    carries weights over). A resampler that returns anything else fails with a ``ValueError``
-    saying so. Register your own with
+    frames it skips. Even then the frame rebuilds the weights from the likelihood alone, so a
+    skipped frame forgets the previous weights instead of multiplying them in (the textbook
+    w_t proportional to w_(t-1) p(z_t | x_t^i) needs a subclass that overrides ``_update``).
+    A resampler that returns anything else fails with a ``ValueError`` saying so. Register your own with
     :func:`trackbook.filters.particle.register_resampler`; the ``resampler`` param accepts
     every name registered when the tracker is made.
 
