@@ -198,6 +198,11 @@ def test_user_resampler_is_usable_by_name(registered):
     # every particle tracker's resampler param takes the new name
     assert trackers.create("condensation", resampler="mine").params.resampler == "mine"
     assert trackers.create("hsi-color-pf", resampler="mine").params.resampler == "mine"
+    # what widgets and listings read (the field's choices) shows it too, in registration order
+    import dataclasses
+    from trackbook import params
+    field = {f.name: f for f in dataclasses.fields(trackers.get("color-pf").Params)}["resampler"]
+    assert params.choices_of(field)[-1] == "mine" and "mine" in list(field.metadata["choices"])
 
 
 def test_unregistered_resampler_name_refused():

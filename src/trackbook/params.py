@@ -55,8 +55,9 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
     lo, hi : the range a value may take (checked by :func:`parse` on creation; None = open).
     step : the widgets' slider step.
     doc : one line naming the symbol and the equation it belongs to.
-    choices : for string parameters, the allowed values: a tuple, or a function returning
-        them, called each time a value is checked (for registries that grow, e.g. resamplers).
+    choices : for string parameters, the allowed values: a tuple, or a sequence read each
+        time a value is checked (a live view of a registry that grows, e.g.
+        ``filters.particle.RESAMPLER_NAMES``), or a function returning them.
     slider : ``(a, b)``, the range the widgets' sliders span when it is narrower than the
         allowed range (e.g. up to 1000 particles on a slider, any number by keyword);
         defaults to ``(lo, hi)``.
@@ -81,9 +82,12 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
 
 
 def choices_of(field: dataclasses.Field):
-    """The allowed values of a field now (a ``choices`` function is called), or None."""
+    """The allowed values of a field now, as a tuple (a live sequence is read, a ``choices``
+    function called), or None."""
     c = field.metadata.get("choices")
-    return tuple(c()) if callable(c) else c
+    if c is None:
+        return None
+    return tuple(c()) if callable(c) else tuple(c)
 
 
 def slider_of(field: dataclasses.Field) -> tuple:

@@ -11,6 +11,8 @@ smallest i with c_i >= r; they differ only in where the pointers go.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 
@@ -139,6 +141,28 @@ def register_resampler(name: str, fn, *, replace: bool = False):
 def resampler_names() -> tuple:
     """The names of the registered resamplers, in the order they were registered."""
     return tuple(RESAMPLERS)
+
+
+class RegisteredNames(Sequence):
+    """A live, read-only view of the registered resampler names: a sequence that is read
+    each time it is used, so the ``choices`` of a ``resampler`` param made with it accept a
+    resampler registered after the params class was defined."""
+
+    def __getitem__(self, i):
+        return tuple(RESAMPLERS)[i]
+
+    def __len__(self) -> int:
+        return len(RESAMPLERS)
+
+    def __contains__(self, name) -> bool:
+        return isinstance(name, str) and name in RESAMPLERS
+
+    def __repr__(self) -> str:
+        return repr(tuple(RESAMPLERS))
+
+
+#: The ``choices`` of every ``resampler`` param: the names registered at the time of asking.
+RESAMPLER_NAMES = RegisteredNames()
 
 
 def get_resampler(name: str):

@@ -11,8 +11,8 @@ import dataclasses
 
 import numpy as np
 
-from ..filters.particle import (check_indices, get_resampler, normalize_weights,
-                                resampler_names, weighted_mean)
+from ..filters.particle import (RESAMPLER_NAMES, check_indices, get_resampler,
+                                normalize_weights, weighted_mean)
 from ..params import NOT_PRINTED, param
 from .base import Tracker, TrackerState, readonly
 
@@ -30,7 +30,7 @@ def resampler_param(doc: str, paper="multinomial", default: str = "multinomial",
     """The ``resampler`` field of a particle tracker's params: any name registered in
     :data:`trackbook.filters.particle.RESAMPLERS` when the params are made (see
     :func:`~trackbook.filters.particle.register_resampler`)."""
-    return param(default, doc=doc, choices=resampler_names, paper=paper, **kw)
+    return param(default, doc=doc, choices=RESAMPLER_NAMES, paper=paper, **kw)
 
 
 def lost_k_param():
