@@ -81,5 +81,5 @@ def departures(name: str) -> list[dict]:
 
 register = _registry.register
 
-__all__ = ["MultiTracker", "Tracker", "TrackerState", "available", "create", "departures", "get", "register",
-           "clip_box"]
+__all__ = ["MultiTracker", "Tracker", "TrackerState", "available", "create", "departures", "get",
+           "register", "clip_box"]

@@ -52,7 +52,7 @@ from .registry import register
 class ColorHogIPCAParams(ColorHogPFParams):
     """Knobs of ``color-hog-ipca`` (the tracker Lee et al. 2012 propose).
 
-    Chapter 4 of the book builds it. Lee et al. print T = 40 and the sigmas; they print no
+    ``04_incremental_svd`` builds it. Lee et al. print T = 40 and the sigmas; they print no
     number of basis vectors K (their "16" is the patch width, 16 x 24 px) and no forgetting
     factor: those are the book's choices (``paper=NOT_PRINTED`` with the setting
     ``preset="paper"`` uses). The gates, the anchor and the feature map are additions of the
@@ -85,7 +85,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           paper=0.0,
                           why="the book's addition: the first frame keeps pulling drifted "
                           "subspaces back; 0.7 chosen on the seven public sequences we tuned "
-                          "on (chapter 4, lab notes)")
+                          "on (04_incremental_svd, lab notes)")
     gate_k: float = param(0.0, 0.0, 10.0, 0.5,
                           "relative gate: learn a frame only if its energy -log(similarity) is "
                           "<= median + k * MAD of the last accepted frames (0 = off, as the paper)",
@@ -110,7 +110,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                              paper="raw",
                              why="on raw histograms (norm ~0.1) every reconstruction error is "
                              "~0.01 and every particle weighs the same; sqrt(h) has unit norm "
-                             "(chapter 4)")
+                             "(04_incremental_svd)")
 
 
 

@@ -24,7 +24,7 @@ class ColorHogPFParams(ColorPFParams):
     """Knobs of ``color-hog-pf``: colour + HOG fused by eq. 14 against fixed first-frame
     references (Lee et al. 2012 compare it as a baseline, after Jin et al. 2010).
 
-    Chapter 3 of the book builds it. ``paper=`` is the value Lee et al. print (section V; the
+    ``03_hog`` builds it. ``paper=`` is the value Lee et al. print (section V; the
     comment names the passage); ``trackers.departures("color-hog-pf")`` lists the book's choices.
     """
 
@@ -36,13 +36,13 @@ class ColorHogPFParams(ColorPFParams):
                              paper=0.4,
                              why="same reason as sigma_color: at 0.4 the HOG weights are nearly "
                              "flat; 0.2 scored higher on the seven public sequences we tuned on "
-                             "(chapter 3)")
+                             "(03_hog)")
 
 
 
 @register
 class ColorHogPF(ColorPF):
-    """``color-hog-pf``: colour + HOG fused by eq. 14, no learning ([14], Jin et al. 2010).
+    """``color-hog-pf``: colour + HOG fused by eq. 14, no learning (Jin et al. 2010).
 
     ``features`` returns ``"color"`` (eq. 1) and ``"hog"`` (eq. 2-5) of every box, both from one
     resampling of the boxes to ``PATCH_SIZE``; ``similarities`` and ``reference`` have both keys.

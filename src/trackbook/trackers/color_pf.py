@@ -51,7 +51,7 @@ class ColorPFParams:
     """Knobs of ``color-pf``: the colour-only particle filter that Lee et al. (2012) compare
     against (Pérez et al. 2002), with the state, motion and likelihood of their section V.
 
-    Chapter 2 of the book builds it step by step. ``paper=`` is the value Lee et al. print
+    ``02_particle_filters`` builds it step by step. ``paper=`` is the value Lee et al. print
     (section V; the comment names the passage); ``trackers.departures("color-pf")`` lists
     the fields whose default is the book's choice, with ``why``.
     """
@@ -66,7 +66,7 @@ class ColorPFParams:
                                why="at 0.4 a perfect match and a poor one (D^2 = 0.3) differ by "
                                "a factor 0.4 only: the weights are nearly flat; 0.2 scored best "
                                "of 0.1, 0.2, 0.4 on the seven public sequences we tuned on "
-                               "(chapter 2)")
+                               "(02_particle_filters)")
     # gamma_width, gamma_height ~ U(-2.5, 2.5): section V, the paragraph after eq. 9.
     size_noise: float = param(2.5, 0.0, 10.0, 0.5, "gamma_w, gamma_h ~ U(-a, a) of eq. 9 (px)",
                               paper=2.5)
@@ -85,7 +85,7 @@ class ColorPFParams:
                       choices=("frame", "box"), paper="frame",
                       why="the tracker is given the first box; a whole-frame start throws it "
                       "away and lets look-alikes win the first frames; 'box' scored higher on "
-                      "the seven public sequences we tuned on (chapter 2)")
+                      "the seven public sequences we tuned on (02_particle_filters)")
     # Not in the paper: eq. 9 lets w and h drift without bound.
     min_size: float = param(4.0, 1.0, 50.0, 1.0, "smallest box side a particle may have (px)",
                             paper=NOT_PRINTED,

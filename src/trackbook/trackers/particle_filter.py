@@ -1,4 +1,4 @@
-"""The SIR particle-filter tracker (chapter 2): the frame every particle tracker fills in.
+"""The SIR particle-filter tracker (``02_particle_filters``): the frame particle trackers fill in.
 
 The estimation steps it calls (weights, resamplers, estimate) are pure functions in
 :mod:`trackbook.filters.particle`; this class only strings them together behind the
@@ -71,9 +71,9 @@ class ParticleFilterTracker(Tracker):
     frames it skips. Even then the frame rebuilds the weights from the likelihood alone, so a
     skipped frame forgets the previous weights instead of multiplying them in (the textbook
     w_t proportional to w_(t-1) p(z_t | x_t^i) needs a subclass that overrides ``_update``).
-    A resampler that returns anything else fails with a ``ValueError`` saying so. Register your own with
-    :func:`trackbook.filters.particle.register_resampler`; the ``resampler`` param accepts
-    every name registered when the tracker is made.
+    A resampler that returns anything else fails with a ``ValueError`` saying so. Register
+    your own with :func:`trackbook.filters.particle.register_resampler`; the ``resampler``
+    param accepts every name registered when the tracker is made.
 
     Attributes
     ----------
