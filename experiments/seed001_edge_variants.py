@@ -170,15 +170,15 @@ class EdgeRayX(EdgeRayPF):
             return 1.0
         return grad_energy(frame, self._roi(frame, c) if p.gain == "local" else None)
 
-    def _model(self, frame, box):
+    def model(self, frame, box):
         self._set_edges(frame)
-        super()._model(frame, box)
+        super().model(frame, box)
         p = self.params
-        c0 = self._box_to_state(box)
+        c0 = self.box_to_state(box)
         self._g0 = self._gain_energy(frame, c0)
         self.gain = 1.0
         self._set_edges(frame)
-        c = self._box_to_state(box)
+        c = self.box_to_state(box)
         self.model_k = self._multi_rays(c[None, :])[:, 0, :].astype(float)  # (K, 8)
         self.model_rays = self.model_k[0]
 
@@ -205,7 +205,7 @@ class EdgeRayX(EdgeRayPF):
             ll = np.where(inside, ll, -np.inf)
         return ll, ravg
 
-    def _likelihood(self, frame, particles):
+    def likelihood(self, frame, particles):
         p = self.params
         if p.gain != "off":
             self.gain = float(np.clip(self._gain_energy(frame, self.estimate) / self._g0, 0.1, 10.0))
@@ -244,7 +244,7 @@ class EdgeRayX(EdgeRayPF):
             if not was_lost:
                 self.velocity = self.velocity + (new - self.estimate)
             self.estimate = new
-            box = self._state_to_box(self.estimate)
+            box = self.state_to_box(self.estimate)
         return ok, box
 
 

@@ -48,9 +48,9 @@ def test_track_max_frames_zero(tmp_path, capsys, extra):
 
 
 def test_track_all_targets_api_max_frames_zero():
-    from trackbook.trackers.multi import track_clip
-    with pytest.raises(ValueError, match="max_frames"):
-        track_clip("mean-shift", "two-faces", max_frames=0)
+    from trackbook import evaluate
+    with pytest.raises(ValueError, match="at least 2 frames"):
+        evaluate("mean-shift", "two-faces", max_frames=0, targets="all")
 
 
 def test_track_param_for_another_tracker_is_refused(tmp_path, capsys):

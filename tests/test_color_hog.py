@@ -123,7 +123,7 @@ def test_all_zero_likelihood_recovers(clip, monkeypatch):
     t = trackers.create("color-hog-pf", seed=0)
     t.init(clip.frames[0], clip.groundtruth[0])
     t.update(clip.frames[1])
-    monkeypatch.setattr(t, "_likelihood", lambda frame, p: np.zeros(len(p)))
+    monkeypatch.setattr(t, "likelihood", lambda frame, p: np.zeros(len(p)))
     ok, box = t.update(clip.frames[2])
     assert not ok and t.lost and np.all(np.isfinite(box))
     monkeypatch.undo()
@@ -170,7 +170,7 @@ def test_anchor_mixes_the_two_distances(clip):
     for i in range(1, 8):
         t.update(clip.frames[i])
     assert t.learning
-    feats = t._features(clip.frames[8], clip.groundtruth[7:10])
+    feats = t.features(clip.frames[8], clip.groundtruth[7:10])
     d2 = t._distances2(feats)
     for k, h in feats.items():
         sub = t._subspaces[k].reconstruction_error(np.sqrt(h).T) ** 2

@@ -15,19 +15,22 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from trackbook import params as _params
 from trackbook import trackers
 
 NAMES = trackers.available()
 
 
 def _field_value(f: dataclasses.Field):
-    m = f.metadata
-    if m.get("choices"):
-        return st.sampled_from(m["choices"])
+    choices = _params.choices_of(f)
+    if choices:
+        return st.sampled_from(choices)
     d = f.default
     if isinstance(d, bool):
         return st.booleans()
-    lo, hi = m.get("lo"), m.get("hi")
+    # the slider's range: the values a reader tries (the allowed range may go much further,
+    # e.g. 100 000 particles, which would only test patience)
+    lo, hi = _params.slider_of(f)
     if isinstance(d, int):
         lo = int(np.ceil(lo)) if lo is not None else d
         hi = int(np.floor(hi)) if hi is not None else d

@@ -92,7 +92,7 @@ def test_distance_gate_matches_the_rule_by_hand(name, start, monkeypatch):
         t._match = np.full(len(particles), 1.0 - d2)
         return np.full(len(particles), np.exp(-d2 / 0.08))
 
-    monkeypatch.setattr(t, "_likelihood", fake_likelihood)
+    monkeypatch.setattr(t, "likelihood", fake_likelihood)
     got = [not t.update(frames[1 + i % 3])[0] for i in range(len(d2s))]
     assert got == expected
 

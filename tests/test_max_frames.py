@@ -9,7 +9,6 @@ from trackbook import cli
 from trackbook._checks import MIN_FRAMES, check_max_frames
 from trackbook.evaluation import bench
 from trackbook.evaluation.runner import evaluate
-from trackbook.trackers.multi import track_clip
 
 BAD = [0, 1, -3, 2.5, True, "5"]
 
@@ -28,7 +27,7 @@ def test_every_entry_point_refuses_the_same_values(bad, tmp_path):
     with pytest.raises(ValueError, match="max_frames = .*at least 2"):
         evaluate("mean-shift", "red-cube", max_frames=bad)
     with pytest.raises(ValueError, match="max_frames = .*at least 2"):
-        track_clip("mean-shift", "two-faces", max_frames=bad)
+        evaluate("mean-shift", "two-faces", max_frames=bad, targets="all")
     with pytest.raises(ValueError, match="max_frames = .*at least 2"):
         bench.run(["mean-shift"], "red-cube", tmp_path, progress=False, reference=False,
                   max_frames=bad)

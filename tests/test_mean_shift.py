@@ -14,7 +14,7 @@ from trackbook.filters.mean_shift import (bin_image, ellipse_histograms, ellipse
                                           ellipse_rho, ellipse_window, lattice_pixel, mean_shift,
                                           mean_shift_weights, mean_shift_with_scale)
 from trackbook.filters.optical_flow import motion_vector, solve_motion
-from trackbook.trackers.multi import MultiTracker, target_seed, track_clip
+from trackbook.trackers.multi import MultiTracker, target_seed
 
 H, W = 160, 200
 MODE = np.array([100.5, 80.5])
@@ -271,6 +271,11 @@ def test_multitracker_seeds_targets_apart_and_repeats():
     assert runs[0] == runs[1]
     with pytest.raises(ValueError, match="unknown tracker"):
         MultiTracker("no-such-tracker")
+    # params are checked when the multi-tracker is made, not when init starts the trackers
+    with pytest.raises(ValueError, match="bogus"):
+        MultiTracker("mean-shift", bogus=1)
+    with pytest.raises(ValueError, match="n_particles"):
+        MultiTracker("condensation", n_particles=0)
 
 
 @pytest.mark.slow
@@ -279,7 +284,7 @@ def test_two_faces_keep_their_identities_through_the_crossing():
     from trackbook.metrics import iou
 
     clip = clips.load("two-faces")
-    out = track_clip("condensation-mean-shift", clip, seed=0)
+    out = trackbook.evaluate("condensation-mean-shift", clip, seed=0, targets="all").boxes
     names = list(clip.targets)[:2]
     a, b = names
     n = len(clip)
@@ -317,8 +322,8 @@ def test_prediction_moves_the_position_by_the_new_noised_velocity():
     frame = np.full((80, 100, 3), 90, np.uint8)
     frame[30:50, 40:60] = (40, 60, 200)
     t.init(frame, (40, 30, 20, 20))
-    s0 = np.array(t._initial_particles(frame, (40, 30, 20, 20)), dtype=float)
+    s0 = np.array(t.initial_particles(frame, (40, 30, 20, 20)), dtype=float)
     s0[:, 2:4] = [1.5, -0.5]                      # a known previous velocity
-    s1 = t._predict(s0.copy())
+    s1 = t.predict(s0.copy())
     np.testing.assert_allclose(s1[:, 0:2] - s0[:, 0:2], s1[:, 2:4], atol=1e-9)
     assert not np.allclose(s1[:, 2:4], s0[:, 2:4])  # the velocity did receive noise

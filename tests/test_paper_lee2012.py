@@ -9,7 +9,7 @@ import pytest
 from trackbook import trackers
 from trackbook.features.color import HSV_BINS
 from trackbook.params import NOT_PRINTED
-from trackbook.trackers import color_hog
+from trackbook.trackers import color_pf
 
 from ._paper import fields
 
@@ -45,7 +45,7 @@ def test_no_K_is_credited_to_the_paper():
 
 def test_patch_and_bins_are_the_papers():
     # ROI resized to 16 x 24 px: section II; 8 x 8 x 4 HSV bins: section III (after eq. 1).
-    assert color_hog.PATCH_SIZE == (16, 24)
+    assert color_pf.PATCH_SIZE == (16, 24)
     assert tuple(HSV_BINS) == (8, 8, 4)
 
 

@@ -42,7 +42,8 @@ def test_covariance_stride_string_and_none():
         trackers.create("hsi-color-pf", n_particles=None)
 
 
-@pytest.mark.parametrize("value", [np.int64(5000), np.int32(5000), 5000, np.float64(5000.0)])
+@pytest.mark.parametrize("value", [np.int64(200_000), np.int32(200_000), 200_000,
+                                   np.float64(200_000.0)])
 def test_numpy_scalars_are_range_checked(value):
     with pytest.raises(ValueError, match="n_particles.*maximum"):
         trackers.create("color-pf", n_particles=value)
@@ -150,3 +151,36 @@ def test_unknown_tracker_and_clip_names_suggest_near_misses(capsys, tmp_path):
     err = capsys.readouterr().err
     assert rc != 0 and "did you mean 'red-cube'" in err
     assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_slider_range_is_not_the_allowed_range():
+    """The slider of color-pf's N stops at 1000, but 2000 particles are a valid setting."""
+    from trackbook.widgets import knob_spec
+    t = trackers.create("color-pf", n_particles=2000)
+    assert t.params.n_particles == 2000
+    spec = knob_spec(trackers.get("color-pf"), "n_particles")
+    assert (spec["lo"], spec["hi"]) == (10, 1000)
+    with pytest.raises(ValueError, match="n_particles.*maximum"):
+        trackers.create("color-pf", n_particles=10**6)
+
+
+def test_slider_outside_allowed_range_refused():
+    from trackbook.params import param
+    with pytest.raises(ValueError, match="slider"):
+        param(5, 1, 10, 1, "x", slider=(0, 10))
+    with pytest.raises(ValueError, match="slider"):
+        param(5, 1, 10, 1, "x", slider=(3, 2))
+
+
+@pytest.mark.parametrize("name", trackers.available())
+def test_describe_prints_no_sentinel_objects(name):
+    """Unprinted values read "not printed", never ``<object object at 0x...>``."""
+    from trackbook import params
+    rows = params.describe(trackers.get(name).Params)
+    assert rows
+    for row in rows:
+        for key, value in row.items():
+            assert "object at 0x" not in repr(value), (name, row["name"], key)
+    paper = {r["name"]: r["paper"] for r in rows}
+    if name == "color-hog-ipca":
+        assert paper["K"] == "not printed" and paper["T"] == 40     # section II prints T = 40

@@ -140,3 +140,120 @@ def test_fuse_eq14():
     np.testing.assert_allclose(fuse([1.0, 0.0], [0.0, 1.0], 0.1), [0.1, 0.9])
     with pytest.raises(ValueError, match="alpha"):
         fuse(1.0, 1.0, 1.5)
+
+
+# -- the resampler registry: a user's resampler without editing the library -------------------
+
+def _square_frames(n=6):
+    """A red 20 x 20 square moving 3 px a frame over a grey noise background."""
+    rng = np.random.default_rng(0)
+    frames = []
+    for t in range(n):
+        f = rng.integers(90, 140, (80, 100, 3), dtype=np.uint8)
+        f[30:50, 20 + 3 * t:40 + 3 * t] = (20, 20, 220)
+        frames.append(f)
+    return frames, (20, 30, 20, 20)
+
+
+@pytest.fixture
+def registered():
+    """Register resamplers for one test and remove them afterwards."""
+    from trackbook.filters import particle
+    names = []
+
+    def add(name, fn):
+        particle.register_resampler(name, fn)
+        names.append(name)
+        return fn
+
+    yield add
+    for n in names:
+        particle.RESAMPLERS.pop(n, None)
+
+
+def _run(tracker, frames, box):
+    tracker.init(frames[0], box)
+    return [tracker.update(f)[1] for f in frames[1:]]
+
+
+def test_user_resampler_is_usable_by_name(registered):
+    """A resampler registered by the user is accepted by ``trackers.create`` and called once
+    per frame; one that returns what ``systematic`` returns gives the same boxes."""
+    from trackbook import trackers
+    from trackbook.filters.particle import systematic_resample
+    calls = []
+
+    def mine(w, rng):
+        calls.append(len(w))
+        return systematic_resample(w, rng)
+
+    registered("mine", mine)
+    frames, box = _square_frames()
+    t = trackers.create("color-pf", seed=0, resampler="mine", n_particles=50)
+    boxes = _run(t, frames, box)
+    assert calls == [50] * (len(frames) - 1)
+    ref = _run(trackers.create("color-pf", seed=0, resampler="systematic", n_particles=50),
+               frames, box)
+    np.testing.assert_array_equal(boxes, ref)
+    # every particle tracker's resampler param takes the new name
+    assert trackers.create("condensation", resampler="mine").params.resampler == "mine"
+    assert trackers.create("hsi-color-pf", resampler="mine").params.resampler == "mine"
+    # what widgets and listings read (the field's choices) shows it too, in registration order
+    import dataclasses
+    from trackbook import params
+    field = {f.name: f for f in dataclasses.fields(trackers.get("color-pf").Params)}["resampler"]
+    assert params.choices_of(field)[-1] == "mine" and "mine" in list(field.metadata["choices"])
+
+
+def test_unregistered_resampler_name_refused():
+    from trackbook import trackers
+    with pytest.raises(ValueError, match="resampler"):
+        trackers.create("color-pf", resampler="not-a-resampler")
+
+
+def test_ess_triggered_resampler_returning_identity_runs(registered):
+    """An ESS-triggered scheme returns np.arange(N) on the frames it does not resample (the
+    frame's documented contract); the tracker then runs with normalised weights."""
+    from trackbook import trackers
+    from trackbook.filters.particle import effective_sample_size, multinomial_resample
+
+    def ess_triggered(w, rng):
+        if effective_sample_size(w) > len(w) / 2:
+            return np.arange(len(w))
+        return multinomial_resample(w, rng)
+
+    registered("ess-half", ess_triggered)
+    frames, box = _square_frames()
+    t = trackers.create("color-pf", seed=0, resampler="ess-half", n_particles=40)
+    boxes = _run(t, frames, box)
+    assert np.all(np.isfinite(boxes))
+    assert np.isclose(float(np.sum(t.weights)), 1.0)
+
+
+@pytest.mark.parametrize("bad, message", [
+    (lambda w, rng: None, "shape"),                               # skipped: returned nothing
+    (lambda w, rng: np.arange(len(w) - 1), "shape"),              # one index short
+    (lambda w, rng: np.arange(len(w)) + 1, "outside"),            # past the last particle
+    (lambda w, rng: np.full(len(w), 0.5), "integer"),             # not indices
+    (lambda w, rng: w, "integer"),                                # returned the weights
+])
+def test_bad_resampler_output_fails_clearly(registered, bad, message):
+    from trackbook import trackers
+    registered("bad", bad)
+    frames, box = _square_frames(3)
+    t = trackers.create("color-pf", seed=0, resampler="bad", n_particles=20)
+    t.init(frames[0], box)
+    with pytest.raises(ValueError, match=f"resampler 'bad' returned.*{message}"):
+        t.update(frames[1])
+
+
+def test_register_resampler_refuses_bad_registrations(registered):
+    from trackbook.filters import particle
+    with pytest.raises(TypeError, match="callable"):
+        particle.register_resampler("x", 3)
+    with pytest.raises(TypeError, match="name"):
+        particle.register_resampler("", particle.systematic_resample)
+    with pytest.raises(ValueError, match="already registered"):
+        particle.register_resampler("systematic", particle.multinomial_resample)
+    # the same function again is not an error (a module imported twice)
+    particle.register_resampler("systematic", particle.systematic_resample)

@@ -39,6 +39,9 @@ class _Slider(Tracker):
         self.particles = self.box[:2] + self.rng.normal(size=(self.params.n_particles, 2))
         return True, self.box
 
+    def state(self):      # what the viewer draws comes from here (Tracker.state contract)
+        return dataclasses.replace(super().state(), particles=self.particles)
+
 
 @pytest.fixture
 def registered():

@@ -10,11 +10,11 @@
 from importlib.metadata import PackageNotFoundError, version
 
 from . import clips, metrics, trackers
-from .evaluation.runner import Result, evaluate
+from .evaluation.runner import MultiResult, Result, evaluate
 
 try:
     __version__ = version("trackbook")
 except PackageNotFoundError:  # running from a source tree without install
     __version__ = "0.0.0+unknown"
 
-__all__ = ["clips", "metrics", "trackers", "evaluate", "Result", "__version__"]
+__all__ = ["clips", "metrics", "trackers", "evaluate", "MultiResult", "Result", "__version__"]

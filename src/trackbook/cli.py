@@ -217,6 +217,7 @@ def cmd_track(args) -> int:
     from .clips.loaders import write_video
     from .evaluation.metrics import scores_line
     from .evaluation.runner import evaluate
+    from .viz.core import draw_state_cv
 
     _load_imports(args.imports)
     cls = trackers.get(args.tracker)          # unknown name: one line before any work
@@ -236,8 +237,10 @@ def cmd_track(args) -> int:
         return _track_all_targets(args, clip, params, out)
     settings, default = _track_settings(args, cls, params)
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
+    states = []     # what the tracker shows of itself on each frame, drawn on the video
     r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
-                 init_box=init_box, preset=args.preset, **params)
+                 init_box=init_box, preset=args.preset,
+                 on_frame=lambda i, t, f, b: states.append(t.state()), **params)
     out = _out_dir(out)
     with open(out / f"{stem}.csv", "w", newline="") as f:
         w = csv.writer(f)
@@ -249,8 +252,9 @@ def cmd_track(args) -> int:
     (out / f"{stem}.json").write_text(json.dumps(record, indent=1, default=repr) + "\n")
     colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
     codec = _out.video_codec()
-    write_video(out / f"{stem}.mp4", (annotate(frame, {args.tracker: r.boxes[i]},
-                                               clip.groundtruth[i], colors)
+    write_video(out / f"{stem}.mp4", (draw_state_cv(annotate(frame, {args.tracker: r.boxes[i]},
+                                                             clip.groundtruth[i], colors),
+                                                    states[i])
                                       for i, frame in zip(range(len(r.boxes)), clip.frames)),
                 clip.fps, clip.size, fourcc=codec)   # raises, naming the file, on failure
     print(f"{args.tracker} on {clip.name}: {scores_line(r.scores, sep=', ')}")
@@ -275,39 +279,38 @@ def _load_clip(name, groundtruth):
 
 def _track_all_targets(args, clip, params, out) -> int:
     """``track --all-targets``: one tracker per annotated target of the clip (e.g. the two
-    faces of ``two-faces``), run by :func:`trackbook.trackers.multi.track_clip`; one CSV per
+    faces of ``two-faces``), run by ``trackbook.evaluate(..., targets="all")``; one CSV per
     target and one video with every target's box."""
     import csv
 
     from .clips.loaders import write_video
-    from .evaluation import metrics
-    from .trackers.multi import track_clip
+    from .evaluation.runner import evaluate
 
-    res = track_clip(args.tracker, clip, seed=args.seed, max_frames=args.max_frames, **params)
-    ms, oks = res.pop("_ms"), res.pop("_ok")
+    res = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
+                   targets="all", **params)
+    ms, oks, boxes_of = res.ms, res.ok, res.boxes
     settings = {"tracker": args.tracker, "seed": args.seed, "params": params}
     default = {**settings, "seed": 0, "params": {}}
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     out = _out_dir(out)
-    for name, boxes in res.items():
+    for name, boxes in boxes_of.items():
         with open(out / f"{stem}_{name}.csv", "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])   # ms: all targets' update
             for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms)):
                 w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"])
     video = out / f"{stem}.mp4"
-    colors = _out.estimate_colors(clip.frames[0], [b[0] for b in res.values()])
+    colors = _out.estimate_colors(clip.frames[0], [b[0] for b in boxes_of.values()])
     codec = _out.video_codec()
     n = len(ms)
-    write_video(video, (annotate(frame, {name: boxes[i] for name, boxes in res.items()},
+    write_video(video, (annotate(frame, {name: boxes[i] for name, boxes in boxes_of.items()},
                                  colors=colors)
                         for i, frame in zip(range(n), clip.frames)), clip.fps, clip.size,
                 fourcc=codec)
-    for name, boxes in res.items():
-        gt = clip.targets[name][:n]
-        print(f"{args.tracker} on {clip.name}/{name}: AUC {metrics.auc(boxes[1:], gt[1:]):.3f}")
-    print(f"{float(np.median(ms[1:])) if n > 1 else 0.0:.2f} ms/frame for {len(res)} targets; "
-          f"wrote {len(res)} CSVs ({stem}_<target>.csv) and {video} ({codec}: "
+    for name, r in res.results.items():
+        print(f"{args.tracker} on {clip.name}/{name}: AUC {r.scores.get('auc', float('nan')):.3f}")
+    print(f"{float(np.median(ms[1:])) if n > 1 else 0.0:.2f} ms/frame for {len(boxes_of)} "
+          f"targets; wrote {len(boxes_of)} CSVs ({stem}_<target>.csv) and {video} ({codec}: "
           f"{_out.CODEC_NOTE[codec]})")
     return 0
 

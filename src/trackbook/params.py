@@ -1,8 +1,10 @@
 """Tunable parameters as dataclasses.
 
-Every tracker declares its knobs as a frozen dataclass whose fields are made with
-:func:`param`. The metadata (range, step, one-line doc) is what the widgets turn into sliders,
-so a new knob shows up in the book's playground without touching the widget code.
+Every tracker declares its knobs one way: a frozen dataclass (``@dataclasses.dataclass(
+frozen=True)``, subclassing another tracker's params to extend them) whose fields are made with
+:func:`param` or a helper that returns one (``resampler_param``, ``lost_below_param`` ...).
+The metadata (allowed range, slider range, step, one-line doc) is what the widgets turn into
+sliders, so a new knob shows up in the book's playground without touching the widget code.
 
 Each field also records what the paper printed (``paper=``) and, where the book's default is
 not that value, why (``why=``). From these :func:`paper_values` builds the printed method
@@ -42,16 +44,23 @@ _UNSET = object()
 
 
 def param(default: Any, lo: float | None = None, hi: float | None = None,
-          step: float | None = None, doc: str = "", choices: tuple | None = None, *,
-          paper: Any = _UNSET, why: str = "", paper_value: Any = _UNSET):
+          step: float | None = None, doc: str = "", choices=None, *,
+          paper: Any = _UNSET, why: str = "", paper_value: Any = _UNSET,
+          slider: tuple | None = None):
     """A dataclass field with a default and the metadata widgets need.
 
     Parameters
     ----------
     default : the book's default.
-    lo, hi, step : slider range for the widgets (and the valid range checked on creation).
+    lo, hi : the range a value may take (checked by :func:`parse` on creation; None = open).
+    step : the widgets' slider step.
     doc : one line naming the symbol and the equation it belongs to.
-    choices : for string parameters, the allowed values.
+    choices : for string parameters, the allowed values: a tuple, or a sequence read each
+        time a value is checked (a live view of a registry that grows, e.g.
+        ``filters.particle.RESAMPLER_NAMES``), or a function returning them.
+    slider : ``(a, b)``, the range the widgets' sliders span when it is narrower than the
+        allowed range (e.g. up to 1000 particles on a slider, any number by keyword);
+        defaults to ``(lo, hi)``.
     paper : the value the paper prints, or :data:`NOT_PRINTED` when it prints none.
     why : required when ``default != paper`` or the paper prints nothing: one line on why the
         book's default is what it is, and where that was measured.
@@ -59,11 +68,32 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
         (for :data:`NOT_PRINTED`, or a knob the paper's method does not have, e.g. ``0`` for
         "off"); defaults to ``paper``, or to ``default`` when the paper prints nothing.
     """
+    if slider is not None:
+        if len(slider) != 2 or not slider[0] <= slider[1]:
+            raise ValueError(f"slider={slider!r} must be a pair (a, b) with a <= b.")
+        if (lo is not None and slider[0] < lo) or (hi is not None and slider[1] > hi):
+            raise ValueError(f"slider={slider!r} must lie within the allowed range {lo}..{hi}.")
     meta = {"lo": lo, "hi": hi, "step": step, "doc": doc, "choices": choices,
-            "paper": paper, "why": why, "paper_value": paper_value}
+            "paper": paper, "why": why, "paper_value": paper_value,
+            "slider": tuple(slider) if slider is not None else (lo, hi)}
     if isinstance(default, (list, dict, set)):
         raise TypeError("use tuples for sequence defaults so params stay immutable")
     return dataclasses.field(default=default, metadata=meta)
+
+
+def choices_of(field: dataclasses.Field):
+    """The allowed values of a field now, as a tuple (a live sequence is read, a ``choices``
+    function called), or None."""
+    c = field.metadata.get("choices")
+    if c is None:
+        return None
+    return tuple(c()) if callable(c) else tuple(c)
+
+
+def slider_of(field: dataclasses.Field) -> tuple:
+    """``(a, b)``: the range the widgets' slider spans (within the allowed ``lo..hi``)."""
+    m = field.metadata
+    return tuple(m.get("slider") or (m.get("lo"), m.get("hi")))
 
 
 _TRUE = ("true", "yes", "1", "on")
@@ -186,11 +216,11 @@ def parse(cls, name: str, value):
     elif kind is str:
         if not isinstance(value, str):
             raise ValueError(f"parameter {name} = {value!r} is not a string; pass one of "
-                             f"{meta.get('choices') or 'the documented values'}.")
+                             f"{choices_of(f) or 'the documented values'}.")
         out = value.strip()
     else:
         out = value
-    choices = meta.get("choices")
+    choices = choices_of(f)
     if choices is not None and out not in choices:
         near = difflib.get_close_matches(str(out), [str(c) for c in choices], n=1)
         hint = f" (did you mean {near[0]!r}?)" if near else ""
@@ -234,10 +264,18 @@ def make_params(cls, values: dict):
 
 
 def describe(cls) -> list[dict]:
-    """Rows ``{name, default, lo, hi, step, doc, choices, paper, why}`` for tables and widgets."""
+    """Rows ``{name, default, lo, hi, step, slider, doc, choices, paper, why, paper_value}`` for
+    tables and widgets: ``choices`` as they are now, and ``"not printed"`` where the paper
+    prints no value (or where no ``paper_value`` is stated: ``preset="paper"`` then uses the
+    one :func:`paper_value` gives)."""
     rows = []
     for f in dataclasses.fields(cls):
-        rows.append({"name": f.name, "default": f.default, **f.metadata})
+        m = dict(f.metadata)
+        m["choices"] = choices_of(f)
+        m["paper_value"] = paper_value(f) if has_paper(f) else "not printed"
+        if m.get("paper", _UNSET) is _UNSET or m.get("paper") is NOT_PRINTED:
+            m["paper"] = "not printed"
+        rows.append({"name": f.name, "default": f.default, **m})
     return rows
 
 

@@ -1,5 +1,5 @@
 """Scoring runs: OTB metrics, the ``evaluate`` runner and the benchmark."""
 from . import metrics
-from .runner import Result, evaluate
+from .runner import MultiResult, Result, evaluate
 
-__all__ = ["metrics", "evaluate", "Result"]
+__all__ = ["metrics", "evaluate", "MultiResult", "Result"]

@@ -1,4 +1,5 @@
-"""Run a tracker over a clip and score it: ``trackbook.evaluate``."""
+"""Run a tracker over a clip and score it: ``trackbook.evaluate`` (one target, or one tracker
+per target with ``targets=``), all through one loop."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import numpy as np
 from .. import clips as _clips
 from .. import trackers as _trackers
 from .._checks import as_box, check_max_frames, clip_box
+from ..trackers.multi import target_seed
 from . import metrics
 
 
@@ -45,6 +47,37 @@ class Result:
         return ts, s, tp, p
 
 
+@dataclasses.dataclass
+class MultiResult:
+    """One tracker per target over one clip, as Cho & Kang 2005 §5.3 track two faces:
+    ``trackbook.evaluate(name, clip, targets="all")``.
+
+    Attributes
+    ----------
+    tracker, clip : names
+    results : dict target -> :class:`Result` of that target's tracker (its boxes, ``ok``
+        flags, milliseconds, and scores against that target's own ground truth)
+    ms : (N,) milliseconds per frame of all the targets' updates together (frame 0: ``init``)
+    scores : ``ms_median`` and ``ms_mean`` of ``ms`` over the ``update`` calls
+    """
+
+    tracker: str
+    clip: str
+    results: dict
+    ms: np.ndarray
+    scores: dict
+
+    @property
+    def boxes(self) -> dict:
+        """target -> (N, 4) boxes (frame 0 is the target's first ground-truth box)."""
+        return {k: r.boxes for k, r in self.results.items()}
+
+    @property
+    def ok(self) -> dict:
+        """target -> (N,) the tracker's own ``ok`` flags."""
+        return {k: r.ok for k, r in self.results.items()}
+
+
 def _make(name_or_tracker, seed, params, preset="book"):
     if isinstance(name_or_tracker, str):
         return (_trackers.create(name_or_tracker, seed=seed, preset=preset, **params),
@@ -70,7 +103,8 @@ def _init_foreign(t, frame, box):
 
 
 def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None = None,
-             init_box=None, on_frame=None, preset: str = "book", **params) -> Result:
+             init_box=None, on_frame=None, preset: str = "book", targets=None,
+             **params) -> Result | MultiResult:
     """Track a clip from its first ground-truth box and score it (frame 0 excluded).
 
     Parameters
@@ -87,8 +121,16 @@ def evaluate(name_or_tracker, clip, seed: int | None = 0, max_frames: int | None
         record particles for a drawing.
     preset : ``"book"`` (the book's defaults) or ``"paper"`` (the printed method; see
         :func:`trackbook.trackers.departures`), names only; ``params`` override either.
+    targets : ``"all"`` or a list of target names of ``clip.targets``, optional: track several
+        targets at once, one tracker of this name per target (seeded
+        :func:`~trackbook.trackers.multi.target_seed` ``(seed, k)``, as
+        :class:`~trackbook.trackers.MultiTracker` does), each from its first ground-truth box,
+        and return a :class:`MultiResult` (names only; not with ``init_box``).
     **params : the tracker's params (names only).
     """
+    if targets is not None:
+        return _evaluate_targets(name_or_tracker, clip, seed, max_frames, init_box, on_frame,
+                                 preset, targets, params)
     return evaluate_many([(name_or_tracker, seed, params)], clip, max_frames=max_frames,
                          init_box=init_box, on_frame=on_frame, preset=preset)[0]
 
@@ -105,10 +147,7 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
     """
     clip = _clips.load(clip)
     made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
-    max_frames = check_max_frames(max_frames)
-    n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
-    if n < 2:
-        raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")
+    n = _n_frames(clip, max_frames)
     frames = iter(clip.frames)
     first = next(frames)
     box0 = clip.groundtruth[0] if init_box is None else as_box(init_box, name="init_box")
@@ -119,7 +158,23 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
             "<video stem>.groundtruth.txt file beside the video)."
         )
     box0 = clip_box(box0, first.shape)
+    return _lockstep(made, clip, n, first, frames, [box0] * len(made),
+                     [clip.groundtruth[:n]] * len(made), runs, on_frame)
 
+
+def _n_frames(clip, max_frames) -> int:
+    """The number of frames to track (``max_frames`` checked by the one check)."""
+    max_frames = check_max_frames(max_frames)
+    n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
+    if n < 2:
+        raise ValueError(f"clip {clip.name!r} needs at least 2 frames to evaluate.")
+    return n
+
+
+def _lockstep(made, clip, n, first, frames, starts, gts, runs, on_frame) -> list[Result]:
+    """The one evaluation loop: every tracker of ``made`` starts from its box of ``starts``
+    on ``first``, then each of the next ``n - 1`` frames of ``frames`` is given to every
+    tracker; tracker ``j`` is scored against ``gts[j]``."""
     k = len(made)
     boxes = np.full((k, n, 4), np.nan)
     ok = np.zeros((k, n), dtype=bool)
@@ -127,11 +182,11 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
     extras: list[dict[str, list]] = [{} for _ in made]
     for j, (tracker, _) in enumerate(made):
         t0 = time.perf_counter()
-        _init_foreign(tracker, first, box0)
+        _init_foreign(tracker, first, starts[j])
         ms[j, 0] = (time.perf_counter() - t0) * 1e3
-        boxes[j, 0], ok[j, 0] = box0, True
+        boxes[j, 0], ok[j, 0] = starts[j], True
         if on_frame is not None:
-            on_frame(0, tracker, first, box0)
+            on_frame(0, tracker, first, starts[j])
     for i in range(1, n):
         frame = next(frames)
         for j, (tracker, _) in enumerate(made):
@@ -146,14 +201,13 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
             if on_frame is not None:
                 on_frame(i, tracker, frame, boxes[j, i])
 
-    gt = clip.groundtruth[:n]
     results = []
     for j, (tracker, tname) in enumerate(made):
         close = getattr(tracker, "close", None)
         if isinstance(runs[j][0], str) and callable(close):
             close()  # a tracker we made: free e.g. opencv-mil's child process now
         try:
-            scores = metrics.summary(boxes[j, 1:], gt[1:])
+            scores = metrics.summary(boxes[j, 1:], gts[j][1:])
         except ValueError:  # no ground truth (a user's video without annotation)
             scores = {}
         scores["ms_median"] = float(np.median(ms[j, 1:]))
@@ -164,3 +218,40 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
                               params=dataclasses.asdict(p) if p is not None else {},
                               extras={key: np.asarray(v) for key, v in extras[j].items()}))
     return results
+
+
+def _evaluate_targets(name, clip, seed, max_frames, init_box, on_frame, preset, targets,
+                      params) -> MultiResult:
+    """``evaluate(..., targets=...)``: one tracker per target through the one loop."""
+    if not isinstance(name, str):
+        raise ValueError("targets= tracks several targets with trackers made by name; pass a "
+                         "registered tracker name, not a tracker object.")
+    if init_box is not None:
+        raise ValueError("init_box starts one target; with targets= every target starts from "
+                         "its first ground-truth box (leave init_box out).")
+    clip = _clips.load(clip)
+    names = list(clip.targets) if isinstance(targets, str) and targets == "all" else targets
+    if isinstance(names, str) or not names:
+        raise ValueError(f"targets = {targets!r}: pass 'all' or a list of target names of clip "
+                         f"{clip.name!r} ({', '.join(clip.targets) or 'it has none'}).")
+    names = list(names)
+    unknown = [t for t in names if t not in clip.targets]
+    if unknown:
+        raise ValueError(f"clip {clip.name!r} has no target(s) {unknown}; "
+                         f"its targets are {list(clip.targets)}.")
+    runs = [(name, target_seed(seed, k), dict(params)) for k in range(len(names))]
+    made = [_make(t, s, p, preset) for t, s, p in runs]
+    n = _n_frames(clip, max_frames)
+    frames = iter(clip.frames)
+    first = next(frames)
+    starts = []
+    for t in names:
+        b = np.asarray(clip.targets[t][0], dtype=float)
+        if not np.all(np.isfinite(b)):
+            raise ValueError(f"target {t!r} of clip {clip.name!r} has no box on frame 0.")
+        starts.append(clip_box(b, first.shape))
+    gts = [np.asarray(clip.targets[t][:n], dtype=float) for t in names]
+    results = _lockstep(made, clip, n, first, frames, starts, gts, runs, on_frame)
+    ms = np.sum([r.ms for r in results], axis=0)
+    return MultiResult(name, clip.name, dict(zip(names, results)), ms,
+                       {"ms_median": float(np.median(ms[1:])), "ms_mean": float(np.mean(ms[1:]))})

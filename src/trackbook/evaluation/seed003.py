@@ -25,7 +25,6 @@ from pathlib import Path
 import numpy as np
 
 from .. import clips as _clips
-from ..trackers.multi import track_clip
 from . import metrics
 from .runner import evaluate
 
@@ -57,12 +56,11 @@ def two_target_table(clip_name="two-faces", trackers=TRACKERS, seed=0, max_frame
     clip = _clips.load(clip_name)
     rows = []
     for t in trackers:
-        out = track_clip(t, clip, seed=seed, max_frames=max_frames)
-        row = {"tracker": t, "clip": clip.name, "ms_median": float(np.median(out["_ms"][1:])),
+        res = evaluate(t, clip, seed=seed, max_frames=max_frames, targets="all")
+        row = {"tracker": t, "clip": clip.name, "ms_median": res.scores["ms_median"],
                "paper_ms": PAPER_MS["two"][t]}
-        for name, gt in clip.targets.items():
-            n = len(out[name])
-            row[f"auc_{name}"] = metrics.auc(out[name][1:], gt[1:n])
+        for name, r in res.results.items():
+            row[f"auc_{name}"] = metrics.auc(r.boxes[1:], clip.targets[name][1:len(r.boxes)])
         rows.append(row)
     return rows
 

@@ -11,6 +11,8 @@ smallest i with c_i >= r; they differ only in where the pointers go.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 
@@ -89,12 +91,107 @@ def residual_resample(weights, rng: np.random.Generator) -> np.ndarray:
     return idx
 
 
-RESAMPLERS = {
+#: The resampler registry: name -> ``fn(weights, rng) -> (N,) indices``. Extend it with
+#: :func:`register_resampler` (never by editing this module); the ``resampler`` param of every
+#: particle tracker accepts any name registered when the tracker is made.
+RESAMPLERS: dict = {
     "multinomial": multinomial_resample,
     "systematic": systematic_resample,
     "stratified": stratified_resample,
     "residual": residual_resample,
 }
+
+
+def register_resampler(name: str, fn, *, replace: bool = False):
+    """Make ``fn(weights, rng) -> indices`` available as the resampler called ``name``.
+
+    Parameters
+    ----------
+    name : the name the ``resampler`` param will accept (e.g. ``trackers.create("color-pf",
+        resampler=name)``).
+    fn : a function of the normalised weights (N,) and a ``numpy.random.Generator`` returning
+        N integer indices in 0..N-1 of the particles to keep -- on *every* call: the particle
+        filter resamples every frame and then rebuilds the weights from the likelihood alone,
+        so a scheme that skips resampling (e.g. only when the effective sample size is low)
+        must return the identity ``np.arange(N)`` on the frames it skips.
+    replace : allow replacing a resampler already registered under ``name`` by another
+        function (re-registering the same function is always allowed).
+
+    Returns ``fn``, so it can be used as a decorator's body.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from trackbook.filters import particle
+    >>> particle.register_resampler("keep-all", lambda w, rng: np.arange(len(w)))  # doctest: +ELLIPSIS
+    <function <lambda> at ...>
+    """
+    if not isinstance(name, str) or not name.strip():
+        raise TypeError(f"register_resampler: the name must be a non-empty string, not {name!r}.")
+    if not callable(fn):
+        raise TypeError(f"register_resampler({name!r}, ...): {fn!r} is not callable; pass a "
+                        "function fn(weights, rng) -> indices.")
+    if name in RESAMPLERS and RESAMPLERS[name] is not fn and not replace:
+        raise ValueError(f"a resampler named {name!r} is already registered; choose another "
+                         "name or pass replace=True.")
+    RESAMPLERS[name] = fn
+    return fn
+
+
+def resampler_names() -> tuple:
+    """The names of the registered resamplers, in the order they were registered."""
+    return tuple(RESAMPLERS)
+
+
+class RegisteredNames(Sequence):
+    """A live, read-only view of the registered resampler names: a sequence that is read
+    each time it is used, so the ``choices`` of a ``resampler`` param made with it accept a
+    resampler registered after the params class was defined."""
+
+    def __getitem__(self, i):
+        return tuple(RESAMPLERS)[i]
+
+    def __len__(self) -> int:
+        return len(RESAMPLERS)
+
+    def __contains__(self, name) -> bool:
+        return isinstance(name, str) and name in RESAMPLERS
+
+    def __repr__(self) -> str:
+        return repr(tuple(RESAMPLERS))
+
+
+#: The ``choices`` of every ``resampler`` param: the names registered at the time of asking.
+RESAMPLER_NAMES = RegisteredNames()
+
+
+def get_resampler(name: str):
+    """The resampler registered as ``name``; ``ValueError`` naming the registered ones."""
+    try:
+        return RESAMPLERS[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown resampler {name!r}; registered: {', '.join(RESAMPLERS)} "
+                         "(add one with trackbook.filters.particle.register_resampler).") from None
+
+
+def check_indices(idx, n: int, name: str = "resampler") -> np.ndarray:
+    """``idx`` as N integer indices in 0..N-1, or a ``ValueError`` saying what a resampler must
+    return (see :func:`register_resampler`)."""
+    a = np.asarray(idx)
+    what = f"resampler {name!r} returned"
+    if a.ndim != 1 or a.shape[0] != n:
+        raise ValueError(f"{what} an array of shape {a.shape}; it must return {n} indices, one "
+                         "per particle, on every call (to skip resampling return "
+                         "np.arange(N)).")
+    if a.dtype.kind not in "iu":
+        if a.dtype.kind == "b" or not np.all(np.isfinite(a)) or np.any(a != np.round(a)):
+            raise ValueError(f"{what} values of type {a.dtype}; it must return integer "
+                             "indices of the particles to keep.")
+        a = a.astype(np.intp)
+    if n and (a.min() < 0 or a.max() >= n):
+        raise ValueError(f"{what} indices outside 0..{n - 1} (min {a.min()}, max {a.max()}); "
+                         "it must return indices of existing particles.")
+    return a
 
 
 def weighted_mean(states, weights) -> np.ndarray:

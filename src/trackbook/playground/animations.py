@@ -49,7 +49,8 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
     (drawn in proportion to weight: the cloud gathers on the target). Eq. 1-4 of
     Arulampalam et al. (2002); the trackers' loop is :class:`ParticleFilterTracker`."""
     from .. import trackers as _trackers
-    from ..trackers.particle_filter import RESAMPLERS
+    from ..filters.particle import RESAMPLERS
+    from ..trackers import TrackerState
 
     clip = _clips.load(clip)
     t = _trackers.create(tracker, seed=seed, n_particles=n_particles)
@@ -67,8 +68,8 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
         # the tracker's own steps, reproduced one by one with its RNG (as _update does)
         idx = RESAMPLERS[t.params.resampler](t._weights, t.rng)
         resampled = t._particles[idx]
-        predicted = np.asarray(t._refine(f, t._predict(resampled)), dtype=float)
-        lik = np.asarray(t._likelihood(f, predicted), dtype=float)
+        predicted = np.asarray(t.refine(f, t.predict(resampled)), dtype=float)
+        lik = np.asarray(t.likelihood(f, predicted), dtype=float)
         w = lik / lik.sum() if lik.sum() > 0 else np.full(len(lik), 1 / len(lik))
         n = len(w)
         prev = _Snap(t._particles, t._weights)
@@ -76,10 +77,10 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
                 (resampled, np.full(n, 1 / n), "resample: drawn in proportion to weight"),
                 (predicted, np.full(n, 1 / n), "predict: moved by the motion model"),
                 (predicted, w, "weigh: scored by the likelihood"))):
-            states.append(snapshot(_Snap(p, ww)))
+            states.append(snapshot(TrackerState(particles=p, weights=ww)))
             index.append(img)
             gts.append(clip.groundtruth[k])
-            est = t._state_to_box(np.average(p, axis=0, weights=ww))
+            est = t.state_to_box(np.average(p, axis=0, weights=ww))
             boxes.append(est)
             ess.append(1.0 / np.sum(ww ** 2) / n)
             captions.append(f"frame {k} \u00b7 {cap}")

@@ -16,6 +16,7 @@ import math
 import cv2
 import numpy as np
 
+from .. import params as _params
 from .. import trackers as _trackers
 from ..evaluation import metrics
 from ..evaluation.runner import evaluate
@@ -54,29 +55,30 @@ def clip_payload(clip, n: int, quality: int = JPEG_QUALITY) -> dict:
                    for b in gt] if has_gt else None}
 
 
-def snapshot(tracker) -> dict:
-    """What to draw for one frame, copied (trackers reuse their arrays)."""
+def snapshot(state) -> dict:
+    """What to draw for one frame, from a tracker's :class:`~trackbook.trackers.TrackerState`
+    (``tracker.state()``), subsampled for the viewer."""
     snap = {}
-    p = getattr(tracker, "particles", None)
+    p = state.particles
     if p is not None and len(p):
         p = np.asarray(p, dtype=float)
-        w = getattr(tracker, "weights", None)
+        w = state.weights
         w = np.full(len(p), 1.0 / len(p)) if w is None else np.asarray(w, dtype=float)
+        full_w = w
         if len(p) > MAX_PARTICLES:     # an even subsample keeps the cloud's shape
             idx = np.linspace(0, len(p) - 1, MAX_PARTICLES).round().astype(int)
             p, w = p[idx], w[idx]
         snap["particles"] = p[:, :2].copy()
         snap["weights"] = w.copy()
-        pr = getattr(tracker, "particle_rays", None)
-        full_w = getattr(tracker, "weights", None)
-        if pr is not None and len(pr) and full_w is not None and len(full_w) == len(pr):
+        pr = state.rays
+        if pr is not None and len(pr) and state.weights is not None and len(full_w) == len(pr):
             best = int(np.argmax(full_w))
-            snap["rays"] = [*np.asarray(tracker.particles)[best, :2], *np.asarray(pr)[best]]
+            snap["rays"] = [*np.asarray(state.particles)[best, :2], *np.asarray(pr)[best]]
     for key in ("search_window", "ellipse"):
-        v = getattr(tracker, key, None)
+        v = getattr(state, key)
         if v is not None:
             snap[key] = [float(x) for x in np.asarray(v, dtype=float).ravel()[:4]]
-    c = getattr(tracker, "candidates", None)
+    c = state.candidates
     if c is not None and len(c):
         c = np.asarray(c, dtype=float)[:, :4]
         if len(c) > MAX_CANDIDATES:
@@ -129,7 +131,7 @@ def run_payload(tracker: str, clip, values: dict, n: int | None, seed: int = 0,
     """Track ``clip`` with ``tracker`` and ``values``; return (payload, result, snapshots)."""
     states: list[dict] = []
     r = evaluate(tracker, clip, seed=seed, max_frames=n, init_box=init_box,
-                 on_frame=lambda i, t, f, b: states.append(snapshot(t)), **values)
+                 on_frame=lambda i, t, f, b: states.append(snapshot(t.state())), **values)
     nb = len(r.boxes)
     gt = np.asarray(clip.groundtruth[:nb], dtype=float)
     has_gt = bool(np.isfinite(gt).all(axis=1)[1:].any())
@@ -157,18 +159,20 @@ def knob_spec(cls, name: str, value=None) -> dict | None:
     m = f.metadata
     v = f.default if value is None else value
     spec = {"name": name, "doc": m.get("doc", ""), "default": list(v) if isinstance(v, tuple) else v}
-    if m.get("choices"):
-        spec.update(kind="choice", choices=list(m["choices"]))
+    choices = _params.choices_of(f)
+    lo, hi = _params.slider_of(f)       # the slider's range, not the (wider) allowed one
+    if choices:
+        spec.update(kind="choice", choices=list(choices))
     elif isinstance(v, bool):
         spec.update(kind="bool")
     elif isinstance(v, tuple):
-        lo = m.get("lo") if m.get("lo") is not None else 0.0
-        hi = m.get("hi") if m.get("hi") is not None else 2 * max(v)
+        lo = lo if lo is not None else 0.0
+        hi = hi if hi is not None else 2 * max(v)
         spec.update(kind="pair", lo=lo, hi=hi, step=m.get("step") or (hi - lo) / 100)
     elif isinstance(v, (int, float)):
         is_int = isinstance(v, int)
-        lo = m.get("lo") if m.get("lo") is not None else 0
-        hi = m.get("hi") if m.get("hi") is not None else max(2 * v, 1)
+        lo = lo if lo is not None else 0
+        hi = hi if hi is not None else max(2 * v, 1)
         step = m.get("step") or (1 if is_int else (hi - lo) / 100)
         spec.update(kind="int" if is_int else "float", lo=lo, hi=hi, step=step)
     else:

@@ -1,7 +1,7 @@
 """Trackers: the registry, the shared base class and the papers' trackers.
 
 >>> from trackbook import trackers
->>> trackers.available()          # the eleven registered names (SPEC section 2)  # doctest: +SKIP
+>>> trackers.available()          # the eleven registered names  # doctest: +SKIP
 >>> t = trackers.create("color-hog-ipca", seed=0, n_particles=100)  # doctest: +SKIP
 >>> t.init(frame, (x, y, w, h)); ok, box = t.update(next_frame)     # doctest: +SKIP
 
@@ -17,17 +17,19 @@ from .. import params as _params
 from .._checks import clip_box
 from . import plugins
 from . import registry as _registry
-from .base import Tracker
+from .base import Tracker, TrackerState
 from .multi import MultiTracker
 from .reference import REFERENCE
 
 # The papers' trackers (each import registers its names) -------------------------------
 # (one line per paper module; the order is the book's)
-from . import color_hog  # noqa: E402,F401  seed 000: color-pf, color-hog-pf, color-hog-ipca
-from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
-from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
-from . import covariance  # noqa: E402,F401  seed 002: covariance, kalman-covariance
-from . import condensation_mean_shift  # noqa: E402,F401  seed 003: condensation, mean-shift, condensation-mean-shift
+from . import color_pf  # noqa: E402,F401  lee2012: color-pf (02_particle_filters)
+from . import color_hog_pf  # noqa: E402,F401  lee2012: color-hog-pf (03_hog)
+from . import color_hog_ipca  # noqa: E402,F401  lee2012: color-hog-ipca (04_incremental_svd)
+from . import hsi_hog_pf  # noqa: E402,F401  kim2016: hsi-color-pf, hog-pf
+from . import edge_ray  # noqa: E402,F401  kim2016: edge-ray-pf
+from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covariance
+from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 
 
 def available(reference: bool = False) -> list[str]:
@@ -89,5 +91,6 @@ def departures(name: str) -> list[dict]:
 
 register = _registry.register
 
-__all__ = ["MultiTracker", "Tracker", "available", "create", "departures", "get", "plugins",
+__all__ = ["MultiTracker", "Tracker", "TrackerState", "available", "create", "departures", "get",
+           "plugins",
            "register", "clip_box"]

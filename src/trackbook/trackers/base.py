@@ -25,6 +25,52 @@ def readonly(a) -> np.ndarray:
     return v
 
 
+def _frozen(a, dtype=float):
+    """A read-only copy of ``a`` (None stays None): a state outlives the tracker's next frame."""
+    return None if a is None else readonly(np.array(a, dtype=dtype, copy=True))
+
+
+@dataclasses.dataclass(frozen=True)
+class TrackerState:
+    """What a tracker shows of itself after a frame: the one interface drawings read.
+
+    ``Tracker.state()`` returns it; the book's figures, the playground and the command line's
+    video draw from it. A field is None when the tracker has no such thing (a Kalman window
+    has no particles, a particle filter no search window). Arrays are read-only copies, so a
+    state kept for later is not changed by the next ``update``.
+
+    Attributes
+    ----------
+    box : (x, y, w, h) of the last estimate, or None before ``init``.
+    ok : whether the last frame was tracked (False while the target is lost).
+    particles : (N, d) particle states; columns 0-1 are the centre (x, y) in every tracker.
+    weights : (N,) their normalised weights (sum 1).
+    search_window : (x, y, w, h) of the area a local search covered.
+    ellipse : (cx, cy, hx, hy) or (cx, cy, hx, hy, angle in degrees): a target ellipse
+        (mean-shift) or a gate (the Kalman filter's).
+    candidates : (n, 4) boxes ``(x, y, w, h)`` evaluated on the last frame.
+    rays : (N, 8) edge distances of every particle along the 8 rays (Kim et al. 2016 eq. 4),
+        row i belonging to ``particles[i]``.
+    """
+
+    box: tuple | None = None
+    ok: bool = False
+    particles: np.ndarray | None = None
+    weights: np.ndarray | None = None
+    search_window: tuple | None = None
+    ellipse: tuple | None = None
+    candidates: np.ndarray | None = None
+    rays: np.ndarray | None = None
+
+    def __post_init__(self):
+        for name in ("particles", "weights", "candidates", "rays"):
+            object.__setattr__(self, name, _frozen(getattr(self, name)))
+        for name in ("box", "search_window", "ellipse"):
+            v = getattr(self, name)
+            if v is not None:
+                object.__setattr__(self, name, tuple(float(x) for x in np.ravel(v)))
+
+
 @dataclasses.dataclass(frozen=True)
 class NoParams:
     """A tracker without tunables."""
@@ -40,7 +86,8 @@ class Tracker:
         the same boxes.
     **params
         Values for the fields of the tracker's ``Params`` dataclass; the rest keep the
-        paper's defaults.
+        book's defaults (``trackers.create(name, preset="paper")`` starts from the values
+        the paper prints instead).
 
     Attributes
     ----------
@@ -106,6 +153,14 @@ class Tracker:
         self.bbox = tuple(float(v) for v in box)
         self.ok = bool(ok)
         return self.ok, self.bbox
+
+    def state(self) -> TrackerState:
+        """What to draw of this tracker after the last frame (see :class:`TrackerState`).
+
+        This base gives the box and ``ok``; trackers with particles, a search window, an
+        ellipse, candidates or rays extend it (``dataclasses.replace(super().state(), ...)``).
+        """
+        return TrackerState(box=self.bbox, ok=bool(self.ok))
 
     def _is_flat(self, frame: np.ndarray) -> bool:
         """Whether ``frame`` is constant up to ``flat_range`` grey levels (nothing to match)."""

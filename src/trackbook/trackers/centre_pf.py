@@ -5,7 +5,7 @@ edge observation model with an HSI-colour and a HOG particle filter. To make tha
 about the observation model alone, all three trackers share this class: the same state, the
 same motion model (random walk plus the estimated motion), the same resampling and estimate
 (eq. 7), and the same behaviour when every particle scores zero. Each subclass only says how
-a particle is weighted (``_likelihood``).
+a particle is weighted (``likelihood``).
 """
 
 from __future__ import annotations
@@ -14,8 +14,7 @@ import dataclasses
 
 import numpy as np
 
-from ..filters.particle import RESAMPLERS
-from .particle_filter import ParticleFilterTracker
+from .particle_filter import ParticleFilterTracker, resampler_param
 from ..params import NOT_PRINTED, param
 
 
@@ -42,8 +41,8 @@ class CentrePFParams:
         1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame", paper=NOT_PRINTED,
         paper_value=1.0, why="the book's addition for frames where every weight is 0; "
         "the paper has no lost state (1 = off)")
-    resampler: str = param(
-        "multinomial", doc="resampling scheme", choices=tuple(RESAMPLERS), paper=NOT_PRINTED,
+    resampler: str = resampler_param(
+        "resampling scheme", paper=NOT_PRINTED,
         why="Table 2 says 'resample with the updated weights' without a scheme; "
         "multinomial is the textbook SIR choice")
 
@@ -75,22 +74,22 @@ class CentreParticleFilter(ParticleFilterTracker):
     #: scatter over the frame: Kim et al.'s trackers keep their own lost search.
     scatter_fraction = 0.0
 
-    def _model(self, frame, box):
+    def model(self, frame, box):
         self._size = np.asarray(box[2:4], dtype=float)
         self.velocity = np.zeros(2)
         self.spread = float(self.params.sigma)
         self.scale = 1.0
         self._lost_run = 0
 
-    def _initial_particles(self, frame, box):
-        c = self._box_to_state(box)
+    def initial_particles(self, frame, box):
+        c = self.box_to_state(box)
         n = int(self.params.n_particles)
         return self._clip(c + self.rng.normal(0.0, self.params.sigma, size=(n, 2)))
 
     def _clip(self, xy):
         return np.clip(xy, 0.0, self._frame_wh - 1e-6)
 
-    def _predict(self, particles):
+    def predict(self, particles):
         sigma = float(self.params.sigma)
         if self.lost:
             cap = max(sigma, 0.25 * float(self._frame_wh.max()))
@@ -113,14 +112,14 @@ class CentreParticleFilter(ParticleFilterTracker):
             self.velocity = np.zeros(2) if was_lost else g * (self.estimate - previous)
         return ok, box
 
-    def _on_lost(self):
+    def on_lost(self):
         self._lost_run += 1
         self.velocity = np.zeros(2)
 
-    def _box_to_state(self, box):
+    def box_to_state(self, box):
         b = np.asarray(box, dtype=float)
         return b[:2] + b[2:4] / 2.0
 
-    def _state_to_box(self, state):
+    def state_to_box(self, state):
         w, h = self._size * self.scale
         return np.array([state[0] - w / 2.0, state[1] - h / 2.0, w, h])

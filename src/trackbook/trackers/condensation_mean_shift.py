@@ -1,6 +1,6 @@
 """Cho & Kang 2005: Condensation, mean-shift, and Condensation with candidates moved by mean-shift.
 
-Chapter 8 of the book (and its lab notes, ``lab_notes_cho2005``). Three registered
+The chapter ``08_mean_shift`` (and its lab notes, ``lab_notes_cho2005``). Three registered
 trackers share one target model, an ellipse with a kernel-weighted colour distribution:
 
 - ``condensation`` (baseline, Nummiaro et al. 2003): factored sampling -> predict
@@ -37,7 +37,7 @@ import numpy as np
 from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift_with_scale,
                                   region_around)
 from ..filters.optical_flow import motion_vector, pyramid
-from .particle_filter import ParticleFilterTracker
+from .particle_filter import ParticleFilterTracker, resampler_param
 from ..params import NOT_PRINTED, param
 from .base import Tracker, readonly
 from .registry import register
@@ -63,119 +63,121 @@ def colour_likelihood(rho, sigma: float) -> np.ndarray:
     return np.exp(-(1.0 - np.asarray(rho, dtype=float)) / (2.0 * sigma * sigma))
 
 
-def _common_params():
-    """Fields shared by the three trackers (a function so each dataclass gets its own copies)."""
-    return dict(
-        sigma=param(0.1, 0.01, 1.0, 0.01,
-                    "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro et al. 2003: 0.1)",
-                    paper=NOT_PRINTED,
-                    why="Cho & Kang print no likelihood; the book takes Nummiaro et al. (2003)'s "
-                        "0.1, the baseline they cite"),
-        h_bins=param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)",
-                     paper=NOT_PRINTED,
-                     why="eq. 3 names bins u but no count; 8x8x4 HSV after Nummiaro et al. (2003)"),
-        s_bins=param(8, 1, 32, 1, "saturation bins (eq. 3)", paper=NOT_PRINTED,
-                     why="not printed; 8 saturation bins after Nummiaro et al. (2003)"),
-        v_bins=param(4, 1, 32, 1, "value bins (eq. 3)", paper=NOT_PRINTED,
-                     why="not printed; 4 value bins (value is least stable under light)"),
-        resolution=param(8, 2, 64, 1,
-                         "lattice pixels across the shorter half-axis: larger targets are read "
-                         "every k-th pixel so the cost does not grow with their size (speed; "
-                         "the paper's small 320x240 targets are read at every pixel anyway)",
+@dataclasses.dataclass(frozen=True)
+class EllipseColourParams:
+    """Tunables of the target model the three trackers of Cho & Kang 2005 share: the colour
+    distribution of an ellipse (eq. 3) and its likelihood (Nummiaro et al. 2003)."""
+
+    sigma: float = param(0.1, 0.01, 1.0, 0.01,
+                         "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro et al. "
+                         "2003: 0.1)",
                          paper=NOT_PRINTED,
-                         why="the book's addition for speed on large targets; eq. 3 sums every "
-                             "pixel, which this setting matches on targets of 8 px half-axes"),
-        min_rho=param(0.3, 0.0, 1.0, 0.05,
-                      "best rho below this: the frame is reported lost (ok=False) and the "
-                      "search widens to the whole frame",
-                      paper=NOT_PRINTED, paper_value=0.0,
-                      why="the paper never reports a lost target; the book flags frames whose "
-                          "best rho is below 0.3 (0 = off)"),
-    )
+                         why="Cho & Kang print no likelihood; the book takes Nummiaro et al. "
+                             "(2003)'s 0.1, the baseline they cite")
+    h_bins: int = param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)",
+                        paper=NOT_PRINTED,
+                        why="eq. 3 names bins u but no count; 8x8x4 HSV after Nummiaro et al. "
+                            "(2003)")
+    s_bins: int = param(8, 1, 32, 1, "saturation bins (eq. 3)", paper=NOT_PRINTED,
+                        why="not printed; 8 saturation bins after Nummiaro et al. (2003)")
+    v_bins: int = param(4, 1, 32, 1, "value bins (eq. 3)", paper=NOT_PRINTED,
+                        why="not printed; 4 value bins (value is least stable under light)")
+    resolution: int = param(8, 2, 64, 1,
+                            "lattice pixels across the shorter half-axis: larger targets are "
+                            "read every k-th pixel so the cost does not grow with their size "
+                            "(speed; the paper's small 320x240 targets are read at every pixel "
+                            "anyway)",
+                            paper=NOT_PRINTED,
+                            why="the book's addition for speed on large targets; eq. 3 sums "
+                                "every pixel, which this setting matches on targets of 8 px "
+                                "half-axes")
+    min_rho: float = param(0.3, 0.0, 1.0, 0.05,
+                           "best rho below this: the frame is reported lost (ok=False) and the "
+                           "search widens to the whole frame",
+                           paper=NOT_PRINTED, paper_value=0.0,
+                           why="the paper never reports a lost target; the book flags frames "
+                               "whose best rho is below 0.3 (0 = off)")
 
 
-def _candidate_params(n: int, n_max: int, n_doc: str):
-    """The candidates of eq. 9, s_t = A s_(t-1) + w: how many, and the noise w of A."""
-    return dict(
-        n_particles=param(n, 1, n_max, 1, n_doc, paper=n),  # Cho & Kang 2005 §5.1
-        noise_position=param(0.15, 0.0, 2.0, 0.01,
-                             "std of w_x, w_y of eq. 9, in half-axes (the noise of A)",
-                             paper=NOT_PRINTED,
-                             why="eq. 9 names the noise w but prints no size; 0.15 half-axes "
-                                 "chosen on the sample clips (lab notes)"),
-        noise_velocity=param(0.05, 0.0, 1.0, 0.01,
-                             "std of w_xdot, w_ydot of eq. 9, in half-axes per frame",
-                             paper=NOT_PRINTED,
-                             why="not printed; 0.05 half-axes per frame chosen on the sample "
-                                 "clips (lab notes)"),
-        noise_scale=param(0.0, 0.0, 0.3, 0.005,
-                          "std of w_a: the size changes by a = 1 + w_a (book default 0, fixed "
-                          "size, for all three trackers: the colour likelihood alone lets the "
-                          "size drift, mostly smaller; chapter 8)",
-                          paper=NOT_PRINTED,
-                          why="eq. 1 has a size change a but no spread; the book fixes the size "
-                              "(0) because the colour likelihood lets it shrink (chapter 8)"),
-        resampler=param("multinomial", doc="factored sampling (step ①)",
-                        choices=("multinomial", "systematic", "stratified", "residual"),
-                        paper="multinomial"),  # §3.2 step ①: sample from the weighted set
-    )
+@dataclasses.dataclass(frozen=True)
+class CondensationParams(EllipseColourParams):
+    """Tunables of ``condensation`` (Nummiaro et al. 2003 as used by Cho & Kang 2005): the
+    shared colour model plus the candidates of eq. 9, s_t = A s_(t-1) + w -- how many, and the
+    noise w of A."""
+
+    # Cho & Kang 2005 §5.1
+    n_particles: int = param(100, 1, 100_000, 1, "N, number of candidates (100 in Cho & Kang "
+                             "2005 §5.1, after Nummiaro)", paper=100, slider=(1, 2000))
+    noise_position: float = param(0.15, 0.0, 2.0, 0.01,
+                                  "std of w_x, w_y of eq. 9, in half-axes (the noise of A)",
+                                  paper=NOT_PRINTED,
+                                  why="eq. 9 names the noise w but prints no size; 0.15 "
+                                      "half-axes chosen on the sample clips (lab notes)")
+    noise_velocity: float = param(0.05, 0.0, 1.0, 0.01,
+                                  "std of w_xdot, w_ydot of eq. 9, in half-axes per frame",
+                                  paper=NOT_PRINTED,
+                                  why="not printed; 0.05 half-axes per frame chosen on the "
+                                      "sample clips (lab notes)")
+    noise_scale: float = param(0.0, 0.0, 0.3, 0.005,
+                               "std of w_a: the size changes by a = 1 + w_a (book default 0, "
+                               "fixed size, for all three trackers: the colour likelihood alone "
+                               "lets the size drift, mostly smaller; 08_mean_shift)",
+                               paper=NOT_PRINTED,
+                               why="eq. 1 has a size change a but no spread; the book fixes the "
+                                   "size (0) because the colour likelihood lets it shrink "
+                                   "(08_mean_shift)")
+    # §3.2 step ①: sample from the weighted set
+    resampler: str = resampler_param("factored sampling (step ①)", paper="multinomial")
 
 
-def _dataclass(name, fields: dict, doc: str):
-    ns = {"__annotations__": {k: type(v.default) for k, v in fields.items()}, "__doc__": doc}
-    ns.update(fields)
-    return dataclasses.dataclass(frozen=True)(type(name, (), ns))
+@dataclasses.dataclass(frozen=True)
+class CondensationMeanShiftParams(CondensationParams):
+    """Tunables of ``condensation-mean-shift`` (Cho & Kang 2005): those of ``condensation``
+    with 5 candidates, plus the mean-shift of every candidate and the motion vector."""
 
-
-CondensationParams = _dataclass("CondensationParams", dict(
-    **_candidate_params(100, 2000, "N, number of candidates (100 in Cho & Kang 2005 §5.1, "
-                                   "after Nummiaro)"),
-    **_common_params(),
-), "Tunables of ``condensation`` (Nummiaro et al. 2003 as used by Cho & Kang 2005).")
-
-
-CondensationMeanShiftParams = _dataclass("CondensationMeanShiftParams", dict(
-    **_candidate_params(5, 500, "N, number of candidates (5 in Cho & Kang 2005 §5.1)"),
+    n_particles: int = param(5, 1, 100_000, 1, "N, number of candidates (5 in Cho & Kang 2005 "
+                             "§5.1)", paper=5, slider=(1, 500))
     # §4, eq. 12-13: one mean-shift step moves each candidate, printed once per candidate.
-    max_iter=param(10, 0, 100, 1, "mean-shift iterations per candidate at most (eq. 12-13)",
-                   paper=1,
-                   why="the book's reading: eq. 12-13 print one shift; the book repeats steps "
-                       "②-⑥ of §3.3 (halving, stop below eps) up to 10 times so each candidate "
-                       "reaches its hill top (chapter 8; preset='paper' runs one shift)"),
-    eps=param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps pixels",
-              paper=NOT_PRINTED,
-              why="step ⑥ of §3.3 names epsilon without a value; half a pixel"),
-    use_motion=param(True, doc="seed the prediction with the motion vector (p, q) of eq. 8",
-                     paper=True),  # §4, eq. 5-9
-    flow_levels=param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
-                                  "single solve)",
-                      paper=1,  # eq. 5-8: one least-squares solve on the frame pair
-                      why="one solve cannot measure motions over ~1 px; a 3-level pyramid "
-                          "measures the sample clips' 2-6 px steps (lab notes)"),
-    flow_iterations=param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's single "
-                                       "solve; more re-warp and solve for the remainder)",
-                          paper=1),  # eq. 8: one solve
-    **_common_params(),
-), "Tunables of ``condensation-mean-shift`` (Cho & Kang 2005).")
+    max_iter: int = param(10, 0, 100, 1, "mean-shift iterations per candidate at most "
+                          "(eq. 12-13)",
+                          paper=1,
+                          why="the book's reading: eq. 12-13 print one shift; the book repeats "
+                              "steps ②-⑥ of §3.3 (halving, stop below eps) up to 10 times so "
+                              "each candidate reaches its hill top (08_mean_shift; "
+                              "preset='paper' runs one shift)")
+    eps: float = param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps "
+                       "pixels", paper=NOT_PRINTED,
+                       why="step ⑥ of §3.3 names epsilon without a value; half a pixel")
+    use_motion: bool = param(True, doc="seed the prediction with the motion vector (p, q) of "
+                             "eq. 8", paper=True)  # §4, eq. 5-9
+    flow_levels: int = param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
+                             "single solve)",
+                             paper=1,  # eq. 5-8: one least-squares solve on the frame pair
+                             why="one solve cannot measure motions over ~1 px; a 3-level "
+                                 "pyramid measures the sample clips' 2-6 px steps (lab notes)")
+    flow_iterations: int = param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's "
+                                 "single solve; more re-warp and solve for the remainder)",
+                                 paper=1)  # eq. 8: one solve
 
 
-MeanShiftParams = _dataclass("MeanShiftParams", dict(
-    max_iter=param(20, 1, 100, 1, "mean-shift iterations per frame at most (Comaniciu: 20)",
-                   paper=NOT_PRINTED,
-                   why="Cho & Kang loop steps ②-⑥ until the step is below epsilon; the cap of "
-                       "20 is Comaniciu et al. (2003)'s"),
-    eps=param(0.5, 0.01, 10.0, 0.05, "stop when the step is below eps pixels (step ⑥)",
-              paper=NOT_PRINTED,
-              why="step ⑥ of §3.3 names epsilon without a value; half a pixel"),
-    scale_adapt=param(False, doc="try ±10 % half-axes and keep the best rho (Comaniciu §5.2)",
-                      paper=NOT_PRINTED, paper_value=False,
-                      why="§3.3's steps move the centre only; the ±10 % search is Comaniciu "
-                          "et al. (2003)'s, off by default"),
-    gamma=param(0.1, 0.0, 1.0, 0.05, "scale smoothing h = gamma h_opt + (1 - gamma) h_prev",
-                paper=NOT_PRINTED,
-                why="only used with scale_adapt; Comaniciu et al. (2003)'s 0.1"),
-    **_common_params(),
-), "Tunables of ``mean-shift`` (Comaniciu, Ramesh & Meer 2003).")
+@dataclasses.dataclass(frozen=True)
+class MeanShiftParams(EllipseColourParams):
+    """Tunables of ``mean-shift`` (Comaniciu, Ramesh & Meer 2003)."""
+
+    max_iter: int = param(20, 1, 100, 1, "mean-shift iterations per frame at most (Comaniciu: "
+                          "20)", paper=NOT_PRINTED,
+                          why="Cho & Kang loop steps ②-⑥ until the step is below epsilon; the "
+                              "cap of 20 is Comaniciu et al. (2003)'s")
+    eps: float = param(0.5, 0.01, 10.0, 0.05, "stop when the step is below eps pixels (step ⑥)",
+                       paper=NOT_PRINTED,
+                       why="step ⑥ of §3.3 names epsilon without a value; half a pixel")
+    scale_adapt: bool = param(False, doc="try ±10 % half-axes and keep the best rho "
+                              "(Comaniciu §5.2)", paper=NOT_PRINTED, paper_value=False,
+                              why="§3.3's steps move the centre only; the ±10 % search is "
+                                  "Comaniciu et al. (2003)'s, off by default")
+    gamma: float = param(0.1, 0.0, 1.0, 0.05, "scale smoothing h = gamma h_opt + (1 - gamma) "
+                         "h_prev", paper=NOT_PRINTED,
+                         why="only used with scale_adapt; Comaniciu et al. (2003)'s 0.1")
 
 
 class _EllipseColourModel:
@@ -232,22 +234,22 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     #: the frame (``ParticleFilterTracker._scatter``) so the target is found where it returns.
 
     # -- ParticleFilterTracker interface -------------------------------------------------
-    def _model(self, frame, box):
+    def model(self, frame, box):
         self._set_model(frame, box)
         self._rho = np.ones(self.params.n_particles)
         self._report = {}
 
-    def _initial_particles(self, frame, box):
-        return np.repeat(self._box_to_state(box)[None, :], self.params.n_particles, axis=0)
+    def initial_particles(self, frame, box):
+        return np.repeat(self.box_to_state(box)[None, :], self.params.n_particles, axis=0)
 
-    def _box_to_state(self, box):
+    def box_to_state(self, box):
         cx, cy, hx, hy = box_to_ellipse(box)
         return np.array([cx, cy, 0.0, 0.0, hx, hy, 1.0])
 
-    def _state_to_box(self, state):
+    def state_to_box(self, state):
         return ellipse_to_box(state[0], state[1], state[4], state[5])
 
-    def _predict(self, particles):
+    def predict(self, particles):
         """Eq. 9: s_t = A s_{t-1} + w_{t-1} (see the module docstring for A and w)."""
         p, s = self.params, np.array(particles, dtype=float)
         n = s.shape[0]
@@ -259,7 +261,7 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
         s[:, 4:6] *= s[:, 6:7]
         return self._clamp(s)
 
-    def _likelihood(self, frame, particles):
+    def likelihood(self, frame, particles):
         """Step ③: pi_i = p(z_t | x_t = s_t^i), the colour likelihood of every candidate."""
         img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=0.1)
         rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6])
@@ -302,6 +304,13 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     def ellipse(self) -> tuple:
         e = self.estimate
         return (float(e[0]), float(e[1]), float(e[4]), float(e[5]))
+
+    def state(self):
+        """The particle filter's state plus the estimate's ``ellipse`` (cx, cy, Hx, Hy)."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, ellipse=self.ellipse)
 
 
 @register
@@ -399,15 +408,15 @@ class CondensationMeanShift(Condensation):
         self._remember(frame, curr)
         return ok, box
 
-    def _predict(self, particles):
+    def predict(self, particles):
         """Eq. 9 with the velocity of every sampled candidate set to the motion vector (p, q)."""
         s = np.array(particles, dtype=float)
         if self.motion[2]:
             s[:, 2] = self.motion[0]
             s[:, 3] = self.motion[1]
-        return super()._predict(s)
+        return super().predict(s)
 
-    def _refine(self, frame, particles):
+    def refine(self, frame, particles):
         """Eq. 10-13: move every candidate uphill on rho[p(y), q] by mean-shift."""
         p = self.params
         self._predicted = particles.copy()
@@ -421,7 +430,7 @@ class CondensationMeanShift(Condensation):
         self._rho_after = res.rho
         return self._clamp(moved)
 
-    def _likelihood(self, frame, particles):
+    def likelihood(self, frame, particles):
         # rho at the moved candidates is what mean-shift converged to: no second evaluation
         lik = self._weigh(self._rho_after)
         res = self.mean_shift_result
@@ -542,3 +551,12 @@ class MeanShift(_EllipseColourModel, Tracker):
     @property
     def trajectory(self) -> np.ndarray:
         return readonly(self._trajectory)
+
+    def state(self):
+        """The box, ``ok``, the ``ellipse`` (cx, cy, Hx, Hy) and its single candidate as a
+        particle of weight 1."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, ellipse=self.ellipse, particles=self.particles,
+                                   weights=self.weights)

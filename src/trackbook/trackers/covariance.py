@@ -305,6 +305,14 @@ class _CovarianceSearch(Tracker):
     def model(self):
         return self._model
 
+    def state(self):
+        """The box, ``ok``, the last local search's window and its candidate boxes."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, search_window=self.search_window,
+                                   candidates=np.asarray(self.candidates, dtype=float)[:, :4])
+
 
 @register
 class CovarianceTracker(_CovarianceSearch):
@@ -415,6 +423,13 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     @property
     def kalman(self):
         return self._kf
+
+    def state(self):
+        """As ``covariance``'s, plus the Kalman gate ``ellipse`` (cx, cy, hx, hy, angle)."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, ellipse=self.ellipse)
 
     @property
     def ellipse(self):

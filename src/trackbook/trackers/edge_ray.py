@@ -78,19 +78,26 @@ class EdgeRayPF(CentreParticleFilter):
     name = "edge-ray-pf"
     Params = EdgeRayParams
 
-    def _model(self, frame, box):
+    def model(self, frame, box):
         p = self.params
         if p.ratio_low > p.ratio_high:
             raise ValueError(
                 f"ratio_low={p.ratio_low} is above ratio_high={p.ratio_high}; the Ratio window "
                 "needs low <= high (the paper uses 0.8 and 1.2).")
-        super()._model(frame, box)
-        c = self._box_to_state(box)
+        super().model(frame, box)
+        c = self.box_to_state(box)
         self.edges = er.edge_image(frame, p.canny_low, p.canny_high, p.blur)
         self.model_rays = self._rays(c[None, :])[0]
         self._m0 = self.model_rays.astype(float)
         self.particle_rays = np.zeros((0, 8))
         self.ratios = np.zeros(0)
+
+    def state(self):
+        """The particle filter's state plus ``rays``: pDis of every particle (eq. 4)."""
+        st = super().state()
+        if st.particles is None or len(self.particle_rays) != len(st.particles):
+            return st                   # before the first weighted frame (or a flat one)
+        return dataclasses.replace(st, rays=self.particle_rays)
 
     def _rays(self, xy):
         """pDis_j (eq. 4) of centres ``xy`` (N, 2) in the current edge map, capped at max_ray.
@@ -106,7 +113,7 @@ class EdgeRayPF(CentreParticleFilter):
         # a cap under one pixel is the shortest ray there is: 1 px (0 still means "no cap")
         return er.rays_at_points(self.edges, np.floor(xy), max(cap, 1.0) if cap > 0 else None)
 
-    def _likelihood(self, frame, particles):
+    def likelihood(self, frame, particles):
         p = self.params
         self.edges = er.edge_image(frame, p.canny_low, p.canny_high, p.blur)
         self.particle_rays = self._rays(particles)
@@ -125,7 +132,7 @@ class EdgeRayPF(CentreParticleFilter):
             if p.model_rate > 0:
                 here = self._rays(self.estimate[None, :])[0] / self.scale
                 self.model_rays = (1 - p.model_rate) * self.model_rays + p.model_rate * here
-            box = self._state_to_box(self.estimate)
+            box = self.state_to_box(self.estimate)
         return ok, box
 
     def frame_report(self) -> dict:

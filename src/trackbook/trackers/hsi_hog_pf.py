@@ -51,12 +51,12 @@ class _AppearancePF(CentreParticleFilter):
 
     Params = AppearanceParams
 
-    def _features(self, frame, boxes):  # pragma: no cover
+    def features(self, frame, boxes):  # pragma: no cover
         raise NotImplementedError
 
-    def _model(self, frame, box):
-        super()._model(frame, box)
-        self.reference = self._features(frame, np.asarray(box, dtype=float)[None, :])[0]
+    def model(self, frame, box):
+        super().model(frame, box)
+        self.reference = self.features(frame, np.asarray(box, dtype=float)[None, :])[0]
 
     def _boxes(self, particles):
         w, h = self._size * self.scale
@@ -64,8 +64,8 @@ class _AppearancePF(CentreParticleFilter):
         return np.column_stack([particles[:, 0] - w / 2, particles[:, 1] - h / 2,
                                 np.full(n, w), np.full(n, h)])
 
-    def _likelihood(self, frame, particles):
-        feats = self._features(frame, self._boxes(particles))
+    def likelihood(self, frame, particles):
+        feats = self.features(frame, self._boxes(particles))
         d2 = 1.0 - bhattacharyya_coefficient(feats, self.reference)
         self._match = np.clip(1.0 - d2, 0.0, 1.0)        # rho, for the lost gate
         return np.exp(-np.clip(d2, 0.0, None) / (2.0 * self.params.obs_sigma ** 2))
@@ -77,7 +77,7 @@ class HSIColorPF(_AppearancePF):
 
     name = "hsi-color-pf"
 
-    def _features(self, frame, boxes):
+    def features(self, frame, boxes):
         return hsi_histograms(frame, boxes)
 
 
@@ -87,5 +87,5 @@ class HOGPF(_AppearancePF):
 
     name = "hog-pf"
 
-    def _features(self, frame, boxes):
+    def features(self, frame, boxes):
         return hog_descriptors(frame, boxes)

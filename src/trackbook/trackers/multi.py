@@ -11,15 +11,16 @@ The paper tracks the two crossing faces with independent trackers (one colour mo
 joint reasoning about occlusion), which is what :class:`MultiTracker` does: target ``k`` gets a
 tracker of the same name and params, seeded with a seed derived deterministically from
 ``(seed, k)`` so that two targets never share a random stream and a re-run repeats exactly.
+To run it over a clip and score every target, use
+``trackbook.evaluate(name, clip, targets="all")`` (the same trackers, the same seeds).
 """
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
-from .._checks import check_frame, check_max_frames, clip_box
+from .._checks import check_frame, clip_box
+from ..params import make_params
 
 
 def target_seed(seed, k: int):
@@ -36,7 +37,8 @@ class MultiTracker:
     ----------
     name : a registered tracker name (``trackers.available(reference=True)``)
     seed : int or None; target ``k`` uses :func:`target_seed` ``(seed, k)``
-    **params : the trackers' params (the same for every target)
+    **params : the trackers' params (the same for every target), checked here: a typo or a
+        value out of range raises ``ValueError`` when the multi-tracker is made
 
     Attributes
     ----------
@@ -47,7 +49,8 @@ class MultiTracker:
     def __init__(self, name: str, seed: int | None = 0, **params):
         from . import create, get
 
-        get(name)  # fail early, with the list of names, on a typo
+        # fail early, with the list of names or the valid params, on a typo
+        make_params(get(name).Params, dict(params))
         self.name, self.seed, self._params = name, seed, dict(params)
         self._create = create
         self.trackers: list = []
@@ -84,65 +87,3 @@ class MultiTracker:
 
     def __len__(self) -> int:
         return len(self.trackers)
-
-
-def track_clip(name: str, clip, seed: int | None = 0, max_frames: int | None = None,
-               targets=None, **params) -> dict:
-    """Track every annotated target of ``clip`` at once; ``{target: (N, 4) boxes}``.
-
-    This is what ``trackbook track NAME CLIP --all-targets`` runs. Each target starts from its
-    first ground-truth box; frame 0 of every array is that box.
-
-    Parameters
-    ----------
-    name : registered tracker name; clip : anything ``trackbook.clips.load`` accepts
-    seed : the multi-tracker's seed; max_frames : track only the first frames
-    targets : optional list of target names (default: all of ``clip.targets``)
-    **params : the trackers' params
-
-    Returns
-    -------
-    dict target -> (N, 4) float array of boxes; the per-frame milliseconds of the whole
-    multi-target update are under the key ``"_ms"`` (an (N,) array, frame 0 = init) and each
-    target's ``ok`` flags under ``"_ok"`` (a dict target -> (N,) bool array).
-    """
-    from .. import clips as _clips
-
-    clip = _clips.load(clip)
-    names = list(clip.targets) if targets is None else list(targets)
-    unknown = [t for t in names if t not in clip.targets]
-    if unknown:
-        raise ValueError(f"clip {clip.name!r} has no target(s) {unknown}; "
-                         f"its targets are {list(clip.targets)}.")
-    max_frames = check_max_frames(max_frames)
-    n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
-    first = clip.frames[0]
-    starts = []
-    for t in names:
-        b = np.asarray(clip.targets[t][0], dtype=float)
-        if not np.all(np.isfinite(b)):
-            raise ValueError(f"target {t!r} of clip {clip.name!r} has no box on frame 0.")
-        starts.append(clip_box(b, first.shape))
-    mt = MultiTracker(name, seed=seed, **params)
-    out = {t: np.full((n, 4), np.nan) for t in names}
-    oks = {t: np.ones(n, dtype=bool) for t in names}
-    ms = np.zeros(n)
-    t0 = time.perf_counter()
-    mt.init(first, starts)
-    ms[0] = (time.perf_counter() - t0) * 1e3
-    for t, b in zip(names, starts):
-        out[t][0] = b
-    for i, frame in enumerate(clip.frames):
-        if i == 0:
-            continue
-        if i >= n:
-            break
-        t0 = time.perf_counter()
-        flags, boxes = mt.update(frame)
-        ms[i] = (time.perf_counter() - t0) * 1e3
-        for t, b, ok in zip(names, boxes, flags):
-            out[t][i] = b
-            oks[t][i] = ok
-    out["_ms"] = ms
-    out["_ok"] = oks
-    return out

@@ -1,4 +1,4 @@
-"""The SIR particle-filter tracker (chapter 2): the frame every particle tracker fills in.
+"""The SIR particle-filter tracker (``02_particle_filters``): the frame particle trackers fill in.
 
 The estimation steps it calls (weights, resamplers, estimate) are pure functions in
 :mod:`trackbook.filters.particle`; this class only strings them together behind the
@@ -7,11 +7,14 @@ The estimation steps it calls (weights, resamplers, estimate) are pure functions
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
-from ..filters.particle import RESAMPLERS, normalize_weights, weighted_mean
+from ..filters.particle import (RESAMPLER_NAMES, check_indices, get_resampler,
+                                normalize_weights, weighted_mean)
 from ..params import NOT_PRINTED, param
-from .base import Tracker, readonly
+from .base import Tracker, TrackerState, readonly
 
 
 def lost_below_param():
@@ -21,6 +24,13 @@ def lost_below_param():
                  "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
                  why="the paper reports no lost frames; the book's gate (chapter 2), chosen so "
                  "that on the seven public sequences it fires where the box has left the target")
+
+
+def resampler_param(doc: str, paper="multinomial", default: str = "multinomial", **kw):
+    """The ``resampler`` field of a particle tracker's params: any name registered in
+    :data:`trackbook.filters.particle.RESAMPLERS` when the params are made (see
+    :func:`~trackbook.filters.particle.register_resampler`)."""
+    return param(default, doc=doc, choices=RESAMPLER_NAMES, paper=paper, **kw)
 
 
 def lost_k_param():
@@ -36,18 +46,34 @@ class ParticleFilterTracker(Tracker):
     pseudocode, for subclasses.
 
     Each ``update``: select (resample by the previous weights) -> predict -> [refine] ->
-    weight -> normalise -> estimate. Subclasses implement
+    weight -> normalise -> estimate. A subclass fills in these public hooks:
 
-    - ``_initial_particles(frame, box) -> (N, d) states`` and ``_model(frame, box)`` (reference),
-    - ``_predict(particles) -> particles`` (the motion model, using ``self.rng``),
-    - ``_likelihood(frame, particles) -> (N,)`` unnormalised, >= 0 (and, for the distance
+    - ``initial_particles(frame, box) -> (N, d) states`` and ``model(frame, box)`` (take the
+      reference, e.g. the first frame's histogram; called first by ``init``),
+    - ``predict(particles) -> particles`` (the motion model, using ``self.rng``),
+    - ``likelihood(frame, particles) -> (N,)`` unnormalised, >= 0 (and, for the distance
       gate, ``self._match = 1 - D^2`` of every particle),
-    - ``_state_to_box(state) -> (x, y, w, h)``,
+    - ``box_to_state(box) -> (d,)`` and ``state_to_box(state) -> (x, y, w, h)``,
 
-    and may override ``_on_lost()`` (e.g. widen the spread) and ``_refine(frame, particles) ->
-    particles`` (move the predicted particles before weighting, e.g. uphill by mean-shift as
-    Cho & Kang 2005 do; the default leaves them where the motion model put them). The params dataclass must have
-    ``n_particles`` and ``resampler``.
+    and may override ``on_lost()`` (called on a lost frame, e.g. to widen the spread) and
+    ``refine(frame, particles) -> particles`` (move the predicted particles before weighting,
+    e.g. uphill by mean-shift as Cho & Kang 2005 do; the default leaves them where the motion
+    model put them). The params dataclass must have ``n_particles`` and ``resampler`` (made with
+    :func:`resampler_param`).
+
+    What the frame assumes
+    ----------------------
+    It resamples on **every** frame and then rebuilds the weights from this frame's likelihood
+    alone (w_i proportional to p(z_t | x_t^i), not w_(t-1) p(z_t | x_t^i)). So a resampler,
+    ``fn(weights, rng)`` of :data:`trackbook.filters.particle.RESAMPLERS`, must return N
+    integer indices in 0..N-1 on every call. An "ESS-triggered" resampler that resamples only
+    when the effective sample size is low must return the identity ``np.arange(N)`` on the
+    frames it skips. Even then the frame rebuilds the weights from the likelihood alone, so a
+    skipped frame forgets the previous weights instead of multiplying them in (the textbook
+    w_t proportional to w_(t-1) p(z_t | x_t^i) needs a subclass that overrides ``_update``).
+    A resampler that returns anything else fails with a ``ValueError`` saying so. Register
+    your own with :func:`trackbook.filters.particle.register_resampler`; the ``resampler``
+    param accepts every name registered when the tracker is made.
 
     Attributes
     ----------
@@ -66,7 +92,7 @@ class ParticleFilterTracker(Tracker):
     A frame whose grey levels span at most ``flat_range`` (a constant frame: all black, all
     white, one grey) carries no information at all -- no colour to compare, no gradient for a
     HOG or an edge -- so it is not scored: ``update`` returns ``ok=False``, keeps the last
-    estimate and calls ``_on_lost()`` (which widens the search), instead of following the
+    estimate and calls ``on_lost()`` (which widens the search), instead of following the
     least-bad particle. (The likelihood alone cannot tell: the HOG of a gradient-free patch is
     a flat histogram that scores above a real but hard frame.)
 
@@ -102,30 +128,31 @@ class ParticleFilterTracker(Tracker):
 
     def _init(self, frame, box):
         self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
-        self._model(frame, box)
-        self._particles = np.asarray(self._initial_particles(frame, box), dtype=float)
+        self.model(frame, box)
+        self._particles = np.asarray(self.initial_particles(frame, box), dtype=float)
         n = self._particles.shape[0]
         self._weights = np.full(n, 1.0 / n)
         self._likelihoods = np.ones(n)
-        self.estimate = self._box_to_state(box)
+        self.estimate = self.box_to_state(box)
         self.lost = False
         self._match = np.ones(n)
         self._gate_d2 = []          # best D^2 of recent frames that were not lost
         self._lost_in_a_row = 0
 
     def _update(self, frame):
-        resample = RESAMPLERS[self.params.resampler]
-        idx = resample(self._weights, self.rng)
+        name = self.params.resampler
+        idx = check_indices(get_resampler(name)(self._weights, self.rng), len(self._weights),
+                            name)
         particles = self._particles[idx]
         if self.lost and self.scatter_fraction > 0:
             particles = self._scatter(np.array(particles, dtype=float))
-        particles = self._predict(particles)
-        particles = np.asarray(self._refine(frame, particles), dtype=float)
-        self._match = np.full(particles.shape[0], np.nan)   # a subclass's _likelihood fills it
+        particles = self.predict(particles)
+        particles = np.asarray(self.refine(frame, particles), dtype=float)
+        self._match = np.full(particles.shape[0], np.nan)   # a subclass's likelihood fills it
         if self._is_flat(frame):
             lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
         else:
-            lik = np.asarray(self._likelihood(frame, particles), dtype=float)
+            lik = np.asarray(self.likelihood(frame, particles), dtype=float)
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
             informative = False
@@ -138,14 +165,21 @@ class ParticleFilterTracker(Tracker):
             # particles evenly (uniform weights) and let the subclass widen its search.
             self._weights = w
             self.lost = True
-            self._on_lost()
-            return False, self._state_to_box(self.estimate)
+            self.on_lost()
+            return False, self.state_to_box(self.estimate)
         self._weights = w
         self.lost = False
         self.estimate = weighted_mean(particles, w)
-        return True, self._state_to_box(self.estimate)
+        return True, self.state_to_box(self.estimate)
 
     # read-only views for the book's drawings -------------------------------------------
+    def state(self) -> TrackerState:
+        """The box, ``ok``, and the particles with their normalised weights."""
+        st = super().state()
+        if self._shape is None:
+            return st
+        return dataclasses.replace(st, particles=self._particles, weights=self._weights)
+
     @property
     def particles(self) -> np.ndarray:
         return readonly(self._particles)
@@ -168,7 +202,7 @@ class ParticleFilterTracker(Tracker):
         m = self._match
         return float(np.nanmax(m)) if m.size and np.isfinite(m).any() else float("nan")
 
-    def _on_lost(self):
+    def on_lost(self):
         """Hook: called on a frame where every particle scored zero."""
 
     def _gated_out(self) -> bool:
@@ -209,25 +243,25 @@ class ParticleFilterTracker(Tracker):
     def _scatter_reset(self, particles, idx):
         """Hook: clear the parts of scattered particles' states that should not carry over."""
 
-    def _refine(self, frame, particles):
+    def refine(self, frame, particles):
         """Hook: move the predicted particles before they are weighted (default: don't)."""
         return particles
 
     # subclass interface ----------------------------------------------------------------
-    def _model(self, frame, box):  # pragma: no cover
+    def model(self, frame, box):  # pragma: no cover
         raise NotImplementedError
 
-    def _initial_particles(self, frame, box):  # pragma: no cover
+    def initial_particles(self, frame, box):  # pragma: no cover
         raise NotImplementedError
 
-    def _predict(self, particles):  # pragma: no cover
+    def predict(self, particles):  # pragma: no cover
         raise NotImplementedError
 
-    def _likelihood(self, frame, particles):  # pragma: no cover
+    def likelihood(self, frame, particles):  # pragma: no cover
         raise NotImplementedError
 
-    def _box_to_state(self, box):  # pragma: no cover
+    def box_to_state(self, box):  # pragma: no cover
         raise NotImplementedError
 
-    def _state_to_box(self, state):  # pragma: no cover
+    def state_to_box(self, state):  # pragma: no cover
         raise NotImplementedError

@@ -5,10 +5,11 @@ The shared drawings live in :mod:`trackbook.viz.core`; chapter-specific ones in
 """
 from .core import (CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, animate, bgr2rgb, draw_box,
                    draw_ellipse,
-                   draw_particles, draw_search_window, draw_tracker_state, filmstrip,
+                   draw_particles, draw_search_window, draw_state_cv, draw_tracker_state,
+                   filmstrip,
                    plot_curves, show_frame)
 from .tables import departures_table
 
 __all__ = ["animate", "bgr2rgb", "departures_table", "draw_box", "draw_ellipse", "draw_particles",
-           "draw_search_window", "draw_tracker_state", "filmstrip", "plot_curves",
+           "draw_search_window", "draw_state_cv", "draw_tracker_state", "filmstrip", "plot_curves",
            "show_frame", "GT_COLOR", "EST_COLOR", "CYCLE", "GREY", "OKABE_ITO"]

@@ -14,6 +14,8 @@ from matplotlib import patches as mpatches
 
 from ..evaluation import metrics
 from ..style import CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, Palette  # noqa: F401
+from ..trackers.base import Tracker
+
 
 
 def bgr2rgb(frame: np.ndarray) -> np.ndarray:
@@ -185,15 +187,42 @@ def animate(clip, boxes=None, frames=None, step=None, max_frames=40, width=3.6, 
     return HTML(html)
 
 
-def draw_tracker_state(ax, tracker):
-    """Whatever a tracker exposes for drawing: particles, ellipse, search window."""
-    p = getattr(tracker, "particles", None)
-    if p is not None and len(p):
-        draw_particles(ax, np.asarray(p)[:, :2], getattr(tracker, "weights", None))
-    sw = getattr(tracker, "search_window", None)
-    if sw is not None:
-        draw_search_window(ax, sw)
-    el = getattr(tracker, "ellipse", None)
-    if el is not None:
-        draw_ellipse(ax, *el)
+def draw_tracker_state(ax, state):
+    """Draw a :class:`~trackbook.trackers.TrackerState` (``tracker.state()``; a tracker is
+    also accepted and asked for its state): particles sized by weight, the search window, the
+    ellipse."""
+    if isinstance(state, Tracker):
+        state = state.state()
+    if state.particles is not None and len(state.particles):
+        draw_particles(ax, np.asarray(state.particles)[:, :2], state.weights)
+    if state.search_window is not None:
+        draw_search_window(ax, state.search_window)
+    if state.ellipse is not None:
+        draw_ellipse(ax, *state.ellipse)
     return ax
+
+
+def draw_state_cv(img, state, color=(178, 114, 0)):
+    """Draw a :class:`~trackbook.trackers.TrackerState` on a BGR image in place, with OpenCV
+    (for videos): particles as dots (the 200 heaviest at most), the search window dotted-thin,
+    and the ellipse. Returns ``img``."""
+    import cv2
+
+    if state.particles is not None and len(state.particles):
+        p = np.asarray(state.particles, dtype=float)[:, :2]
+        w = state.weights if state.weights is not None else np.ones(len(p))
+        keep = np.argsort(-np.asarray(w))[:200]
+        for x, y in p[keep]:
+            if np.isfinite(x) and np.isfinite(y):
+                cv2.circle(img, (int(round(x)), int(round(y))), 1, color, -1, cv2.LINE_AA)
+    if state.search_window is not None:
+        x, y, w, h = (int(round(v)) for v in state.search_window)
+        cv2.rectangle(img, (x, y), (x + w, y + h), color, 1, cv2.LINE_4)
+    if state.ellipse is not None:
+        cx, cy, hx, hy = state.ellipse[:4]
+        angle = state.ellipse[4] if len(state.ellipse) > 4 else 0.0
+        if all(np.isfinite(v) for v in (cx, cy, hx, hy)):
+            cv2.ellipse(img, (int(round(cx)), int(round(cy))),
+                        (max(int(round(hx)), 1), max(int(round(hy)), 1)), angle, 0, 360, color,
+                        1, cv2.LINE_AA)
+    return img

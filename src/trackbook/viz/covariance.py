@@ -85,8 +85,8 @@ def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
 def recorder(states: list):
     """An ``on_frame`` callback that appends what ``07_region_covariance`` draws to ``states``."""
     def record(i, tracker, frame, box):
-        sw = getattr(tracker, "search_window", None)
-        el = getattr(tracker, "ellipse", None) if hasattr(tracker, "prediction") else None
+        st = tracker.state()          # the search window; the Kalman gate (kalman-covariance)
+        sw, el = st.search_window, st.ellipse
         kf = getattr(tracker, "kalman", None)
         states.append({
             "search_window": None if sw is None else tuple(map(float, sw)),
