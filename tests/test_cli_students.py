@@ -84,8 +84,9 @@ def test_trackers_lists_names_and_reference(capsys):
 def test_trackers_name_shows_params(capsys):
     assert cli.main(["trackers", "color-pf"]) == 0
     rows = {ln.split()[0]: ln for ln in capsys.readouterr().out.splitlines() if ln.strip()}
-    # color-pf: N = 100 particles (section V of Lee et al. 2012), range 10..1000
-    assert rows["n_particles"].split()[1:5] == ["10", "..", "1000", "100"]
+    # color-pf: N = 100 particles (section V of Lee et al. 2012); the range shown is the one a
+    # value may take (1..100000), not the playground's slider (10..1000)
+    assert rows["n_particles"].split()[1:5] == ["1", "..", "100000", "100"]
     # a value the paper does not print says so
     assert "not printed" in rows["min_size"]
     # choices are listed

@@ -21,6 +21,7 @@ import numpy as np
 
 from .._checks import check_frame, clip_box
 from ..params import make_params
+from .factory import create, get
 
 
 def target_seed(seed, k: int):
@@ -47,8 +48,6 @@ class MultiTracker:
     """
 
     def __init__(self, name: str, seed: int | None = 0, **params):
-        from . import create, get
-
         # fail early, with the list of names or the valid params, on a typo
         make_params(get(name).Params, dict(params))
         self.name, self.seed, self._params = name, seed, dict(params)
