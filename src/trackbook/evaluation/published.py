@@ -5,23 +5,27 @@ Source
 Wu, Lim and Yang's Object Tracking Benchmark (OTB-2013, CVPR; OTB-100, "Object Tracking
 Benchmark", TPAMI 2015) distributes, with its toolkit, the result files of the trackers it
 evaluated: one file per tracker and sequence with the box the tracker reported on every frame.
-Two public copies of those files are used here, read from fixed commits:
+Two public copies are used here, each read at a fixed commit:
 
-* the MATLAB toolkit's result files ``results/results_OPE/results_OPE_OTB100/<seq>_<tracker>.mat``
-  in ``github.com/zhangzheng0131/Tracker_Benchmark_tb100`` (a copy of the toolkit v1.0 with the
-  OTB-100 results; boxes per frame) for IVT, Struck, TLD, MEEM and KCF (Henriques et al.'s
-  result files, Gaussian kernel on HOG: ``KCF_GaussHog``);
-* the Python toolkit's per-sequence scores ``results/OPE/<tracker>/scores_tb100/ALL.json`` in
-  ``github.com/jwlim/tracker_benchmark`` (Jongwoo Lim, an OTB author) for CPF (Pérez et al.'s
-  colour particle filter), KMS (Comaniciu et al.'s kernel mean-shift) and MIL, whose boxes are
-  in neither copy. Those files hold, per sequence, the fraction of frames with IoU below 0.5
-  (``errorNum``, times 10), not the boxes: the success rate is one minus it, and no AUC can be
-  had. The same files give a second value for IVT, Struck, TLD and MEEM (column
-  ``alt_success_rate_iou50``).
+* MATLAB-toolkit result files ``results/results_OPE/results_OPE_OTB100/<seq>_<tracker>.mat``
+  in ``github.com/zhangzheng0131/Tracker_Benchmark_tb100`` (a copy of the OTB toolkit v1.0
+  with OPE result files of 16 trackers on OTB-100; the repository does not say where each file
+  came from), read as boxes for IVT, Struck, TLD, MEEM and KCF (the file ``KCF_GaussHog``:
+  Gaussian kernel on HOG features, the variant the KCF paper calls KCF). Its annotations
+  (``anno_TB100``) equal the development set's ground truth on all five sequences.
+* Per-sequence scores ``results/OPE/<tracker>/scores_tb100/ALL.json`` of the Python port of
+  the toolkit, ``github.com/jwlim/tracker_benchmark`` (Jongwoo Lim, an OTB author), for CPF
+  (Pérez et al.'s colour particle filter), KMS (Comaniciu et al.'s kernel mean-shift) and MIL,
+  whose boxes are in neither copy. They hold, per sequence, ten times the fraction of frames
+  with IoU below 0.5 (``errorNum``), not the boxes: the success rate is one minus that fraction
+  (an IoU of exactly 0.5 counts as a success there) and no AUC can be had. Where that
+  repository also holds the boxes (Struck, MEEM) its scores are reproduced exactly from them.
+  The same files give a second value for IVT, Struck, TLD and MEEM (``alt_success_rate_iou50``):
+  close to the first for IVT and MEEM, far from it for Struck and TLD (other runs).
 
 The table ``trackbook/data/otb_published.csv`` is recomputed from downloaded copies of those
-files by ``benchmarks/otb_published.py`` (which downloads nothing; the repository and commit of
-every file are in the ``source`` columns).
+files by ``benchmarks/otb_published.py`` (which downloads nothing; the repository, commit and
+path of every file are in the ``source`` and ``alt_source`` columns).
 
 Measure
 -------
@@ -38,13 +42,15 @@ What the comparison can and cannot show
 ---------------------------------------
 It can show where the book's trackers stand among the trackers the benchmark made canonical, on
 the same frames and the same ground truth, in the measure the benchmark used. It cannot show
-which tracker is better in general: these are five sequences; the published numbers are the
-authors' code in the OTB authors' runs (their parameters, one run each, their initialisation on
-the ground-truth box of frame 1, possibly shifted by one pixel between toolkits), the book's are
-its own implementations; a stochastic tracker's single run on a 120-frame sequence moves by
-several points from seed to seed; and the two public copies of the result files do not agree
-with each other for the trackers they share (column ``alt_success_rate_iou50``: other runs),
-so a published number is one run, not the tracker's value.
+which tracker is better in general: these are five sequences; a published number is the
+tracker authors' code run once through a toolkit (their parameters, their initialisation on
+the ground-truth box of frame 1, which the Python toolkit passes one pixel shifted to some
+trackers), a book number is the book's own implementation run once with one seed, and a
+stochastic tracker's single run can change with the seed; the two public copies of the result
+files do not agree with each other for Struck and TLD (column ``alt_success_rate_iou50``), so
+a published number is one run, not the tracker's value. A gap of a few frames on one sequence
+means nothing; a tracker that fails where the canonical ones succeed (or the reverse) is worth
+a look at the frames.
 """
 
 from __future__ import annotations
