@@ -49,7 +49,7 @@ def test_track_max_frames_zero(tmp_path, capsys, extra):
 
 def test_track_all_targets_api_max_frames_zero():
     from trackbook import evaluate
-    with pytest.raises(ValueError, match="at least 2 frames"):
+    with pytest.raises(ValueError, match="max_frames = 0: .*at least 2"):
         evaluate("mean-shift", "two-faces", max_frames=0, targets="all")
 
 
