@@ -81,7 +81,7 @@ def for_paper(paper: str) -> list[Quote]:
 
 
 def references(text: str) -> list[str]:
-    """The quote keys a text cites, in order: the role ``{quote}`...``` and the plain ``[quote: ...]`` form."""
+    """The quote keys a text cites, in order: the book's role and the plain-text form."""
     found = [(m.start(), m.group(1).strip()) for m in ROLE.finditer(text)]
     found += [(m.start(), m.group(1).strip()) for m in TEXT_REFERENCE.finditer(text)]
     return [k for _, k in sorted(found)]
