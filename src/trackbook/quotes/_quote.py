@@ -1,4 +1,4 @@
-"""The record of one quote: a passage of a paper, as printed, with its English translation."""
+"""The record of one quote: a passage of a paper, verbatim, with its English translation."""
 
 from __future__ import annotations
 
@@ -27,7 +27,7 @@ class Quote:
     where : str
         The section, table, figure or equation the passage comes from.
     original : str
-        The passage as printed (Korean as printed, or the English abstract); runs of
+        The passage verbatim (Korean, or the English abstract); runs of
         whitespace (line and page breaks, table cells) may be written as one space.
     translation : str
         A faithful English translation (the passage itself when it is English).

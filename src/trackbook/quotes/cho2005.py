@@ -1,6 +1,7 @@
 """Quotes of Cho and Kang (2005), Condensation with mean-shift moved candidates.
 
-Korean as printed, English translation beside it. Section numbers are the paper's (1-6).
+Each original is copied from the paper's text (Korean, or the English abstract); the
+translation is beside it. Section numbers are the paper's (1-6).
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """Quotes of Kim, Kim and Choi (2016), the edge observation model particle filter.
 
-Korean as printed, English translation beside it. Section numbers are the paper's (1-5).
+Each original is copied from the paper's text (Korean, or the English abstract); the
+translation is beside it. Section numbers are the paper's (1-5).
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """Quotes of Lee, Cui, Kim, Ma, Lee and Kim (2012), the colour + HOG + IPCA particle filter.
 
-Korean as printed, English translation beside it. Section numbers are the paper's (I-VII).
+Each original is copied from the paper's text (Korean, or the English abstract); the
+translation is beside it. Section numbers are the paper's (I-VII).
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """Quotes of Lee (2015), covariance matching inside a Kalman search window.
 
-Korean as printed, English translation beside it. Section numbers are the paper's (I-IV).
+Each original is copied from the paper's text (Korean, or the English abstract); the
+translation is beside it. Section numbers are the paper's (I-IV).
 """
 
 from __future__ import annotations
