@@ -102,3 +102,37 @@ def test_attribution_check_warns_or_stops(tmp_path):
         build(tmp_path / "error", page, quotes_check_attributions="error")
     with pytest.raises(SphinxError, match="quotes_check_attributions"):
         build(tmp_path / "bad", page, quotes_check_attributions="loud")
+
+
+@pytest.mark.browser
+@pytest.mark.parametrize("width", [390, 1280])
+def test_popover_opens_inside_the_screen_without_network(page, width):
+    """Headless Chromium on the built page, from file://: tabbing to a marker opens its
+    popover, wholly inside the viewport, and the page asks for nothing over the network."""
+    import shutil
+    chromium = next((shutil.which(c) for c in ("chromium", "chromium-browser", "google-chrome")
+                     if shutil.which(c)), None)
+    sync = pytest.importorskip("playwright.sync_api")
+    if chromium is None:
+        pytest.skip("no Chromium (apt-get install chromium)")
+    out, _, _ = page
+    remote = []
+    with sync.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
+        try:
+            tab = browser.new_page(viewport={"width": width, "height": 800})
+            tab.on("request", lambda r: remote.append(r.url)
+                   if not r.url.startswith(("file:", "data:", "about:")) else None)
+            tab.goto((out / "index.html").as_uri())
+            pop = tab.locator(".tb-quote-pop").first
+            assert not pop.is_visible()                       # closed until asked
+            tab.locator(".tb-quote").first.focus()
+            assert pop.is_visible()
+            box = pop.bounding_box()
+            assert box["x"] >= 0 and box["x"] + box["width"] <= width
+            assert box["y"] >= 0 and box["y"] + box["height"] <= 800
+            assert tab.evaluate("document.documentElement.scrollWidth") <= width
+            assert "n = 40" in pop.inner_text()
+        finally:
+            browser.close()
+    assert not remote, remote

@@ -42,8 +42,10 @@ CSS = """\
 .tb-quote-mark { font-size: 0.7em; line-height: 0; vertical-align: super; cursor: help;
   color: #0072b2; padding: 0 0.1em; border-bottom: 1px dotted currentColor; }
 .tb-quote:focus { outline: 2px solid #0072b2; outline-offset: 1px; }
-.tb-quote-pop { display: none; position: absolute; left: 0; top: 1.4em; z-index: 30;
-  width: 26rem; max-width: 80vw; max-height: 60vh; overflow: auto;
+/* fixed to the viewport's lower corner: never wider than the screen, never pushes the page
+   sideways wherever the marker sits on its line */
+.tb-quote-pop { display: none; position: fixed; right: 1rem; bottom: 1rem; z-index: 1050;
+  width: 28rem; max-width: calc(100vw - 2rem); max-height: 60vh; overflow: auto;
   padding: 0.6em 0.8em; background: var(--pst-color-surface, #fff);
   color: var(--pst-color-text-base, #222); border: 1px solid #999; border-radius: 4px;
   box-shadow: 0 2px 8px rgba(0, 0, 0, 0.25); font-size: 0.85rem; line-height: 1.4;
@@ -58,8 +60,8 @@ CSS = """\
 .tb-quote-list { font-size: 0.9rem; margin-top: 2em; }
 .tb-quote-list li { margin-bottom: 0.6em; }
 @media (max-width: 600px) {
-  .tb-quote-pop { position: fixed; left: 0.5rem; right: 0.5rem; top: auto; bottom: 0.5rem;
-    width: auto; max-width: none; max-height: 50vh; }
+  .tb-quote-pop { left: 0.5rem; right: 0.5rem; bottom: 0.5rem; width: auto; max-width: none;
+    max-height: 50vh; }
 }
 @media print { .tb-quote-pop { display: none !important; } }
 """
