@@ -24,22 +24,44 @@ from pathlib import Path
 from . import ROLE, TEXT_REFERENCE
 
 _VERB = (r"(?:says?|said|prints?|printed|uses?|used|reports?|reported|claims?|claimed|"
-         r"measures?|measured|counts?|counted|never|states?|stated|names?|named|keeps?|"
-         r"gives?|writes?|does\s+not|doesn't|do\s+not|don't|only|defines?|sets?|chooses?|"
-         r"compares?|runs?|ran|tests?|tested|calls?|describes?|specif(?:y|ies))")
+         r"measures?|measured|counts?|counted|never|states?|stated|names?|named|keeps?|kept|"
+         r"gives?|gave|writes?|wrote|does\s+not|doesn't|do\s+not|don't|only|defines?|"
+         r"defined|sets?|chooses?|chose|compares?|compared|runs?|ran|tests?|tested|calls?|"
+         r"called|describes?|described|specif(?:y|ies|ied)|evaluates?|evaluated|tracks?|"
+         r"tracked|shows?|showed|learns?|learned|adds?|added|removes?|removed|finds?|found|"
+         r"achieves?|achieved|reach(?:es|ed)?|assumes?|assumed|mentions?|mentioned|"
+         r"suggests?|suggested|argues?|argued|recommends?|recommended|builds?|built|"
+         r"draws?|drew|plots?|plotted|lists?|listed|fixe[sd]|fix|proposes?|proposed|"
+         r"applies|applied|computes?|computed|weighs?|weighted|normali[sz]es?|"
+         r"normali[sz]ed|resamples?|resampled|searche[sd]|search|spreads?|ignores?|"
+         r"ignored|omits?|omitted|leaves?|left|needs?|needed)")
 _YEAR = r"(?:\(?\d{4}\)?,?\s+)"
+_YEAR_TIGHT = r"(?:\(?\d{4}\)?\s+)"
+#: Words after a citation that do not make it an attribution (a conjunction, a preposition).
+_NOT_A_VERB = (r"(?!(?:is|was|are|were|be|and|or|in|on|of|for|to|with|the|a|an|as|at|by|from|"
+               r"than|that|which|who|also|here|there|do|does|did|has|have|had|paper|papers)\b)")
+#: After a citation with its year (no comma), any other word is taken as its verb.
+_ANY_VERB = _NOT_A_VERB + r"[a-z]+\b"
+_NOUN = (r"(?:measure|gain|value|values|setting|settings|criterion|choice|default|rule|"
+         r"factor|figure|numbers?|rate|rates|tracking\s+rate|timings?|times|claims?|"
+         r"argument|table|tables|videos?|results?|experiments?|method|preset|tracker|"
+         r"equation|formula|baselines?|hardware|data)")
 
-#: The patterns of an attribution sentence, in order: "the paper(s)" with a verb of saying;
-#: an "et al." citation with a verb; a bare surname with its year and a verb; Cho and Kang
-#: with a verb; a possessive of "the paper" with a noun such as measure or gain; the phrases
-#: of a printed value ("as" with "printed" or with "the paper").
+#: The patterns of an attribution sentence, in order: "the paper(s)" with a verb of saying
+#: (also with "which" between them); an "et al." citation with a verb, or with its year
+#: and any verb; a bare surname with its year and a verb; Cho and Kang with a verb; a
+#: possessive of "the paper" with a noun such as measure, gain or timings; the phrases of a
+#: printed value ("as" with "printed" or with "the paper").
 PATTERNS = [
-    re.compile(r"\bthe\s+papers?(?:'s?)?\s+(?:own\s+)?(?:text\s+)?" + _VERB + r"\b", re.I),
-    re.compile(r"\bet\s+al\.?,?\s+" + _YEAR + r"?" + _VERB + r"\b", re.I),
-    re.compile(r"\b(?:Lee|Kim|Cho)\s+" + _YEAR + _VERB + r"\b"),
+    re.compile(r"\bthe\s+papers?(?:'s?)?,?\s+(?:which\s+|that\s+)?(?:own\s+)?(?:text\s+)?"
+               r"(?:also\s+|only\s+)?" + _VERB + r"\b", re.I),
+    re.compile(r"\bet\s+al\.?,?\s+(?:" + _YEAR + r"?" + _VERB + r"\b|" + _YEAR_TIGHT + _ANY_VERB
+               + r")", re.I),
+    re.compile(r"\b(?:Lee|Kim|Cho)\s+(?:" + _YEAR + _VERB + r"\b|" + _YEAR_TIGHT + _ANY_VERB
+               + r")"),
     re.compile(r"\bCho\s+(?:and|&)\s+Kang,?\s+" + _YEAR + r"?" + _VERB + r"\b"),
-    re.compile(r"\bthe\s+papers?'s?\s+(?:own\s+)?(?:measure|gain|value|values|setting|"
-               r"settings|criterion|choice|default|rule|factor|figure|numbers?)\b", re.I),
+    re.compile(r"\bthe\s+papers?(?:'s?|')\s+(?:own\s+)?(?:printed\s+)?" + _NOUN + r"\b",
+               re.I),
     re.compile(r"\bas\s+(?:printed|in\s+the\s+papers?|the\s+papers?)\b", re.I),
 ]
 
