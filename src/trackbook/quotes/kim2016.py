@@ -139,4 +139,15 @@ QUOTES = [
           "To apply it to various fields, further research is needed on updating the edge "
           "observation model as the object changes, or on modelling with several features "
           "combined."),
+    Quote("kim2016.abstract_real_time", "Abstract (English)",
+          r"In this paper, we propose a method that is tracking an object in real time using "
+          r"particle filter and the observation model with edge.",
+          "In this paper, we propose a method that is tracking an object in real time using "
+          "particle filter and the observation model with edge."),
+    Quote("kim2016.baselines_reason", "§4, first paragraph",
+          r"표 1에서 보듯이, 파티클 필터에 사용되는 객체 특징 중 많이 사용되는 HSI 색상 모델과 HOG "
+          r"특징을 이용하여 파티클 필터의 객체 추적 성능을 비교하기 위한 방법으로 사용하였다.",
+          "As Table 1 shows, the HSI colour model and the HOG feature, widely used object "
+          "features of particle filters, were used as the methods against which the particle "
+          "filter's tracking performance is compared."),
 ]

@@ -237,4 +237,31 @@ QUOTES = [
           r"분석하고",
           "Also, the tracked object's information is accumulated every frame and its principal "
           "components are analysed by on-line learning"),
+    Quote("lee2012.hog_robust_light", "§I, fourth paragraph",
+          r"영상 내에서 물체의 형태를 표현하기에 적합하며, 조명의 변화에 강인한 성질을 나타내어 많은 "
+          r"물체 추적 응용에서 사용되고 있다.",
+          "(HOG) is suited to representing the shape of an object in an image and is robust to "
+          "illumination changes, so it is used in many object tracking applications."),
+    Quote("lee2012.resize_reason", "§II, paragraph after Fig. 1",
+          r"영상의 크기를 재설정하는 이유는 물체의 특징의 차원을 줄이고, 주요 특징 성분만 계산하기 "
+          r"위함이다.",
+          "The reason for resizing the image is to reduce the dimension of the object's features "
+          "and to compute only the main feature components."),
+    Quote("lee2012.hsv_channels", "§III.1, last paragraph",
+          r"따라서 HSV모델에서 색상(hue), 채도(saturation), 밝기(value)를 모두 이용하도록 "
+          r"구성하였으며,",
+          "Therefore it was built to use all of hue, saturation and value of the HSV model,"),
+    Quote("lee2012.hsv_fig3", "§III.1, Fig. 3 caption",
+          r"Fig. 3. 3D color histogram in HSV (8x8x4) in HSV model.",
+          "Fig. 3. 3D color histogram in HSV (8x8x4) in HSV model."),
+    Quote("lee2012.hog_fig4", "§III.2, Fig. 4 caption",
+          r"그림 4. 8개의 방향성을 가지는 24(6x4)개의 HOG 서술자.",
+          "Fig. 4. 24 (6x4) HOG descriptors with 8 orientations."),
+    Quote("lee2012.processing_55ms", "§VII, last paragraph",
+          r"또한 제안된 알고리즘은 평균 55 ms의 처리 속도를 가지므로 CPU기반 혹은 GPU기반의 병렬 "
+          r"처리 프로그래밍을 적용한다면 보다 향상된 처리 시간을 통해 실시간 처리가 가능할 것으로 "
+          r"예상된다.",
+          "Also, since the proposed algorithm takes 55 ms on average, real-time processing is "
+          "expected to be possible with the faster processing that CPU- or GPU-based parallel "
+          "programming would bring."),
 ]

@@ -134,4 +134,12 @@ QUOTES = [
           r"그림 6은 frame 54~ frame 75에서 빠르게 움직이는 이동 물체(YellowBall)의 추적을 보여주고 "
           r"있다.",
           "Fig. 6 shows the tracking of a fast-moving object (YellowBall) in frames 54–75."),
+    Quote("lee2015.init_centre", "§2.3, after Fig. 1",
+          r"칼만 필터는 초기 추적할 물체에 대한 탐색 윈도우를 지정해 주기 위해 영상 프레임으로부터 "
+          r"움직임이 존재하는 영역을 계산하여 그 중심점을 초기 칼만 탐색 윈도우의 중심 좌표로 정하고 "
+          r"칼만 갱신 단계를 거쳐 다음 상태 예측에 사용한다.",
+          "To give the search window of the object to track at the start, the Kalman filter "
+          "computes the region of the frames where there is motion, takes its centre as the "
+          "centre of the initial Kalman search window, and after the Kalman update step uses it "
+          "to predict the next state."),
 ]
