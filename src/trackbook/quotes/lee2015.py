@@ -110,9 +110,9 @@ QUOTES = [
     Quote("lee2015.search_rate", "§III, after eq. 14",
           r"평균 탐색률은 탐색의 대상이 되는 전체 영역의 수와 물체의 추정 영역을 찾기 위해 시도한 "
           r"횟수의 비율로 몇 번의 시도 만에 영역을 찾았는지를 나타낸다.",
-          "The average search rate is the ratio of the number of regions subject to search to "
-          "the number of attempts made to find the object's estimated region; it shows after "
-          "how many attempts the region was found."),
+          "The average search rate is the ratio between the total number of regions subject "
+          "to search and the number of attempts made to find the object's estimated region; it "
+          "shows after how many attempts the region was found."),
     Quote("lee2015.table1", "§III, Table 1",
           r"miss/total detection rate averaging search rate covariance matrix 21/164 87.1% "
           r"0.134% propose method 6/164 96.3% 0.043%",
