@@ -85,6 +85,11 @@ def test_the_report_names_the_sentence():
     assert line == 1 and sentence == "The paper prints N = 100."
 
 
+def test_the_sentence_survives_abbreviations():
+    (line, sentence), = unquoted("See eq. 5. Lee et al. (2012) print it as eq. 10 (Fig. 2). Next.\n")
+    assert sentence == "Lee et al. (2012) print it as eq. 10 (Fig. 2)."
+
+
 def test_python_comments_docstrings_and_param_docs():
     src = '''"""Module doc.
 

@@ -85,14 +85,18 @@ def _cited(text: str) -> bool:
     return bool(ROLE.search(text) or TEXT_REFERENCE.search(text) or KEY_LITERAL.search(text))
 
 
+#: The end of a sentence: a stop and a space, not after an abbreviation (eq., et al., Fig.).
+_STOP = re.compile(r"(?<!\beq)(?<!\bEq)(?<!\bal)(?<!\bFig)(?<!\bfig)(?<!\be\.g)(?<!\bi\.e)"
+                   r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bno)[.?!](?=\s)|\n\s*\n")
+
+
 def _sentence(text: str, start: int, end: int) -> str:
     """The sentence around ``text[start:end]``, whitespace collapsed, at most ~200 chars."""
-    left = max(text.rfind(". ", 0, start), text.rfind("? ", 0, start),
-               text.rfind("! ", 0, start), text.rfind("\n\n", 0, start))
-    left = 0 if left < 0 else left + 2
-    right = [i for i in (text.find(". ", end), text.find("? ", end), text.find("! ", end))
-             if i >= 0]
-    right = min(right) + 1 if right else len(text)
+    left = 0
+    for m in _STOP.finditer(text, 0, start):
+        left = m.end()
+    m = _STOP.search(text, end)
+    right = m.end() if m else len(text)
     s = re.sub(r"\s+", " ", text[left:right]).strip()
     return s if len(s) <= 200 else s[:197] + "..."
 
