@@ -39,7 +39,9 @@ _YEAR = r"(?:\(?\d{4}\)?,?\s+)"
 _YEAR_TIGHT = r"(?:\(?\d{4}\)?\s+)"
 #: Words after a citation that do not make it an attribution (a conjunction, a preposition).
 _NOT_A_VERB = (r"(?!(?:is|was|are|were|be|and|or|in|on|of|for|to|with|the|a|an|as|at|by|from|"
-               r"than|that|which|who|also|here|there|do|does|did|has|have|had|paper|papers)\b)")
+               r"than|that|which|who|also|here|there|do|does|did|has|have|had|paper|papers|beside|"
+               r"against|below|above|under|after|before|into|over|through|per|about|section|"
+               r"sections|table|tables|eq|fig|figure|page|pp?)\b)")
 #: After a citation with its year (no comma), any other word is taken as its verb.
 _ANY_VERB = _NOT_A_VERB + r"[a-z]+\b"
 _NOUN = (r"(?:measure|gain|value|values|setting|settings|criterion|choice|default|rule|"
