@@ -4,7 +4,8 @@ Every module's imports are read with :mod:`ast` (imports inside functions count 
 import still makes the lower layer depend on the higher one) and resolved to modules of the
 package. Layers, bottom up:
 
-0. ``_checks``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers`` (helpers, data)
+0. ``_checks``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers``, ``quotes``
+   (helpers, data)
 1. ``clips``, ``features``, ``learning``
 2. ``filters``
 3. ``trackers``
@@ -29,6 +30,7 @@ PACKAGE = SRC / "trackbook"
 
 LAYERS = {
     "_checks": 0, "_memory": 0, "_markdown": 0, "params": 0, "style": 0, "papers": 0,
+    "quotes": 0,
     "clips": 1, "features": 1, "learning": 1,
     "filters": 2,
     "trackers": 3,

@@ -1,0 +1,232 @@
+"""Find sentences that say what a paper says, prints, uses or reports without citing a quote.
+
+A sentence that speaks for a paper ("the paper prints ...", "Kim et al. (2016) use ...",
+"Cho and Kang report ...", "as printed") must carry a quote reference in the same paragraph:
+the book's role ``{quote}`lee2012.t40``` or, in docstrings, comments and param docs, the plain
+form ``[quote: lee2012.t40]``. :func:`unquoted` lists the ones that carry none.
+
+Paragraphs are: in Markdown, runs of non-blank lines; in Python, each docstring paragraph and
+each run of comments and string literals on consecutive lines (a param's doc split over
+several literals is one paragraph).
+
+Run ``python -m trackbook.quotes.attributions FILE...`` for a ``file:line: sentence`` list.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import sys
+import tokenize
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import ROLE, TEXT_REFERENCE
+
+_VERB = (r"(?:says?|said|prints?|printed|uses?|used|reports?|reported|claims?|claimed|"
+         r"measures?|measured|counts?|counted|never|states?|stated|names?|named|keeps?|kept|"
+         r"gives?|gave|writes?|wrote|does\s+not|doesn't|do\s+not|don't|only|defines?|"
+         r"defined|sets?|chooses?|chose|compares?|compared|runs?|ran|tests?|tested|calls?|"
+         r"called|describes?|described|specif(?:y|ies|ied)|evaluates?|evaluated|tracks?|"
+         r"tracked|shows?|showed|learns?|learned|adds?|added|removes?|removed|finds?|found|"
+         r"achieves?|achieved|reach(?:es|ed)?|assumes?|assumed|mentions?|mentioned|"
+         r"suggests?|suggested|argues?|argued|recommends?|recommended|builds?|built|"
+         r"draws?|drew|plots?|plotted|lists?|listed|fixe[sd]|fix|proposes?|proposed|"
+         r"applies|applied|computes?|computed|weighs?|weighted|normali[sz]es?|"
+         r"normali[sz]ed|resamples?|resampled|searche[sd]|search|spreads?|ignores?|"
+         r"ignored|omits?|omitted|leaves?|left|needs?|needed)")
+_YEAR = r"(?:\(?\d{4}\)?,?\s+)"
+_YEAR_TIGHT = r"(?:\(?\d{4}\)?\s+)"
+#: Words after a citation that do not make it an attribution (a conjunction, a preposition).
+_NOT_A_VERB = (r"(?!(?:is|was|are|were|be|and|or|in|on|of|for|to|with|the|a|an|as|at|by|from|"
+               r"than|that|which|who|also|here|there|do|does|did|has|have|had|paper|papers|beside|"
+               r"against|below|above|under|after|before|into|over|through|per|about|section|"
+               r"sections|table|tables|eq|fig|figure|page|pp?)\b)")
+#: After a citation with its year (no comma), any other word is taken as its verb.
+_ANY_VERB = _NOT_A_VERB + r"[a-z]+\b"
+_NOUN = (r"(?:measure|gain|value|values|setting|settings|criterion|choice|default|rule|"
+         r"factor|figure|numbers?|rate|rates|tracking\s+rate|timings?|times|claims?|"
+         r"argument|table|tables|videos?|results?|experiments?|method|preset|tracker|"
+         r"equation|formula|baselines?|hardware|data)")
+
+#: The patterns of an attribution sentence, in order: "the paper(s)" with a verb of saying
+#: (also with "which" between them); an "et al." citation with a verb, or with its year
+#: and any verb; a bare surname with its year and a verb; Cho and Kang with a verb; a
+#: possessive of "the paper" with a noun such as measure, gain or timings; the phrases of a
+#: printed value ("as" with "printed" or with "the paper").
+PATTERNS = [
+    re.compile(r"\bthe\s+papers?(?:'s?)?,?\s+(?:which\s+|that\s+)?(?:own\s+)?(?:text\s+)?"
+               r"(?:also\s+|only\s+)?" + _VERB + r"\b", re.I),
+    re.compile(r"\bet\s+al\.?,?\s+(?:" + _YEAR + r"?" + _VERB + r"\b|" + _YEAR_TIGHT + _ANY_VERB
+               + r")", re.I),
+    re.compile(r"\b(?:Lee|Kim|Cho)\s+(?:" + _YEAR + _VERB + r"\b|" + _YEAR_TIGHT + _ANY_VERB
+               + r")"),
+    re.compile(r"\bCho\s+(?:and|&)\s+Kang,?\s+" + _YEAR + r"?" + _VERB + r"\b"),
+    re.compile(r"\bthe\s+papers?(?:'s?|')\s+(?:own\s+)?(?:printed\s+)?" + _NOUN + r"\b",
+               re.I),
+    re.compile(r"\bas\s+(?:printed|in\s+the\s+papers?|the\s+papers?)\b", re.I),
+]
+
+#: In Python, a string literal that is a register key (``quote="lee2012.t40"``) cites too.
+KEY_LITERAL = re.compile(r"""["'](?:lee2012|kim2016|lee2015|cho2005)\.[a-z0-9_]+["']""")
+
+
+@dataclass(frozen=True)
+class Attribution:
+    """An attribution sentence with no quote reference in its paragraph."""
+
+    path: str
+    line: int
+    sentence: str
+
+    def __str__(self):
+        return f"{self.path}:{self.line}: {self.sentence}"
+
+
+def _cited(text: str) -> bool:
+    return bool(ROLE.search(text) or TEXT_REFERENCE.search(text) or KEY_LITERAL.search(text))
+
+
+#: The end of a sentence: a stop and a space, not after an abbreviation (eq., et al., Fig.).
+_STOP = re.compile(r"(?<!\beq)(?<!\bEq)(?<!\bal)(?<!\bFig)(?<!\bfig)(?<!\be\.g)(?<!\bi\.e)"
+                   r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bno)[.?!](?=\s)|\n\s*\n")
+
+
+def _sentence(text: str, start: int, end: int) -> str:
+    """The sentence around ``text[start:end]``, whitespace collapsed, at most ~200 chars."""
+    left = 0
+    for m in _STOP.finditer(text, 0, start):
+        left = m.end()
+    m = _STOP.search(text, end)
+    right = m.end() if m else len(text)
+    s = re.sub(r"\s+", " ", text[left:right]).strip()
+    return s if len(s) <= 200 else s[:197] + "..."
+
+
+def _check_paragraph(text: str, first_line: int, offsets: list[int] | None = None):
+    """``(line, sentence)`` of each attribution in one paragraph that cites no quote."""
+    if _cited(text):
+        return []
+    out = []
+    for rx in PATTERNS:
+        for m in rx.finditer(text):
+            line = first_line + text.count("\n", 0, m.start())
+            if offsets is not None:
+                line = offsets[min(text.count("\n", 0, m.start()), len(offsets) - 1)]
+            out.append((line, m.start(), _sentence(text, m.start(), m.end())))
+    seen, result = set(), []
+    for line, _, sentence in sorted(out):
+        if (line, sentence) not in seen:       # two patterns on one sentence: one entry
+            seen.add((line, sentence))
+            result.append((line, sentence))
+    return result
+
+
+def _markdown_paragraphs(text: str):
+    lines = text.splitlines()
+    block, start = [], 1
+    for n, line in enumerate(lines + [""], 1):
+        if line.strip() and not line.lstrip().startswith("```"):
+            if not block:
+                start = n
+            block.append(line)
+        elif block:
+            yield "\n".join(block), start
+            block = []
+
+
+def _python_paragraphs(text: str):
+    """Paragraphs of a module's prose, each with the source line of each of its lines.
+
+    A run of comments on consecutive lines is one paragraph; the string literals of one
+    logical line (a param's doc split over several literals, its ``why``) are one; a
+    docstring splits at its blank lines.
+    """
+    try:
+        tokens = list(tokenize.generate_tokens(io.StringIO(text).readline))
+    except (tokenize.TokenError, SyntaxError, IndentationError):
+        for para, start in _markdown_paragraphs(text):
+            yield para, list(range(start, start + para.count("\n") + 1))
+        return
+    groups, strings, comments = [], [], []
+    for tok in tokens:
+        if tok.type == tokenize.COMMENT:
+            if comments and tok.start[0] > comments[-1].start[0] + 1:
+                groups.append(comments)
+                comments = []
+            comments.append(tok)
+        elif tok.type == tokenize.STRING:
+            strings.append(tok)
+        elif tok.type in (tokenize.NEWLINE, tokenize.ENDMARKER) and strings:
+            groups.append(strings)
+            strings = []
+    for run in (strings, comments):
+        if run:
+            groups.append(run)
+    for run in groups:
+        pieces, lines = [], []
+        for tok in run:
+            s = tok.string.lstrip("#") if tok.type == tokenize.COMMENT else tok.string
+            for k, part in enumerate(s.split("\n")):
+                pieces.append(part)
+                lines.append(tok.start[0] + k)
+        block, block_lines = [], []
+        for part, n in zip(pieces + [""], lines + [lines[-1]]):
+            if part.strip().strip("\"'").strip():
+                block.append(part)
+                block_lines.append(n)
+            elif block:
+                yield "\n".join(block), block_lines
+                block, block_lines = [], []
+
+
+def unquoted(text: str, *, python: bool = False) -> list[tuple[int, str]]:
+    """``(line, sentence)`` of every attribution sentence whose paragraph cites no quote.
+
+    Parameters
+    ----------
+    text : str
+        A Markdown page (``python=False``) or a Python module's source (``python=True``:
+        only its comments, docstrings and string literals are read).
+    """
+    out = []
+    if python:
+        for para, lines in _python_paragraphs(text):
+            out += _check_paragraph(para, lines[0], offsets=lines)
+    else:
+        for para, start in _markdown_paragraphs(text):
+            out += _check_paragraph(para, start)
+    return sorted(set(out))
+
+
+def scan(path, *, root=None) -> list[Attribution]:
+    """The unquoted attribution sentences of one file (``.py`` or Markdown)."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no such file to scan for attributions: {path}")
+    text = path.read_text(encoding="utf-8")
+    name = str(path.relative_to(root)) if root else str(path)
+    return [Attribution(name, line, s)
+            for line, s in unquoted(text, python=path.suffix == ".py")]
+
+
+def main(argv=None) -> int:
+    """``python -m trackbook.quotes.attributions FILE...``: list, exit 1 when any."""
+    argv = sys.argv[1:] if argv is None else argv
+    if not argv:
+        print("usage: python -m trackbook.quotes.attributions FILE...", file=sys.stderr)
+        return 2
+    found = []
+    for name in argv:
+        try:
+            found += scan(name)
+        except (FileNotFoundError, UnicodeDecodeError) as e:
+            print(f"error: {e}", file=sys.stderr)
+            return 2
+    for a in found:
+        print(a)
+    return 1 if found else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,91 @@
+"""Which passage backs each value a tracker's ``paper=`` records, and whether it is printed.
+
+``FIELDS[tracker][field] = (key, state)``: ``key`` names the quote of the register,
+``state`` is ``"printed"`` (the passage states the value) or ``"reading"`` (the passage is
+ambiguous or elided, and the value is the book's reading of it). A field with
+``paper=NOT_PRINTED`` has no entry. ``UNSUPPORTED`` lists the ``paper=`` values that no passage
+backs, with the reason; the params that record them are to be corrected.
+"""
+
+from __future__ import annotations
+
+_LEE2012_COLOR = {
+    "n_particles": ("lee2012.n100", "printed"),
+    "sigma_color": ("lee2012.sigma04", "printed"),
+    "size_noise": ("lee2012.motion_noise", "printed"),
+    "vx_noise": ("lee2012.motion_noise", "printed"),
+    "vy_noise": ("lee2012.motion_noise", "printed"),
+    "resampler": ("lee2012.resample_cumulative", "printed"),
+    "init": ("lee2012.init_whole_frame", "printed"),
+}
+_LEE2012_HOG = {
+    **_LEE2012_COLOR,
+    "alpha": ("lee2012.alpha01", "printed"),
+    "sigma_hog": ("lee2012.sigma04", "printed"),
+}
+_LEE2012_IPCA = {
+    **_LEE2012_HOG,
+    "T": ("lee2012.t40", "printed"),
+    "learn_threshold": ("lee2012.unfiltered_accumulation", "printed"),
+    "gate_k": ("lee2012.unfiltered_accumulation", "printed"),
+    "learn_every": ("lee2012.accumulate_every_frame", "printed"),
+    # eq. 12-13 reconstruct z with U U^T alone: no anchor to the first frame, no mean
+    # subtracted, the histogram itself as z; the garbled print makes each a reading
+    "anchor": ("lee2012.likelihood_eq12", "reading"),
+    "centre": ("lee2012.likelihood_eq12", "reading"),
+    "feature_map": ("lee2012.likelihood_eq12", "reading"),
+}
+_LEE2015 = {
+    # eq. 2 is printed with an ellipsis after I_x: the rest of f is the book's completion
+    "features": ("lee2015.features_eq2", "reading"),
+}
+
+FIELDS: dict[str, dict[str, tuple[str, str]]] = {
+    "color-pf": _LEE2012_COLOR,
+    "color-hog-pf": _LEE2012_HOG,
+    "color-hog-ipca": _LEE2012_IPCA,
+    "edge-ray-pf": {
+        "n_particles": ("kim2016.max999", "printed"),
+        "ratio_low": ("kim2016.ratio_window", "printed"),
+        "ratio_high": ("kim2016.ratio_window", "printed"),
+    },
+    "covariance": {
+        **_LEE2015,
+        "fallback": ("lee2015.whole_frame_search", "printed"),
+    },
+    "kalman-covariance": {
+        **_LEE2015,
+        "fallback": ("lee2015.research_in_window", "reading"),
+        "q": ("lee2015.q_identity", "printed"),
+        "r": ("lee2015.r_identity", "printed"),
+        # the 24 x 24 region is printed for the search-rate measurement, not for a model window
+        "init_size": ("lee2015.window24", "reading"),
+    },
+    "condensation": {
+        "n_particles": ("cho2005.condensation_n100", "printed"),
+        "resampler": ("cho2005.condensation_sampling", "reading"),
+    },
+    "condensation-mean-shift": {
+        "n_particles": ("cho2005.proposed_n5", "printed"),
+        "resampler": ("cho2005.condensation_sampling", "reading"),
+        # eq. 12-13 move each candidate once (y1 = y0 + y^n); no iteration count is printed
+        "max_iter": ("cho2005.likelihood_rises_eq13", "reading"),
+        "use_motion": ("cho2005.motion_vector", "printed"),
+        # eq. 8 is one least-squares problem over the region: one level, one solve, as read
+        "flow_levels": ("cho2005.flow_eq8", "reading"),
+        "flow_iterations": ("cho2005.flow_eq8", "reading"),
+    },
+}
+
+#: ``(tracker, field)``: ``paper=`` values that no passage backs.
+UNSUPPORTED: dict[tuple[str, str], str] = {
+    ("hsi-color-pf", "n_particles"): "the 999 particles are the proposed filter's "
+                                     "[quote: kim2016.max999]; no baseline setting is printed",
+    ("hog-pf", "n_particles"): "the 999 particles are the proposed filter's "
+                               "[quote: kim2016.max999]; no baseline setting is printed",
+}
+
+
+def backing(tracker: str, field: str) -> tuple[str, str] | None:
+    """``(quote key, "printed" | "reading")`` behind ``tracker``'s ``field``, or None."""
+    return FIELDS.get(tracker, {}).get(field)

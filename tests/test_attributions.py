@@ -1,0 +1,156 @@
+"""The attribution check: a sentence that speaks for a paper cites a quote in its paragraph.
+
+Hand-made sentences the check must flag and must let pass, in Markdown and in Python source,
+then the check itself on the files that already follow the rule (the register, the Sphinx role,
+the evidence paragraph of the teaching appendix). The book as a whole is not checked yet: its
+attribution sentences gain their quotes chapter by chapter.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from trackbook.quotes import attributions
+from trackbook.quotes.attributions import unquoted
+
+REPO = Path(__file__).resolve().parents[1]
+
+FLAGGED = [
+    "The paper says old features are removed.",
+    "The papers report only the tracking rate.",
+    "the paper prints no forgetting factor",
+    "The paper's own text counts frames.",
+    "The paper never reports a lost target.",
+    "Lee et al. (2012) never report a lost target.",
+    "Kim et al. 2016 use up to 999 particles.",
+    "Kim et al. say the gain is one.",
+    "Lee (2015) prints Q = I.",
+    "Lee 2015 uses a 24 x 24 window.",
+    "Cho and Kang measure seconds per frame.",
+    "Cho & Kang (2005) report error curves.",
+    "By the paper's measure the proposed tracker is cheaper.",
+    "The paper's gain is 1.",
+    "features = 'xyIIxIy' as printed",
+    "0 = every frame, as the paper",
+    "Not in the paper, which never reports a lost target.",
+    "The paper tracks two faces with one tracker each.",
+    "The paper evaluated on eight private videos.",
+    "the papers' own tracking rate (IoU > 0.5)",
+    "The papers' own timings came from a Pentium 4.",
+    "not the one the paper's argument suggests",
+    "Lee et al. (2012) shrink it for a particle filter.",
+    "Lee (2015) writes the feature image as a mapping.",
+]
+
+PASSED = [
+    "The book's tracker keeps the last estimate.",
+    "Lee et al. (2012) is the first of the four papers.",      # names the paper, says nothing
+    "Papers of the period use colour histograms.",
+    "We measure the tracking rate at IoU > 0.5.",
+    "The lee2012 preset builds the printed method with T = 40.",
+    "Kim and Lee went to the market.",                         # no year, not a citation
+    "the paper-ready figure",
+    "Lee et al. (2012) and Kim et al. (2016) are two of the papers.",
+    "Lee et al. (2012), section V, eq. 9.",
+    "The paper by Lee et al. (2012) is in Korean.",
+]
+
+
+@pytest.mark.parametrize("sentence", FLAGGED)
+def test_attribution_without_quote_is_flagged(sentence):
+    found = unquoted(f"Some context.\n{sentence}\nMore context.\n")
+    assert [line for line, _ in found] == [2], (sentence, found)
+
+
+@pytest.mark.parametrize("sentence", FLAGGED)
+def test_attribution_with_a_quote_in_its_paragraph_passes(sentence):
+    assert unquoted(f"{sentence} {{quote}}`lee2012.t40`\n") == []
+    assert unquoted(f"{sentence}\nas printed [quote: lee2012.window40].\n") == []
+
+
+@pytest.mark.parametrize("sentence", PASSED)
+def test_other_sentences_pass(sentence):
+    assert unquoted(sentence + "\n") == []
+
+
+def test_the_quote_must_be_in_the_same_paragraph():
+    text = "The paper says T = 40.\n\nT = 40 {quote}`lee2012.t40`.\n"
+    assert [line for line, _ in unquoted(text)] == [1]
+
+
+def test_the_report_names_the_sentence():
+    (line, sentence), = unquoted("First sentence. The paper prints N = 100. Last one.\n")
+    assert line == 1 and sentence == "The paper prints N = 100."
+
+
+def test_the_sentence_survives_abbreviations():
+    (line, sentence), = unquoted("See eq. 5. Lee et al. (2012) print it as eq. 10 (Fig. 2). Next.\n")
+    assert sentence == "Lee et al. (2012) print it as eq. 10 (Fig. 2)."
+
+
+def test_python_comments_docstrings_and_param_docs():
+    src = '''"""Module doc.
+
+The paper says old features go.
+"""
+x = 1  # the paper prints N = 100 [quote: lee2012.n100]
+y = param(1, "alpha of eq. 14, "
+          "as printed")
+# Cho and Kang report seconds per frame.
+z = "the paper says in code strings too [quote: lee2012.t40]"
+'''
+    found = unquoted(src, python=True)
+    assert [line for line, _ in found] == [3, 7, 8], found
+
+
+def test_python_names_are_not_prose():
+    # an identifier or a call is not a sentence: only comments and literals are read
+    src = "the_paper_says = 1\nprints = the_paper_prints()\n"
+    assert unquoted(src, python=True) == []
+
+
+def test_scan_refuses_a_missing_file(tmp_path):
+    with pytest.raises(FileNotFoundError, match="nope.md"):
+        attributions.scan(tmp_path / "nope.md")
+
+
+def test_main_lists_and_exits(tmp_path, capsys):
+    page = tmp_path / "page.md"
+    page.write_text("Intro.\n\nThe paper says so.\n", encoding="utf-8")
+    assert attributions.main([str(page)]) == 1
+    assert f"{page}:3: The paper says so." in capsys.readouterr().out
+    page.write_text("The paper says so {quote}`lee2012.t40`.\n", encoding="utf-8")
+    assert attributions.main([str(page)]) == 0
+    assert attributions.main([]) == 2
+    assert attributions.main([str(tmp_path / "missing.md")]) == 2
+
+
+# --- the files that already follow the rule --------------------------------------------------
+
+OWN_FILES = [
+    *sorted((REPO / "src" / "trackbook" / "quotes").glob("*.py")),
+    REPO / "src" / "trackbook" / "sphinx_quotes.py",
+]
+
+
+@pytest.mark.parametrize("path", OWN_FILES, ids=lambda p: p.name)
+def test_own_files_cite_their_attributions(path):
+    found = attributions.scan(path, root=REPO)
+    assert not found, "attribution sentences without a quote:\n" + "\n".join(map(str, found))
+
+
+def _section(page: Path, heading: str) -> tuple[str, int]:
+    text = page.read_text(encoding="utf-8")
+    start = text.index(heading)
+    end = text.find("\n## ", start + len(heading))
+    return text[start:end if end >= 0 else None], text.count("\n", 0, start) + 1
+
+
+def test_the_evidence_paragraph_of_the_teaching_appendix_cites_its_quotes():
+    section, first = _section(REPO / "book" / "appendix_teaching.md",
+                              "## How to read the evidence markers")
+    found = [(first + line - 1, s) for line, s in unquoted(section)]
+    assert not found, found
+    assert section.count("{quote}`") >= 2
