@@ -27,6 +27,7 @@ from . import hsi_hog_pf  # noqa: E402,F401  seed 001: hsi-color-pf, hog-pf
 from . import edge_ray  # noqa: E402,F401  seed 001: edge-ray-pf
 from . import covariance  # noqa: E402,F401  seed 002: covariance, kalman-covariance
 from . import condensation_mean_shift  # noqa: E402,F401  seed 003: condensation, mean-shift, condensation-mean-shift
+from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf
 
 
 def available(reference: bool = False) -> list[str]:
