@@ -6,11 +6,11 @@ two axes are an image (rows, columns):
 
 - :func:`hann_window`, :func:`gaussian_labels`: the cosine window and the desired response;
 - :func:`mosse_terms`, :func:`mosse_filter`, :func:`linear_response`: the MOSSE filter
-  H* = Σ G ⊙ F* / (Σ F ⊙ F* + λ) (Bolme et al. 2010, eq. 10 with its regularisation);
+  H* = Σ G ⊙ F* / (Σ F ⊙ F* + λ) (Bolme et al. 2010, with a regularising λ);
 - :func:`gaussian_correlation`, :func:`kcf_train`, :func:`kcf_response`: the Gaussian kernel
   correlation k^{xz} computed with FFTs over multi-channel features, the dual solution
   α̂ = ŷ / (k̂^{xx} + λ) and the detection response f̂(z) = k̂^{xz} ⊙ α̂ (Henriques et al.
-  2015, eq. 17, 22 and 31);
+  2015);
 - :func:`psr`, :func:`peak_offset`: the peak-to-sidelobe ratio and the sub-cell peak.
 
 Conventions (the tests check them against slow loops and ``numpy.linalg.solve``): the
@@ -58,7 +58,7 @@ def mosse_terms(F: np.ndarray, G: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Numerator A = G ⊙ F* and denominator B = F ⊙ F* of one training image (Bolme et al.).
 
     ``F`` may hold a stack of training images (…, rows, cols); the terms are summed over the
-    stack, as in eq. 10 of Bolme et al. 2010 (Σ_i over the training set).
+    stack, the sums over the training set of Bolme et al. 2010.
     """
     F = np.asarray(F)
     A = G * np.conj(F)
@@ -86,7 +86,7 @@ def linear_response(H_conj: np.ndarray, F: np.ndarray) -> np.ndarray:
 # -- KCF ------------------------------------------------------------------------------------
 def gaussian_correlation(xf: np.ndarray, zf: np.ndarray, sigma: float, x_sq: float | None = None,
                          z_sq=None) -> np.ndarray:
-    """Gaussian kernel correlation k^{xz}, eq. 31 of Henriques et al. 2015, over channels.
+    """Gaussian kernel correlation k^{xz} of Henriques et al. 2015, over feature channels.
 
     ``k[t] = exp(−max(0, ‖x‖² + ‖z‖² − 2 Σ_c (x_c ⋆ z_c)[t]) / (σ² n))`` where ``⋆`` is the
     circular cross-correlation ``Σ_y z[y] x[y − t]`` computed as ``ifft2(ẑ ⊙ x̂*)``, so
@@ -121,7 +121,7 @@ def gaussian_correlation(xf: np.ndarray, zf: np.ndarray, sigma: float, x_sq: flo
 
 
 def kcf_train(xf: np.ndarray, yf: np.ndarray, sigma: float, lam: float):
-    """Dual coefficients α̂ = ŷ / (k̂^{xx} + λ) (eq. 17 of Henriques et al. 2015).
+    """Dual coefficients α̂ = ŷ / (k̂^{xx} + λ) (Henriques et al. 2015).
 
     The kernel matrix of all cyclic shifts of x is circulant, K = C(k^{xx}), so the kernel
     ridge regression (K + λI) α = y is diagonalised by the DFT.
@@ -135,7 +135,7 @@ def kcf_train(xf: np.ndarray, yf: np.ndarray, sigma: float, lam: float):
 
 def kcf_response(alphaf: np.ndarray, xf: np.ndarray, zf: np.ndarray, sigma: float,
                  x_sq: float | None = None) -> np.ndarray:
-    """Detection response f(z) = ifft2(k̂^{xz} ⊙ α̂) (eq. 22 of Henriques et al. 2015).
+    """Detection response f(z) = ifft2(k̂^{xz} ⊙ α̂) (Henriques et al. 2015).
 
     ``f[t] = Σ_s α_s κ(roll(z, −t), roll(x, −s))``: the regression evaluated at every cyclic
     shift of z at once; ``zf`` may be a stack (…, C, rows, cols).
@@ -146,7 +146,7 @@ def kcf_response(alphaf: np.ndarray, xf: np.ndarray, zf: np.ndarray, sigma: floa
 
 # -- confidence and peak --------------------------------------------------------------------
 def psr(response: np.ndarray, exclude: int = SIDELOBE_EXCLUDE) -> np.ndarray:
-    """Peak-to-sidelobe ratio (g_max − μ_sl) / σ_sl of Bolme et al. 2010 (section 3.5).
+    """Peak-to-sidelobe ratio (g_max − μ_sl) / σ_sl of Bolme et al. 2010.
 
     The sidelobe is the response without the ``exclude`` x ``exclude`` window around the peak,
     taken cyclically (the response of a correlation filter wraps around). A flat sidelobe

@@ -4,7 +4,7 @@
     A linear filter on the grey patch (log transform, zero mean and unit norm, cosine
     window), trained so its response on the target is a Gaussian peak:
     H* = A / (B + λ) with A = Σ G ⊙ F*, B = Σ F ⊙ F* kept as running averages of learning
-    rate η (eq. 11–13 of Bolme et al. 2010). The first frame trains on random affine
+    rate η (Bolme et al. 2010). The first frame trains on random affine
     perturbations of the first patch. The peak-to-sidelobe ratio (PSR) of the response is
     the confidence.
 ``kcf``
@@ -48,7 +48,8 @@ from .registry import register
 #: entry of the linear part up to ±this/2 (the spread of OpenCV's ``mosse.py`` sample).
 PERTURBATION = 0.2
 
-_BOLME = "Bolme et al. 2010"
+#: At most about this many re-detection tiles per frame.
+MAX_TILES = 400
 _REF_CODE = ("the authors' reference code (run_tracker.m, 'parameters according to the "
              "paper')")
 
@@ -58,7 +59,7 @@ def _redetect_param(threshold_name: str):
         True, doc="search the whole frame in tiles while the target is lost",
         paper=NOT_PRINTED, paper_value=False,   # not in the paper: it only reports failure
         why=f"the book's addition: without it a target that reappears outside the search "
-            f"window is never found again (the lost-and-found probe of 02_particle_filters); "
+            f"window is never found again (a target that leaves the view and comes back elsewhere); "
             f"a tile must pass redetect_factor x {threshold_name}")
 
 
@@ -73,24 +74,25 @@ def _redetect_factor_param():
 
 @dataclasses.dataclass(frozen=True)
 class MosseParams:
-    # Bolme, Beveridge, Draper, Lui, CVPR 2010 (bolme2010). The printed values below are the
-    # paper's as SPEC 5.5 and the issue quote them and as every public re-implementation uses.
+    # Bolme, Beveridge, Draper, Lui, CVPR 2010 (bolme2010). The paper's text is not among the
+    # book's sources; the values marked paper= are those the public re-implementations
+    # attribute to it (OpenCV's mosse.py sample uses η = 0.125).
     eta: float = param(
-        0.125, 0.0, 1.0, 0.005, doc="η, learning rate of A_i, B_i (eq. 12-13)",
-        paper=0.125)   # sec. 3.4 of Bolme et al. 2010: η = 0.125
+        0.125, 0.0, 1.0, 0.005, doc="η, learning rate of the running averages A_i, B_i",
+        paper=0.125)   # Bolme et al. 2010's η; OpenCV's mosse.py sample uses it too
     psr_threshold: float = param(
-        7.0, 0.0, 50.0, 0.5, doc="PSR below this: target lost, no update (sec. 3.5)",
-        paper=7.0)     # sec. 3.5: PSR below about 7 signals occlusion or failure
+        7.0, 0.0, 50.0, 0.5, doc="PSR below this: target lost, no update",
+        paper=7.0)     # Bolme et al. 2010: a PSR near 7 signals occlusion or failure
     n_perturbations: int = param(
         8, 1, 128, 1, doc="random affine perturbations of the first patch trained on",
-        paper=8)       # sec. 3.3: eight small perturbations of the first frame's window
+        paper=8)       # Bolme et al. 2010: eight perturbations of the first window
     sigma: float = param(
         2.0, 0.5, 10.0, 0.25, doc="σ (px) of the Gaussian target response g",
         paper=NOT_PRINTED,   # not quoted here from the paper's text; the book uses 2 px
         why="2 px as in OpenCV's mosse.py sample, a reimplementation of the paper; "
             "the peak is then sharp against an 11 x 11 excluded window")
     lam: float = param(
-        1e-5, 0.0, 1.0, None, doc="λ (ε) added to the denominator B of H* = A / (B + λ)",
+        1e-5, 1e-8, 1.0, None, doc="λ (ε) added to the denominator B of H* = A / (B + λ)",
         paper=NOT_PRINTED,   # the paper's regulariser is not quoted here with a value
         why="1e-5 as in OpenCV's mosse.py sample: with unit-norm patches B averages 1 per "
             "frequency, so λ only guards frequencies with no energy")
@@ -105,10 +107,10 @@ class KcfParams:
         1.5, 0.0, 4.0, 0.25, doc="window = target size × (1 + padding)",
         paper=1.5)   # 1.5 in the paper's parameters and in _REF_CODE
     lam: float = param(
-        1e-4, 0.0, 1.0, None, doc="λ of the ridge regression (eq. 17)",
+        1e-4, 1e-8, 1.0, None, doc="λ of the kernel ridge regression",
         paper=1e-4)  # 1e-4 in the paper's parameters and in _REF_CODE
     kernel_sigma: float = param(
-        0.5, 0.05, 5.0, 0.05, doc="σ of the Gaussian kernel (eq. 31), HOG features",
+        0.5, 0.05, 5.0, 0.05, doc="σ of the Gaussian kernel, HOG features",
         paper=0.5)   # 0.5 for HOG features in the paper's parameters and in _REF_CODE
     eta: float = param(
         0.02, 0.0, 1.0, 0.005, doc="η, interpolation factor of the model (α̂ and x)",
@@ -162,7 +164,10 @@ class _CorrelationTracker(Tracker):
         """Centres of the re-detection tiles: every half target size, windows kept in frame."""
         H, W = shape[:2]
         ww, wh = self._window
-        sx, sy = max(self._size[0] / 2.0, 2.0), max(self._size[1] / 2.0, 2.0)
+        # Half a target size apart, but never more than about MAX_TILES tiles (a tiny box in
+        # a large frame would otherwise make tens of thousands).
+        spread = np.sqrt(W * H / MAX_TILES)
+        sx, sy = max(self._size[0] / 2.0, spread, 1.0), max(self._size[1] / 2.0, spread, 1.0)
         x0, x1 = min(ww / 2.0, W / 2.0), max(W - ww / 2.0, W / 2.0)
         y0, y1 = min(wh / 2.0, H / 2.0), max(H - wh / 2.0, H / 2.0)
         xs = np.append(np.arange(x0, x1, sx), x1)
@@ -257,8 +262,8 @@ class MosseTracker(_CorrelationTracker):
     """MOSSE, Bolme et al. 2010: an adaptive linear correlation filter on the grey patch.
 
     The window is the target's box (the paper's tracking window), sampled at the box's own
-    size (at least ``min_side`` px a side). Preprocessing (sec. 3.1): log(I + 1), zero mean
-    and unit norm, cosine window. Training (sec. 3.3–3.4): A = Σ G ⊙ F*, B = Σ F ⊙ F* over
+    size (at least ``min_side`` px a side). Preprocessing: log(I + 1), zero mean
+    and unit norm, cosine window. Training: A = Σ G ⊙ F*, B = Σ F ⊙ F* over
     ``n_perturbations`` random affine warps of the first patch, then A_i = η G ⊙ F_i* +
     (1 − η) A_{i−1} and B_i likewise on every accepted frame; H* = A / (B + λ).
     Lost rule: see the module docstring (PSR < ``psr_threshold``).
@@ -282,7 +287,7 @@ class MosseTracker(_CorrelationTracker):
         return (centre[0] + dx * sx, centre[1] + dy * sy)
 
     def _features(self, patches):
-        """Preprocessing of sec. 3.1: log, zero mean, unit norm, cosine window -> spectra."""
+        """Preprocessing of Bolme et al.: log, zero mean, unit norm, cosine window -> spectra."""
         f = np.log1p(np.asarray(patches, dtype=np.float64))
         f -= f.mean(axis=(1, 2), keepdims=True)
         norm = np.sqrt(np.sum(f * f, axis=(1, 2), keepdims=True))
