@@ -68,7 +68,6 @@ def test_mosse_equals_spatial_least_squares(rng):
     target = g.reshape(-1)
     n = ROWS * COLS
     h = np.linalg.solve(X.T @ X + lam * np.eye(n), X.T @ target)
-    # and the same without λ by least squares when λ is negligible
     F = np.fft.fft2(f)
     A, B = cf.mosse_terms(F, np.fft.fft2(g))
     H_conj = cf.mosse_filter(A, B, lam)
@@ -175,6 +174,10 @@ def test_orientation_cells_vote_into_one_bin():
     assert np.all(c[0, 1:] == 0.0)
     assert np.all(c[0, 0][:, 1] > 0) and np.all(c[0, 0][:, 0] == 0)
     assert np.all(orientation_cells(np.full((2, 8, 8), 5.0)) == 0.0)
+    with pytest.raises(ValueError, match="stack of grey patches"):
+        orientation_cells(np.zeros((8, 8)))
+    with pytest.raises(ValueError, match="no 4x4 px cell"):
+        orientation_cells(np.zeros((1, 3, 8)))
 
 
 # (e) tracking ------------------------------------------------------------------------------
