@@ -30,6 +30,8 @@ KIND = {
     "condensation": {"particles", "weights", "ellipse"},
     "condensation-mean-shift": {"particles", "weights", "ellipse"},
     "mean-shift": {"particles", "weights", "ellipse"},
+    "mosse": {"search_window"},
+    "kcf": {"search_window"},
 }
 
 
