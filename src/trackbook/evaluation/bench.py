@@ -243,10 +243,14 @@ class Task:
     params: tuple  # sorted (name, value) pairs
     fingerprint: str
     frames: int  # frames this run tracks (for the progress bar)
+    preset: str = "book"  # the tracker's preset ("book" or "paper"); params override it
+    #: Modules or ``.py`` files defining trackers outside the library
+    #: (:func:`trackbook.trackers.plugins.load`), loaded by the worker before the run.
+    plugins: tuple = ()
 
     @property
     def settings(self) -> dict:
-        return _jsonable({"tracker": self.tracker, "seed": self.seed,
+        return _jsonable({"tracker": self.tracker, "seed": self.seed, "preset": self.preset,
                           "max_frames": self.max_frames, "params": dict(self.params),
                           "clip": self.clip.identity, "fingerprint": self.fingerprint})
 
@@ -294,19 +298,24 @@ def run_group(tasks, out=None, multi_seed=False, on_frames=None) -> list[dict]:
     given) and return the records. This is what a worker process or a Dask worker executes.
     """
     tasks = list(tasks)
+    from ..trackers import plugins
+
+    for spec in dict.fromkeys(p for t in tasks for p in t.plugins):
+        plugins.load(spec)
     clip = tasks[0].clip.load()
     by_frames: dict = {}
     for t in tasks:
-        by_frames.setdefault(t.max_frames, []).append(t)
+        by_frames.setdefault((t.max_frames, t.preset), []).append(t)
     recs = {}
-    for max_frames, ts in by_frames.items():
+    for (max_frames, preset), ts in by_frames.items():
         if len(ts) == 1:  # kept separate so tests can patch evaluate()
             t = ts[0]
+            kw = {"preset": preset} if preset != "book" else {}
             results = [evaluate(t.tracker, clip, seed=t.seed, max_frames=max_frames,
-                                 **dict(t.params))]
+                                **kw, **dict(t.params))]
         else:
             results = evaluate_many([(t.tracker, t.seed, dict(t.params)) for t in ts], clip,
-                                    max_frames=max_frames)
+                                    max_frames=max_frames, preset=preset)
         for t, r in zip(ts, results):
             rec = _record(t, r, clip, multi_seed)
             if out is not None:

@@ -44,7 +44,7 @@ Decisions where the paper is silent or wrong (chapters 2-4 of the book discuss t
     absolute version (s >= threshold); ``learn_every`` learns every k-th frame only.
 
   The lab notes on Lee et al. (2012) list every configuration tried and its AUC
-  (``evaluation.table_seed000``).
+  (the experiment ``lee2012_learning`` of ``evaluation.experiments``).
 """
 
 from __future__ import annotations
