@@ -48,6 +48,11 @@ def test_table_helpers_against_a_hand_made_table(tmp_path):
     t = results.read(f)
     assert len(t) == 3 and t.meta == {"name": "t"}
     assert math.isnan(t[2]["auc"])                       # missing numbers read as nan
+    rows.append({"label": "c", "clip": "x", "auc": 0.5, "learning": 1.0})
+    f.write_text(json.dumps({"name": "t", "rows": rows}))
+    t2 = results.read(f)                                 # a column only some rows have
+    assert all(set(r) == {"label", "clip", "auc", "learning"} for r in t2)
+    assert math.isnan(t2[0]["learning"]) and t2[3]["learning"] == 1.0
     assert len(t.where(label="a")) == 2 and len(t.where(clip=("x", "z"))) == 2
     np.testing.assert_array_equal(t.where(label="a").column("auc"), [0.2, 0.4])
     assert t.unique("label") == ["a", "b"]

@@ -53,9 +53,9 @@ PAPERS = {
     },
     "lee2015": {
         "label": "Lee 2015",
-        "citation": "Lee (2015), A Fast Moving Object Tracking Method by the Combination of "
-                    "Covariance Matrix and Kalman Filter Algorithm, Journal of the Korea Institute "
-                    "of Information and Communication Engineering",
+        "citation": ("Lee (2015), A Fast Moving Object Tracking Method by the Combination of "
+                     "Covariance Matrix and Kalman Filter Algorithm, Journal of the Korea "
+                     "Institute of Information and Communication Engineering"),
         "table": "Lee 2015, Table 1 (RedCube, 164 frames)",
         "trackers": ["covariance", "kalman-covariance"],
         "tracking_rate": {"covariance": 0.871, "kalman-covariance": 0.963},
@@ -74,8 +74,8 @@ PAPERS = {
     },
     "cho2005": {
         "label": "Cho & Kang 2005",
-        "citation": "Cho and Kang (2005), Integration of Condensation and Mean-shift algorithms for "
-                    "real-time object tracking, The KIPS Transactions: Part B",
+        "citation": ("Cho and Kang (2005), Integration of Condensation and Mean-shift algorithms "
+                     "for real-time object tracking, The KIPS Transactions: Part B"),
         "table": "Cho & Kang 2005, Table 1 (single target)",
         "trackers": ["condensation", "mean-shift", "condensation-mean-shift"],
         "tracking_rate": {},

@@ -2,9 +2,9 @@
 
 Each (tracker, clip, seed) run is written to ``OUT/runs/<tracker>__<clip>__s<seed>__<key>.json``
 atomically (write a temporary file, then rename) as soon as it finishes. ``<key>`` is a hash of
-everything the result depends on: the tracker, its params and seed, ``max_frames``, the clip's
-*identity* (the resolved path of its folder or video, or ``sample:<name>``, plus the target)
-and a *fingerprint* of its ground truth and frame list (file names and sizes). A re-run reads a
+everything the result depends on: the tracker, its preset, params and seed, ``max_frames``,
+the clip's *identity* (the resolved path of its folder or video, or ``sample:<name>``, plus the
+target) and a *fingerprint* of its ground truth and frame list (file names and sizes). A re-run reads a
 run back only when its key matches, so renamed, duplicate or edited clips never share or reuse
 a stale result. The summary files (``results.csv``, ``results.json``, ``curves.json``,
 ``table.md``, ``success.png``, ``precision.png`` and, when the clips carry attributes,

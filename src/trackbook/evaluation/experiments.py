@@ -15,8 +15,8 @@ From the repository root::
     python -m trackbook.evaluation.experiments run claims --clips Crossing --check
 
 ``--clips`` and ``--seeds`` keep only the named clips and seeds; such a partial run is not
-written over the committed file (give ``--out DIR`` to write it elsewhere), and ``--check`` compares its AUCs with the
-committed rows of the same configuration, clip and seed.
+written over the committed file (give ``--out DIR`` to write it elsewhere), and ``--check``
+compares its AUCs with the committed rows of the same configuration, clip and seed.
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from .. import trackers as _trackers
-from .bench import (REFERENCE, Task, _frozen, _jsonable, fingerprint, load_run, parse_seeds, resolve_clips,
-                    write_atomic)
+from .bench import (REFERENCE, Task, _frozen, _jsonable, fingerprint, load_run, parse_seeds,
+                    resolve_clips, write_atomic)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -25,7 +25,7 @@ HERE = Path(__file__).resolve().parent
 class Table:
     """The rows of one committed result, with a few helpers (the book has no pandas).
 
-    Iterating gives the rows (dicts); missing numbers are ``nan``. ``meta`` holds the file's
+    Iterating gives the rows (dicts, all with the same keys); missing numbers are ``nan``. ``meta`` holds the file's
     description, command, clips, seeds and plugins.
     """
 
@@ -97,8 +97,10 @@ def path(name: str) -> Path:
 def read(file) -> Table:
     """A result file (``<name>.json``, as the experiments write it) as a :class:`Table`."""
     data = json.loads(Path(file).read_text())
-    rows = [{k: (float("nan") if v is None else v) for k, v in r.items()}
-            for r in data.pop("rows")]
+    raw = data.pop("rows")
+    # every row gets every column (a tracker reports only its own extras): missing is nan
+    cols = list(dict.fromkeys(k for r in raw for k in r))
+    rows = [{k: (float("nan") if r.get(k) is None else r[k]) for k in cols} for r in raw]
     return Table(rows, data)
 
 
