@@ -73,3 +73,9 @@ def test_papers_are_keyed_by_paper_with_their_printed_tables():
     for t, row in PAPERS["lee2015"]["table1"].items():
         assert row["detection_rate"] == PAPERS["lee2015"]["tracking_rate"][t]
         assert row["search_rate"] == PAPERS["lee2015"]["search_rate"][t]
+
+
+def test_command_line_errors_are_one_line_with_exit_code_2(capsys):
+    assert experiments.main(["run", "nope"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "unknown experiment 'nope'" in err and "claims" in err
