@@ -244,9 +244,6 @@ class Task:
     fingerprint: str
     frames: int  # frames this run tracks (for the progress bar)
     preset: str = "book"  # the tracker's preset ("book" or "paper"); params override it
-    #: Modules or ``.py`` files defining trackers outside the library
-    #: (:func:`trackbook.trackers.plugins.load`), loaded by the worker before the run.
-    plugins: tuple = ()
 
     @property
     def settings(self) -> dict:
@@ -261,6 +258,17 @@ class Task:
     def path(self, out) -> Path:
         safe = re.sub(r"[^A-Za-z0-9._-]+", "_", self.clip.name)
         return Path(out) / "runs" / f"{self.tracker}__{safe}__s{self.seed}__{self.key[:12]}.json"
+
+
+def load_imports(imports) -> None:
+    """Import user tracker modules or ``.py`` files (each registers its trackers), through
+    :func:`trackbook.trackers.plugins.load`; idempotent, so every worker may call it."""
+    if not imports:
+        return
+    from ..trackers import plugins
+
+    for spec in imports:
+        plugins.load(spec)
 
 
 def load_run(task: Task, out) -> dict | None:
@@ -298,10 +306,6 @@ def run_group(tasks, out=None, multi_seed=False, on_frames=None) -> list[dict]:
     given) and return the records. This is what a worker process or a Dask worker executes.
     """
     tasks = list(tasks)
-    from ..trackers import plugins
-
-    for spec in dict.fromkeys(p for t in tasks for p in t.plugins):
-        plugins.load(spec)
     clip = tasks[0].clip.load()
     by_frames: dict = {}
     for t in tasks:

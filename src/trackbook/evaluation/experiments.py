@@ -261,7 +261,7 @@ def plan(exp: Experiment, clips=None, root=".", seeds=None) -> list[tuple[Config
                         seeds is not None and s not in seeds):
                     continue
                 out.append((c, Task(c.tracker, ref, s, None, _frozen(c.params), fp, n,
-                                    preset=c.preset, plugins=plugs)))
+                                    preset=c.preset)))
     return out
 
 
@@ -298,7 +298,8 @@ def run(name: str, runs="experiment-runs", clips=None, workers: int = 1, schedul
             bar.update(len(group))
 
     try:
-        parallel.execute(todo, out, finished, workers=workers, scheduler=scheduler)
+        parallel.execute(todo, out, finished, workers=workers, scheduler=scheduler,
+                         imports=_plugin_paths(exp, Path(root)))
     finally:
         if bar is not None:
             bar.close()

@@ -91,28 +91,34 @@ def one_opencv_thread():
             os.environ[ENV_CV_THREADS] = env
 
 
-def _worker_init():
+def _worker_init(imports=()):
     # Ctrl-C is the parent's to handle (one line, then it stops the workers): a worker that
     # also caught it would print its own traceback.
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     one_thread_per_worker()
+    _bench.load_imports(imports)
 
 
 def _work(group, out, multi_seed):
     return _bench.run_group(group, out, multi_seed)
 
 
-def _work_dask(group, multi_seed):
-    # a Dask worker is a process of its own on a core of its own, like a local worker
+def _work_dask(group, multi_seed, imports=()):
+    # a Dask worker is a process of its own on a core of its own, like a local worker; user
+    # trackers are loaded here, in the worker, before the runs need them (idempotent)
+    _bench.load_imports(imports)
     one_thread_per_worker()
     return _bench.run_group(group, None, multi_seed)
 
 
 def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None,
-            multi_seed: bool = False) -> None:
-    """Run ``tasks``; call ``finished(group, records)`` in this process as each group ends."""
+            multi_seed: bool = False, imports=()) -> None:
+    """Run ``tasks``; call ``finished(group, records)`` in this process as each group ends.
+
+    ``imports`` (modules or ``.py`` files of user trackers) are loaded in every worker, local or
+    Dask, and in this process when it runs the tasks itself."""
     if not tasks:
         return
     scheduler = scheduler or os.environ.get(ENV_SCHEDULER) or None
@@ -122,9 +128,10 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
         raise ValueError(f"workers = {workers!r}: use a whole number of processes, at least 1.")
     workers = int(workers)
     if scheduler:
-        return _execute_dask(tasks, out, finished, scheduler, multi_seed)
+        return _execute_dask(tasks, out, finished, scheduler, multi_seed, imports)
     gs = groups(tasks, workers)
     if workers == 1 or len(gs) == 1:
+        _bench.load_imports(imports)
         with one_opencv_thread():
             for g in gs:
                 finished(g, _bench.run_group(g, out, multi_seed))
@@ -133,7 +140,8 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
 
     # spawn: a worker must not inherit this process's threads (a notebook's, tqdm's) or state.
     pool = ProcessPoolExecutor(max_workers=min(workers, len(gs)),
-                               mp_context=mp.get_context("spawn"), initializer=_worker_init)
+                               mp_context=mp.get_context("spawn"), initializer=_worker_init,
+                               initargs=(tuple(imports),))
     try:
         pending = {pool.submit(_work, g, str(out), multi_seed): g for g in gs}
         while pending:
@@ -153,7 +161,7 @@ def execute(tasks, out, finished, workers: int = 1, scheduler: str | None = None
     pool.shutdown()
 
 
-def _execute_dask(tasks, out, finished, scheduler, multi_seed):
+def _execute_dask(tasks, out, finished, scheduler, multi_seed, imports=()):
     try:
         from distributed import Client, as_completed
     except ImportError:
@@ -163,7 +171,7 @@ def _execute_dask(tasks, out, finished, scheduler, multi_seed):
     try:
         n = max(1, len(client.scheduler_info().get("workers", {})))
         gs = groups(tasks, n)
-        futs = {client.submit(_work_dask, g, multi_seed, pure=False): i
+        futs = {client.submit(_work_dask, g, multi_seed, tuple(imports), pure=False): i
                 for i, g in enumerate(gs)}
         try:
             for f in as_completed(list(futs)):
