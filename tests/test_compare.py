@@ -7,6 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from trackbook.evaluation import compare
+from trackbook.papers import PAPERS
 
 
 def _row(t, clip, auc, rate, ms, **extra):
@@ -47,19 +48,19 @@ def test_claim_holds_fails_or_is_inconclusive_from_the_interval():
     up = [_seeded(t, c, s, base + (0.1 if t == "color-hog-pf" else 0.0) + 0.01 * s)
           for c, base in zip("abcdefg", np.linspace(0.2, 0.6, 7)) for s in range(3)
           for t in ("color-pf", "color-hog-pf")]
-    pairs = {"000": [("color-hog-pf", "color-pf")]}
-    (r,) = compare.check_claims(up, pairs=pairs, papers={"000": compare.PAPERS["000"]})
+    pairs = {"lee2012": [("color-hog-pf", "color-pf")]}
+    (r,) = compare.check_claims(up, pairs=pairs, papers={"lee2012": PAPERS["lee2012"]})
     # every paired difference is +0.1: the mean is 0.1 and so is every bootstrap mean
     assert r["mean_diff"] == pytest.approx(0.1) and r["verdict"] == "holds"
     assert r["ci_low"] == pytest.approx(0.1) and r["ci_high"] == pytest.approx(0.1)
     assert (r["sequences"], r["runs"]) == (7, 21)
-    (r,) = compare.check_claims(up, pairs={"000": [("color-pf", "color-hog-pf")]},
-                                papers={"000": compare.PAPERS["000"]})
+    (r,) = compare.check_claims(up, pairs={"lee2012": [("color-pf", "color-hog-pf")]},
+                                papers={"lee2012": PAPERS["lee2012"]})
     assert r["verdict"] == "fails"
     # half the sequences better by 0.1, half worse by 0.1: the interval straddles 0
     mixed = [dict(x, auc=x["auc"] - (0.2 if x["tracker"] == "color-hog-pf" and x["clip"] in "abc"
                                      else 0.0)) for x in up]
-    (r,) = compare.check_claims(mixed, pairs=pairs, papers={"000": compare.PAPERS["000"]})
+    (r,) = compare.check_claims(mixed, pairs=pairs, papers={"lee2012": PAPERS["lee2012"]})
     assert r["ci_low"] < 0 < r["ci_high"] and r["verdict"] == "inconclusive"
 
 

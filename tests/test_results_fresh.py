@@ -1,14 +1,15 @@
-"""The committed score tables in ``book/results`` still match the library of this commit.
+"""The committed results (``trackbook.results``) still match the library of this commit.
 
 Chapters read these files instead of re-running minutes of tracking, so a change to a tracker
-or a feature can leave them stale without any chapter failing (``seed001_real.csv`` once kept
-``hog-pf`` rows from before a HOG fix). This re-runs every deterministic tracker of each file
-on one short sequence (Crossing, 120 frames) and demands the committed AUC. OpenCV's MIL is left out: it does
-not repeat within a process. When a tracker changes on purpose, regenerate the file with the
-command its chapter gives.
+or a feature can leave them stale without any chapter failing (the edge-ray results once kept
+``hog-pf`` rows from before a HOG fix). This re-runs every committed row on one short sequence
+(Crossing, 120 frames) and demands the committed AUC: the files are written at full precision,
+so one tolerance (a float's round trip) fits every file. In a grid that runs a tracker under
+several configurations, seed 0 of each configuration is checked. OpenCV's MIL is left out: its
+score depends on OpenCV's build. When a tracker changes on purpose, regenerate the result with
+``python -m trackbook.evaluation.experiments run NAME`` (the lab notes give each command).
 """
 
-import csv
 import functools
 import json
 from pathlib import Path
@@ -16,56 +17,49 @@ from pathlib import Path
 import pytest
 
 import trackbook
+from trackbook import results
+from trackbook.trackers import plugins
 
 from .conftest import SEQUENCES, needs_sequences
 
-RESULTS = Path(__file__).resolve().parents[1] / "book" / "results"
-CLIP = "Crossing"          # 120 frames: the shortest sequence that every file covers
-
-# file -> (tolerance on the AUC as written, column with the seed or None for seed 0)
-FILES = {
-    "real/results.csv": (1e-9, None),
-    "seed000_real.csv": (1e-5, "seed"),      # written with 6 significant digits
-    "seed001_real.csv": (1e-9, None),
-    "seed000_learning.csv": (1e-5, "seed"),  # every learning configuration, seed 0 only
-    "seed001_variants.csv": (1e-9, "seed"),  # the library's trackers only, seed 0 only
-    "seed002_real.csv": (1e-5, None),        # 6 significant digits
-    "seed003_real.csv": (5e-5, None),        # written with 4 decimals
-    "claims_real.csv": (1e-5, "seed"),       # both presets; 6 significant digits
-}
-#: Files with many configurations per tracker: checking one seed of each is enough.
-SEED0_ONLY = {"seed000_learning.csv", "seed001_variants.csv"}
+ROOT = Path(__file__).resolve().parents[1]
+CLIP = "Crossing"          # 120 frames: the shortest sequence that every result covers
+TOL = 1e-12                # the AUC written as a float and read back
 
 
 @functools.lru_cache(maxsize=None)
-def _auc(tracker: str, seed: int, params: str, preset: str = "book") -> float:
+def _auc(tracker: str, seed: int, params: str, preset: str, plugin_specs: tuple) -> float:
+    for spec in plugin_specs:
+        plugins.load(str(ROOT / spec) if spec.endswith(".py") else spec)
     return trackbook.evaluate(tracker, str(SEQUENCES[CLIP]), seed=seed, preset=preset,
                               **json.loads(params)).scores["auc"]
 
 
 def _cases():
-    library = set(trackbook.trackers.available())
-    for name, (tol, seed_col) in FILES.items():
-        with open(RESULTS / name) as f:
-            for row in csv.DictReader(f):
-                seed = int(row[seed_col]) if seed_col else 0
-                if row["clip"] != CLIP or row["tracker"] not in library:
-                    continue          # MIL (not repeatable), experiments' own trackers
-                if name in SEED0_ONLY and seed != 0:
-                    continue
-                params = row.get("params") or "{}"
-                preset = row.get("preset") or "book"
-                yield pytest.param(name, row["tracker"], seed, params, preset,
-                                   float(row["auc"]), tol,
-                                   id=f"{name}:{row['tracker']}:{preset}{params}:seed{seed}")
+    for name in results.available():
+        table = results.load(name)
+        plugs = tuple(table.meta.get("plugins", ()))
+        labels = {}
+        for r in table:
+            labels.setdefault((r["tracker"], r["preset"]), set()).add(r["label"])
+        for r in table.where(clip=CLIP):
+            grid = len(labels[(r["tracker"], r["preset"])]) > 1
+            if r["tracker"] == "opencv-mil" or (grid and r["seed"] != 0):
+                continue
+            yield pytest.param(name, r["label"], r["tracker"], r["seed"], r["params"],
+                               r["preset"], plugs, r["auc"],
+                               id=f"{name}:{r['label']}:{r['preset']}:seed{r['seed']}")
 
 
 @needs_sequences
 @pytest.mark.shared
 @pytest.mark.slow
 @pytest.mark.skipif(CLIP not in SEQUENCES, reason=f"sequence {CLIP} not found")
-@pytest.mark.parametrize("name, tracker, seed, params, preset, committed, tol", list(_cases()))
-def test_committed_auc_is_reproduced(name, tracker, seed, params, preset, committed, tol):
-    assert _auc(tracker, seed, params, preset) == pytest.approx(committed, abs=tol), (
-        f"book/results/{name} is stale for {tracker} (seed {seed}) on {CLIP}; regenerate it "
-        "with the command in its chapter.")
+@pytest.mark.parametrize("name, label, tracker, seed, params, preset, plugin_specs, committed",
+                         list(_cases()))
+def test_committed_auc_is_reproduced(name, label, tracker, seed, params, preset, plugin_specs,
+                                     committed):
+    assert _auc(tracker, seed, params, preset, plugin_specs) == pytest.approx(
+        committed, abs=TOL), (
+        f"the committed result {name!r} is stale for {label} ({tracker}, seed {seed}) on {CLIP}; "
+        f"regenerate it with: python -m trackbook.evaluation.experiments run {name}")

@@ -2,8 +2,8 @@
 
 Everything here works on benchmark rows (``trackbook.evaluation.bench.run`` / ``load``): dicts
 with ``tracker``, ``clip``, ``auc``, ``precision20``, ``tracking_rate``, ``ms_median`` and the
-trackers' own extras (``search_rate``, ...). The papers' headline figures live in
-:data:`PAPERS`, transcribed from their tables; :func:`check_claims` tests each paper's central
+trackers' own extras (``search_rate``, ...). The papers' headline figures are read from
+:data:`trackbook.papers.PAPERS`; :func:`check_claims` tests each paper's central
 claim on our data and says in numbers why it holds or not.
 """
 
@@ -13,6 +13,7 @@ import numpy as np
 
 from .._markdown import table as _md_table
 from ..clips.datasets import attributes as _attributes
+from ..papers import PAPERS
 
 #: Attributes of the development sequences: the OTB toolkit's table, and for the two VOT
 #: sequences the same codes given by the OTB rules (see ``clips.datasets.attributes``).
@@ -28,53 +29,6 @@ DIFFICULTIES = {
     "SV": "scale change",
     "DEF": "deformation",
 }
-
-#: The papers' headline figures (their tables), and the hardware they were measured on.
-PAPERS = {
-    "000": {
-        "label": "Lee et al. 2012",
-        "paper": "Lee et al. 2012, Table 3",
-        "trackers": ["color-pf", "color-hog-pf", "color-hog-ipca"],
-        "tracking_rate": {"color-pf": 0.711, "color-hog-pf": 0.903, "color-hog-ipca": 0.924},
-        "ms": {"color-pf": 7.0, "color-hog-pf": 13.0, "color-hog-ipca": 55.0},
-        "hardware": "Intel Core 2 Quad Q6600, C++, 640x480",
-        "claim": "tracking rate: Color < Color+HOG < Proposed",
-        "kind": "rate_order",
-    },
-    "001": {
-        "label": "Kim et al. 2016",
-        "paper": "Kim, Kim & Choi 2016, Table 3",
-        "trackers": ["hsi-color-pf", "hog-pf", "edge-ray-pf"],
-        "tracking_rate": {"hsi-color-pf": 0.623, "hog-pf": 0.704, "edge-ray-pf": 0.898},
-        "ms": {},
-        "hardware": "not reported",
-        "claim": "tracking rate: HSI < HOG < edge rays",
-        "kind": "rate_order",
-    },
-    "002": {
-        "label": "Lee 2015",
-        "paper": "Lee 2015, Table 1 (RedCube, 164 frames)",
-        "trackers": ["covariance", "kalman-covariance"],
-        "tracking_rate": {"covariance": 0.871, "kalman-covariance": 0.963},
-        "search_rate": {"covariance": 0.00134, "kalman-covariance": 0.00043},
-        "ms": {},
-        "hardware": "Intel Pentium G2120 3.1 GHz, 320x240",
-        "claim": "the Kalman window detects more and searches less than covariance alone",
-        "kind": "kalman",
-    },
-    "003": {
-        "label": "Cho & Kang 2005",
-        "paper": "Cho & Kang 2005, Table 1 (single target)",
-        "trackers": ["condensation", "mean-shift", "condensation-mean-shift"],
-        "tracking_rate": {},
-        "ms": {"condensation": 84.0, "mean-shift": 7.0, "condensation-mean-shift": 35.0},
-        "hardware": "Pentium 4 1.5 GHz, 320x240",
-        "claim": "5 candidates + mean-shift are faster than Condensation and more accurate "
-                 "than both",
-        "kind": "speed_accuracy",
-    },
-}
-
 
 def _mean(rows, tracker, key, clips=None):
     v = [r[key] for r in rows if r["tracker"] == tracker and r.get(key) is not None
@@ -128,10 +82,10 @@ def per_attribute(rows, attributes: dict, codes=tuple(DIFFICULTIES)) -> list[dic
 
 #: Each claim as pairwise comparisons ``(better, worse)``: "better scores higher than worse".
 CLAIM_PAIRS = {
-    "000": [("color-hog-pf", "color-pf"), ("color-hog-ipca", "color-hog-pf")],
-    "001": [("hog-pf", "hsi-color-pf"), ("edge-ray-pf", "hog-pf")],
-    "002": [("kalman-covariance", "covariance")],
-    "003": [("condensation-mean-shift", "condensation"),
+    "lee2012": [("color-hog-pf", "color-pf"), ("color-hog-ipca", "color-hog-pf")],
+    "kim2016": [("hog-pf", "hsi-color-pf"), ("edge-ray-pf", "hog-pf")],
+    "lee2015": [("kalman-covariance", "covariance")],
+    "cho2005": [("condensation-mean-shift", "condensation"),
             ("condensation-mean-shift", "mean-shift")],
 }
 
@@ -213,7 +167,7 @@ def check_claims(rows, metric: str = "auc", clips=None, papers=PAPERS, pairs=CLA
         for better, worse in pairs.get(key, []):
             d = paired_differences(rows, better, worse, metric, clips)
             mean, low, high = bootstrap_mean_difference(d, n_boot, level, seed)
-            out.append({"paper": p.get("label", p["paper"]), "comparison": f"{better} > {worse}",
+            out.append({"paper": p["label"], "comparison": f"{better} > {worse}",
                         "metric": metric, "sequences": len(d),
                         "runs": int(sum(len(v) for v in d.values())), "mean_diff": mean,
                         "ci_low": low, "ci_high": high, "verdict": verdict(low, high)})
@@ -262,3 +216,98 @@ def speed_ratios(rows, reference: str = "opencv-mil", papers=PAPERS) -> list[dic
                     "paper ms": pm, "paper ÷ ours": pm / v if v else float("nan"),
                     "paper's hardware": hw or "–"})
     return out
+
+
+# ------------------------------------------------------------------ Lee 2015, Table 1
+#: The columns of Lee 2015's Table 1 as the book prints them, with its scores beside.
+TABLE1_COLUMNS = ["tracker", "clip", "frames", "misses", "detection_rate", "search_rate", "auc",
+                  "precision20", "ms_median", "ms_mean"]
+
+
+def lee2015_table1_row(result, groundtruth) -> dict:
+    """One row of Table 1 of Lee 2015 from a :class:`trackbook.Result` (frame 0, the
+    initialisation, excluded): misses, detection rate, averaging search rate, ms/frame.
+
+    The paper's detection rate (eq. 14) is "frames where the region was detected / all
+    frames"; the book counts a frame as detected when IoU > 0.5
+    (:func:`trackbook.metrics.tracking_rate`), and a miss is any other scored frame. The
+    averaging search rate is the mean over frames of evaluated candidate windows / all windows
+    in the frame (the trackers' ``frame_report``).
+    """
+    from . import metrics
+
+    gt = np.asarray(groundtruth, dtype=float)[: len(result.boxes)]
+    iou = metrics.iou(result.boxes[1:], gt[1:])
+    known = np.all(np.isfinite(gt[1:]), axis=1)
+    sr = result.extras.get("search_rate")
+    return {
+        "tracker": result.tracker,
+        "clip": result.clip,
+        "frames": int(known.sum()),
+        "misses": int(np.sum(iou[known] <= 0.5)),
+        "detection_rate": metrics.tracking_rate(result.boxes[1:], gt[1:]),
+        "search_rate": float(np.nanmean(sr[1:])) if sr is not None else float("nan"),
+        "auc": result.scores["auc"],
+        "precision20": result.scores["precision20"],
+        "ms_median": result.scores["ms_median"],
+        "ms_mean": result.scores["ms_mean"],
+    }
+
+
+def lee2015_table1(rows) -> list[dict]:
+    """Table-1 rows (as :func:`lee2015_table1_row`) from benchmark rows, e.g. the committed
+    result ``lee2015_real``: ``frames`` are the scored frames, ``misses`` the scored frames
+    with IoU <= 0.5 (the benchmark keeps the rate; the count follows from it)."""
+    out = []
+    for r in rows:
+        n = int(r["frames_scored"])
+        rate = float(r["tracking_rate"])
+        out.append({"tracker": r["tracker"], "clip": r["clip"], "frames": n,
+                    "misses": n - int(round(rate * n)), "detection_rate": rate,
+                    "search_rate": float(r.get("search_rate", float("nan"))),
+                    **{k: float(r[k]) for k in ("auc", "precision20", "ms_median", "ms_mean")}})
+    return out
+
+
+# ------------------------------------------------------------------ Cho & Kang 2005, Tables 1-2
+def cho2005_single_target_table(clip_names, trackers=None, seed=0, max_frames=None) -> list[dict]:
+    """Table 1 of Cho & Kang 2005 on our clips: one row per (tracker, clip) with ms_median, the
+    paper's ms (``paper_ms``), auc, precision20 and the mean candidate likelihood."""
+    from .. import clips as _clips
+    from .runner import evaluate
+
+    paper = PAPERS["cho2005"]
+    rows = []
+    for c in clip_names:
+        clip = _clips.load(c)
+        for t in trackers or paper["trackers"]:
+            r = evaluate(t, clip, seed=seed, max_frames=max_frames)
+            lik = r.extras.get("mean_likelihood")
+            rows.append({"tracker": t, "clip": clip.name, "frames": len(r.boxes),
+                         "auc": r.scores["auc"], "precision20": r.scores["precision20"],
+                         "ms_median": r.scores["ms_median"], "ms_mean": r.scores["ms_mean"],
+                         "mean_likelihood": float(np.nanmean(lik[1:])) if lik is not None
+                         else float("nan"),
+                         "paper_ms": paper["ms"].get(t, float("nan"))})
+    return rows
+
+
+def cho2005_two_target_table(clip_name="two-faces", trackers=None, seed=0,
+                             max_frames=None) -> list[dict]:
+    """Table 2 of Cho & Kang 2005 on a two-target clip: one row per tracker with ms per frame
+    for all targets at once, the paper's ms and each target's AUC (``auc_<target>``)."""
+    from .. import clips as _clips
+    from . import metrics
+    from .runner import evaluate
+
+    paper = PAPERS["cho2005"]
+    clip = _clips.load(clip_name)
+    rows = []
+    for t in trackers or paper["trackers"]:
+        res = evaluate(t, clip, seed=seed, max_frames=max_frames, targets="all")
+        row = {"tracker": t, "clip": clip.name, "ms_median": res.scores["ms_median"],
+               "paper_ms": paper["ms_two_targets"].get(t, float("nan"))}
+        for name, r in res.results.items():
+            row[f"auc_{name}"] = metrics.auc(r.boxes[1:], clip.targets[name][1:len(r.boxes)])
+        rows.append(row)
+    return rows

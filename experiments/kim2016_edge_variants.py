@@ -1,16 +1,15 @@
-"""The search for a better edge observation model of the lab notes on Kim et al. (2016): every variant, seeds 0-9.
+"""``edge-ray-x``: the edge-observation variants searched in the lab notes on Kim et al. (2016).
 
-Development code, not part of the library: it defines ``edge-ray-x``, a subclass of
-``edge-ray-pf`` whose params switch on one departure from Kim et al. 2016 at a time, runs
-each variant (and the library's own ``velocity_gain`` option for all three seed-001
-trackers) on the real sequences, and writes one row per (variant, seed, sequence)::
+Development code, not part of the library: a subclass of ``edge-ray-pf`` whose params switch
+on one departure from Kim et al. 2016 at a time. It is a tracker plugin
+(:func:`trackbook.trackers.plugins.load`): the experiment ``kim2016_edges`` of
+:mod:`trackbook.evaluation.experiments` names this file, and the benchmark's workers load it
+before they run, so the variants run in worker processes like the library's trackers. The
+grid of variants (labels and params) is declared there; regenerate its results with::
 
-    PYTHONPATH=src python experiments/seed001_edge_variants.py \
-        --seeds 0-9 --out book/results/seed001_variants.csv
+    python -m trackbook.evaluation.experiments run kim2016_edges --workers 2
 
-About 15 minutes on 2 cores. The lab notes on Kim et al. (2016) read the CSV ("Looking for a better edge model").
-
-One class, ``edge-ray-x``, whose params switch the departures on one by one:
+The params that switch the departures on:
 
 - ``dist="log"``: eq. 6 replaced by a per-ray log-ratio distance
   D = mean_j |log((p_j + c) / (m_j + c))|, likelihood exp(-D^2 / (2 obs_sigma^2)).
@@ -246,94 +245,3 @@ class EdgeRayX(EdgeRayPF):
             self.estimate = new
             box = self.state_to_box(self.estimate)
         return ok, box
-
-
-#: (label, tracker, params) of every run in chapter 03's table, in the table's order.
-VARIANTS = [
-    ("paper (edge-ray-pf)", "edge-ray-pf", {}),
-    ("(a) per-ray log-ratio distance, sigma 0.3", "edge-ray-x", {"dist": "log", "obs_sigma": 0.3}),
-    ("(a) per-ray log-ratio distance, sigma 0.15", "edge-ray-x", {"dist": "log", "obs_sigma": 0.15}),
-    ("(a) log-ratio, 10 px added to every ray", "edge-ray-x", {"dist": "log", "log_c": 10.0, "obs_sigma": 0.3}),
-    ("(a) log-ratio, Laplacian", "edge-ray-x", {"dist": "logl1", "obs_sigma": 0.1}),
-    ("(c) soft Ratio window", "edge-ray-x", {"soft_ratio": 0.15}),
-    ("(a+c) log-ratio + soft Ratio", "edge-ray-x", {"dist": "log", "obs_sigma": 0.2, "soft_ratio": 0.2}),
-    ("(d) CLAHE before Canny", "edge-ray-x", {"clahe": 2.0}),
-    ("(d) Canny thresholds follow the local gradient gain", "edge-ray-x", {"gain": "local"}),
-    ("(d) Canny thresholds follow the frame's gradient gain", "edge-ray-x", {"gain": "global"}),
-    ("(b) 5 points, a model and a Ratio test each", "edge-ray-x", {"points": 5}),
-    ("(b) 5 points, 40 rays in one model", "edge-ray-x", {"combine": "pool", "points": 5}),
-    ("(b) 9 points, 72 rays in one model", "edge-ray-x", {"combine": "pool", "points": 9}),
-    ("edges dilated 3x3", "edge-ray-x", {"dilate": 1}),
-    ("rays stop only at edges across them (60 deg)", "edge-ray-x", {"orient": 60.0}),
-    ("rays stop only at edges across them (45 deg)", "edge-ray-x", {"orient": 45.0}),
-    ("(e) estimate from the top 3 % of particles", "edge-ray-x", {"top_frac": 0.03}),
-    ("(e) estimate from the top 10 %", "edge-ray-x", {"top_frac": 0.1}),
-    ("(e) estimate from the top 30 %", "edge-ray-x", {"top_frac": 0.3}),
-    ("velocity_gain 0.5", "edge-ray-pf", {"velocity_gain": 0.5}),
-    ("velocity_gain 0", "edge-ray-pf", {"velocity_gain": 0.0}),
-    ("hsi-color-pf", "hsi-color-pf", {}),
-    ("hsi-color-pf, velocity_gain 0.5", "hsi-color-pf", {"velocity_gain": 0.5}),
-    ("hsi-color-pf, velocity_gain 0", "hsi-color-pf", {"velocity_gain": 0.0}),
-    ("hog-pf", "hog-pf", {}),
-    ("hog-pf, velocity_gain 0.5", "hog-pf", {"velocity_gain": 0.5}),
-]
-
-
-def _job(args):
-    import json
-    import trackbook
-    from trackbook import clips
-    label, tracker, params, seed, path = args
-    r = trackbook.evaluate(tracker, clips.load(path), seed=seed, **params)
-    return {"variant": label, "tracker": tracker, "params": json.dumps(params, sort_keys=True),
-            "seed": seed, "clip": r.clip, "auc": r.scores["auc"]}
-
-
-def main(argv=None):
-    import argparse
-    import csv
-    from multiprocessing import Pool
-    from pathlib import Path
-
-    from trackbook.clips import find_sequences
-
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--seeds", default="0-9", help="e.g. 0-9 or 0,1,2")
-    ap.add_argument("--out", required=True, help="CSV to write")
-    ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--only", help="comma-separated trackers to re-run; the other rows are kept "
-                    "from the existing --out file (for a change that touches only these)")
-    a = ap.parse_args(argv)
-    if "-" in a.seeds:
-        lo, hi = (int(v) for v in a.seeds.split("-"))
-        seeds = list(range(lo, hi + 1))
-    else:
-        seeds = [int(v) for v in a.seeds.split(",")]
-    seqs = find_sequences()
-    if not seqs:
-        raise SystemExit("no sequences found: put them in ../shared/data/sequences or set "
-                         "TRACKBOOK_SEQUENCES")
-    jobs = [(label, t, p, s, str(path)) for label, t, p in VARIANTS for s in seeds
-            for path in seqs.values()]
-    kept = {}
-    if a.only:
-        only = set(a.only.split(","))
-        with open(a.out, newline="") as f:
-            kept = {(r["variant"], int(r["seed"]), r["clip"]): r for r in csv.DictReader(f)
-                    if r["tracker"] not in only}
-        todo = [j for j in jobs if j[1] in only]
-    else:
-        todo = jobs
-    with Pool(a.jobs) as pool:
-        fresh = iter(pool.map(_job, todo, chunksize=1))
-    # every row in the order of ``jobs``: re-run ones fresh, the others as they were
-    rows = [next(fresh) if j in todo else kept[(j[0], j[3], Path(j[4]).name)] for j in jobs]
-    with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    print(f"wrote {len(rows)} rows to {a.out}")
-
-
-if __name__ == "__main__":
-    main()
