@@ -288,17 +288,17 @@ def side_by_side(results=None) -> list[dict]:
     Rows ``{"tracker", "source", "sequence", "rate"}``, ``source`` being ``"published"`` or
     ``"trackbook"``, ``sequence`` the development set's name; rates are over frames 2..N for
     both (see :func:`without_first_frame`). The book's rates are the ``tracking_rate`` of the
-    committed real-sequence results (``book/results/real/results.json``), or of ``results``
-    (a list of such records) when given.
+    committed real-sequence results (``trackbook.results.load("real")``, book defaults), or of
+    ``results`` (a list of such records) when given.
     """
     rows = []
     for r in load():
         rows.append({"tracker": r["tracker"], "source": "published", "sequence": r["sequence"],
                      "rate": without_first_frame(r["success_rate_iou50"], r["frames"])})
     if results is None:
-        from .results import path
+        from .. import results as _results
 
-        results = json.loads((path("real") / "results.json").read_text(encoding="utf-8"))
+        results = _results.load("real").where(preset="book").rows
     for rec in results:
         if rec.get("clip") in SEQUENCES and rec.get("tracking_rate") is not None:
             rate = float(rec["tracking_rate"])
