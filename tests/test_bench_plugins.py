@@ -17,6 +17,7 @@ from trackbook.evaluation import bench
 TRACKER_FILE = '''
 import numpy as np
 from trackbook import trackers
+from trackbook.evaluation import runs
 from trackbook.trackers import Tracker
 
 SHIFT = {shift}
@@ -183,3 +184,20 @@ def test_a_worker_that_dies_is_one_line_not_a_hang(tmp_path, capsys):
                      f"{a},{b}", "--workers", "2", "--quiet", "--out", str(tmp_path / "o")])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and "exit code 3" in err[0], err
+
+
+def test_code_text_ignores_docstrings_and_comments_not_code(tmp_path):
+    base = 'def f(x):\n    """Twice x."""\n    return 2 * x  # double\n'
+    reworded = 'def f(x):\n    """Two times x, reworded."""\n\n    return 2 * x  # doubled\n'
+    changed = 'def f(x):\n    """Twice x."""\n    return 3 * x  # double\n'
+    paths = []
+    for i, text in enumerate((base, reworded, changed)):
+        p = tmp_path / f"m{i}.py"
+        p.write_text(text)
+        paths.append(p)
+    a, b, c = (runs.code_text(p) for p in paths)
+    assert a == b            # a docstring, a comment and a blank line: the same computation
+    assert a != c            # 2 * x -> 3 * x: another computation, the runs are stale
+    bad = tmp_path / "bad.py"
+    bad.write_text("def (:\n")
+    assert runs.code_text(bad) == b"def (:\n"      # does not parse: its bytes
