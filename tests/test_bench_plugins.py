@@ -12,12 +12,11 @@ import pytest
 from .conftest import write_sequence
 from trackbook import params as _params
 from trackbook import trackers
-from trackbook.evaluation import bench
+from trackbook.evaluation import bench, runs
 
 TRACKER_FILE = '''
 import numpy as np
 from trackbook import trackers
-from trackbook.evaluation import runs
 from trackbook.trackers import Tracker
 
 SHIFT = {shift}
