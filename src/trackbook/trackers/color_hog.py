@@ -304,12 +304,11 @@ class ColorHogParticleFilter(ParticleFilterTracker):
         d2 = self._distances2(feats)
         self._similarities = {"color": similarity(d2["color"], p.sigma_color)}
         p_color = gaussian_likelihood(d2["color"], p.sigma_color)
-        # the match 1 - D^2 of the lost gate, fused with the same alpha as eq. 14
-        match = 1.0 - d2["color"]
+        # the match 1 - D^2 of the lost gate is the colour term alone: whether the target is
+        # there at all; HOG's match swings with small misalignments and on small boxes
+        self._match = np.clip(1.0 - d2["color"], 0.0, 1.0)
         if not self.use_hog:
-            self._match = np.clip(match, 0.0, 1.0)
             return p_color
-        self._match = np.clip(p.alpha * match + (1.0 - p.alpha) * (1.0 - d2["hog"]), 0.0, 1.0)
         self._similarities["hog"] = similarity(d2["hog"], p.sigma_hog)
         return fuse(p_color, gaussian_likelihood(d2["hog"], p.sigma_hog), p.alpha)   # eq. 14
 

@@ -31,6 +31,18 @@ def lost_k_param():
                  "book's choice (only used when lost_below > 0)")
 
 
+def scatter_grid(k: int, frame_wh, rng) -> np.ndarray:
+    """``k`` points spread evenly over a frame of size ``frame_wh = (W, H)``: a grid of about
+    ``k`` cells of the frame's aspect, ``k`` distinct cells drawn at random, one uniform point
+    in each (a jittered grid: no part of the frame is left out, as i.i.d. uniform points may)."""
+    W, H = (float(v) for v in frame_wh)
+    nx = max(1, int(np.ceil(np.sqrt(k * W / H))))
+    ny = max(1, int(np.ceil(k / nx)))
+    cells = rng.choice(nx * ny, size=k, replace=False)
+    u = rng.uniform(0.0, 1.0, size=(k, 2))
+    return np.column_stack([(cells % nx + u[:, 0]) / nx * W, (cells // nx + u[:, 1]) / ny * H])
+
+
 class ParticleFilterTracker(Tracker):
     """Sequential importance resampling (SIR, Condensation) as in Lee et al. 2012's
     pseudocode, for subclasses.
@@ -99,6 +111,16 @@ class ParticleFilterTracker(Tracker):
     gate_window = 30
     #: After this many lost frames in a row the gate forgets its range and rebuilds it.
     gate_patience = 30
+    #: A frame the gate would call lost is kept when the best particle's match beats the
+    #: median of the boxes around it by this much (0 = no second look).
+    gate_contrast = 0.2
+    #: ... but never when that best match is below this (a sliver at the border, a look-alike).
+    contrast_floor = 0.5
+    #: Where the second look's boxes are, in box sizes from the best particle's centre.
+    probe_offsets = ((-1.5, 0), (1.5, 0), (0, -1.5), (0, 1.5), (-1.5, -1.5), (1.5, -1.5),
+                     (-1.5, 1.5), (1.5, 1.5))
+    #: Per-frame records a probe's ``_likelihood`` call must not overwrite.
+    _probe_keeps = ("_similarities", "_report", "_rho", "_likelihoods")
 
     def _init(self, frame, box):
         self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
@@ -110,6 +132,7 @@ class ParticleFilterTracker(Tracker):
         self.estimate = self._box_to_state(box)
         self.lost = False
         self._match = np.ones(n)
+        self._start_state = np.asarray(self._box_to_state(box), dtype=float)
         self._gate_d2 = []          # best D^2 of recent frames that were not lost
         self._lost_in_a_row = 0
 
@@ -129,7 +152,7 @@ class ParticleFilterTracker(Tracker):
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
             informative = False
-        if informative and self._gated_out():
+        if informative and self._gated_out() and not self._stands_out(frame, particles):
             informative = False                     # the distance gate (see "Lost rule")
         self._lost_in_a_row = 0 if informative else self._lost_in_a_row + 1
         self._particles, self._likelihoods = particles, lik
@@ -193,16 +216,55 @@ class ParticleFilterTracker(Tracker):
         del hist[:-self.gate_window]
         return False
 
+    def _stands_out(self, frame, particles) -> bool:
+        """The gate's second look (see "Lost rule"): whether the best particle's match is at
+        least ``contrast_floor`` and beats the median match of the ``probe_offsets`` boxes
+        around it, of its own size, by at least ``gate_contrast``. Computed only on frames the
+        distance gate would call lost."""
+        m = self._match
+        i = int(np.nanargmax(m))
+        best = float(m[i])
+        if self.gate_contrast <= 0 or best < self.contrast_floor:
+            return False
+        box = np.asarray(self._state_to_box(particles[i]), dtype=float)
+        centres = box[:2] + box[2:] / 2 + np.asarray(self.probe_offsets) * box[2:]
+        inside = np.all((centres >= 0) & (centres < self._frame_wh), axis=1)
+        if inside.sum() < 2:
+            return False
+        probes = np.repeat(particles[i:i + 1], int(inside.sum()), axis=0)
+        probes[:, 0:2] += centres[inside] - (box[:2] + box[2:] / 2)
+        saved = {k: getattr(self, k) for k in self._probe_keeps if hasattr(self, k)}
+        self._likelihood(frame, probes)
+        around = float(np.nanmedian(self._match))
+        for k, v in saved.items():
+            setattr(self, k, v)
+        self._match = m
+        self._contrast = best - around
+        return best - around >= self.gate_contrast
+
     def _scatter(self, particles):
-        """Recovery while lost: move a random ``scatter_fraction`` of the particles to uniform
-        positions over the frame (state columns 0-1 are the centre in every tracker here) and
-        let ``_scatter_reset`` clear what should not carry over (e.g. velocities)."""
+        """Recovery while lost (see "Lost rule"): a random ``scatter_fraction`` of the
+        particles restart at rest at the size of the first box, on a jittered grid over the
+        whole frame (one particle per grid cell, so the frame is covered evenly at a cost
+        bounded by N); of the others, half keep what the last frame's weights selected (so the
+        search closes in on a good match over a few frames) and half restart at rest at the
+        last estimate (all of them after a frame with nothing to weigh, uniform weights). ``_scatter_reset`` clears
+        what else should not carry over."""
         n = particles.shape[0]
         k = int(round(self.scatter_fraction * n))
         if k <= 0:
             return particles
-        idx = self.rng.choice(n, size=k, replace=False)
-        particles[idx, 0:2] = self.rng.uniform(0.0, 1.0, size=(k, 2)) * self._frame_wh
+        # at rest: the state of a box (zero velocity, unit size change); columns 0-1 are the
+        # centre in every tracker here
+        home = self._box_to_state(self._state_to_box(self.estimate))
+        order = self.rng.permutation(n)
+        idx = order[:k]
+        if np.ptp(self._weights) == 0:
+            particles[:] = home
+        else:
+            particles[order[k:k + (n - k) // 2]] = home  # half of the rest waits where it left
+        particles[idx] = self._start_state
+        particles[idx, 0:2] = scatter_grid(k, self._frame_wh, self.rng)
         self._scatter_reset(particles, idx)
         return particles
 
