@@ -113,7 +113,7 @@ class ParticleFilterTracker(Tracker):
     gate_patience = 30
     #: A frame the gate would call lost is kept when the best particle's match beats the
     #: median of the boxes around it by this much (0 = no second look).
-    gate_contrast = 0.2
+    gate_contrast = 0.12
     #: ... but never when that best match is below this (a sliver at the border, a look-alike).
     contrast_floor = 0.5
     #: Where the second look's boxes are, in box sizes from the best particle's centre.
