@@ -222,6 +222,9 @@ class ColorHogParticleFilter(ParticleFilterTracker):
     learning : bool, whether the likelihood uses the learned subspaces.
     n_learned : number of frames added to the subspaces (or collected before T).
     n_rejected : number of frames the relative gate refused.
+
+    Lost rule: that of ``ParticleFilterTracker`` (flat frames, the distance gate with its
+    second look, the scatter while lost); the gate's match is the colour term 1 - D^2_color.
     """
 
     use_hog: bool = False

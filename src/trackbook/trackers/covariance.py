@@ -191,7 +191,11 @@ class _CovarianceSearch(Tracker):
     gradient variation at all in an all-black, all-white or constant frame -- carries no
     information about the target: the regularised ρ of eq. 5-6 against such a window is only
     a number produced by ε, so the frame is reported lost (``ok=False``) and the model is not
-    updated.
+    updated. A target leaving across the border: candidate windows stay inside the frame, so
+    the best window's ρ rises as the target's visible part shrinks, and is lost above
+    ``threshold``. While lost (``fallback="frame"``) the whole frame is searched every frame,
+    at a bounded cost (``max_global_windows`` coarse windows, then a few refinements), and
+    ``ok=True`` comes back only with a best ρ at most ``threshold``.
     """
 
     Params = CovarianceParams

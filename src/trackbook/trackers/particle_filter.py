@@ -88,19 +88,32 @@ class ParticleFilterTracker(Tracker):
     best ``D^2`` of the last ``gate_window`` frames that were not lost (the first five frames
     always pass). The gate is on the distance, not on the likelihood: ``exp(-D^2 / 2 sigma^2)``
     of a given match changes by orders of magnitude with sigma, ``D^2`` does not. Both tests
-    are needed: on the Crossing sequence a box still on the pedestrian (IoU 0.6-0.8) has a
-    best HOG match of only 0.66, and a colour distance that rises from 0.02 to 0.17; the two
-    together marked 145 frames of ``color-pf`` and ``hsi-color-pf`` lost on the seven
-    sequences (seed 0), 4 of them with the box still on the target (chapter 2). After
+    are needed: a box still on a pedestrian can match only moderately (a HOG that swings with
+    small misalignments, a colour distance that rises as the light changes). The colour + HOG
+    trackers gate on the colour term alone (whether the target is there at all). After
     ``gate_patience`` lost frames in a row the recent range is forgotten and rebuilt, so a
     target whose look changed for good is not reported lost for ever.
 
-    Recovery: while lost, every prediction moves ``scatter_fraction`` of the particles to
-    uniform positions over the whole frame (``_scatter``), so that a target that comes back
-    somewhere else is found; the rest stay around the last estimate for a target that
-    reappears where it vanished. On a frame that is never lost nothing is scattered and no
-    random number is drawn for it, so trackers that never lose the target run exactly as
-    without the rule.
+    Second look (``gate_contrast`` > 0): before the gate calls a frame lost, the best
+    particle's match is compared with the median match of eight boxes of its size around it
+    (``probe_offsets``, 1.5 box sizes away; ``_stands_out``). A match of at least
+    ``contrast_floor`` that beats its surroundings by ``gate_contrast`` is the target under a
+    sudden change of light (every match drops, the target's stays the best around), not a
+    target that has gone: the frame is kept. A target that left, or is covered, leaves no
+    such peak. Only frames the gate would call lost pay for the look (one more likelihood of
+    eight boxes); ``hog-pf`` has none (a textured background's HOG stands out as much).
+
+    Leaving across the border: the boxes are kept inside the frame, so the visible part of a
+    leaving target shrinks in them and the match drops with it: the same two rules report it.
+
+    Recovery: while lost, every prediction restarts ``scatter_fraction`` of the particles at
+    rest, at the size of the first box, on a jittered grid over the whole frame
+    (``scatter_grid``: one particle per cell, so the whole frame is covered at a cost bounded
+    by N); of the rest, half keep what the last frame's weights selected (the search closes in
+    on a good match over a few frames) and half wait at rest at the last estimate, for a target
+    that reappears where it vanished. ``ok=True`` comes back only when the best match passes
+    the gate again. On a frame that is never lost nothing is scattered and no random number
+    is drawn for it, so trackers that never lose the target run exactly as without the rule.
     """
 
     #: Below this the weights are treated as carrying no information (frame "lost").
