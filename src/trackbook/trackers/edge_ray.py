@@ -84,7 +84,8 @@ class EdgeRayPF(CentreParticleFilter):
     than ``min_visible`` of the estimate's box is inside the frame, or when the estimate's
     kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012) matches the first
     frame's poorly: rho below 0.5, or below 0.7 and far outside its recent range
-    (:class:`~trackbook.trackers.lost.MatchGate`). The edge rays alone still place the box;
+    (:class:`~trackbook.trackers.lost.MatchGate`) unless it stands out from the boxes around
+    it (the second look of ``ParticleFilterTracker``: a sudden change of light). The edge rays alone still place the box;
     the colour only vetoes it. While lost, the spread widens (``lost_growth``) and the whole
     frame is searched by colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most
     325 histograms a frame, paid only while lost); a box that passes the gate restarts the
@@ -162,8 +163,9 @@ class EdgeRayPF(CentreParticleFilter):
         """The lost rule's checks of an estimate the edges accepted: in view, colour match."""
         if visible_fraction(box, frame.shape) < self.min_visible:
             return False
-        self.colour_rho = float(self._colour.match(frame, np.asarray(box, float)[None])[0])
-        return not self._colour_gate.lost(self.colour_rho)
+        b = np.asarray(box, float)
+        rho = self.colour_rho = float(self._colour.match(frame, b[None])[0])
+        return not self._colour_gate.lost(rho, lambda: self._colour.stands_out(frame, b, rho))
 
     def _search(self, frame, box):
         """Lost: search the whole frame by colour; restart the filter on a box that passes."""

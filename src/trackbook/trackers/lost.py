@@ -47,8 +47,11 @@ class MatchGate:
         self.history: list = []
         self.lost_in_a_row = 0
 
-    def lost(self, match: float) -> bool:
-        """Whether a frame whose best match is ``match`` is lost (and record it if not)."""
+    def lost(self, match: float, second_look=None) -> bool:
+        """Whether a frame whose best match is ``match`` is lost (and record it if not).
+
+        ``second_look()``, if given, is asked only when the range test fires (not below
+        ``floor``): True keeps the frame (not lost, not recorded in the range)."""
         d2 = 1.0 - float(match)
         if not np.isfinite(d2) or match < self.floor:
             self.lost_in_a_row += 1
@@ -61,6 +64,9 @@ class MatchGate:
             med = float(np.median(v))
             spread = max(1.4826 * float(np.median(np.abs(v - med))), med / 2.0)
             if d2 > med + self.k * spread:
+                if second_look is not None and second_look():
+                    self.lost_in_a_row = 0
+                    return False
                 self.lost_in_a_row += 1
                 return True
         h.append(d2)
@@ -90,6 +96,24 @@ class ColourCheck:
     def match(self, frame, boxes) -> np.ndarray:
         """rho (Bhattacharyya coefficient) of every box against the reference."""
         return bhattacharyya_coefficient(self.histograms(frame, boxes), self.reference)
+
+    def stands_out(self, frame, box, rho, contrast=0.12, floor=0.5) -> bool:
+        """The second look of ``ParticleFilterTracker``: whether ``rho`` (the match of
+        ``box``) is at least ``floor`` and beats the median match of eight boxes of its size
+        1.5 box sizes around it by ``contrast`` (the target under a sudden change of light
+        stays the best match around; a target that left leaves no such peak)."""
+        if rho < floor:
+            return False
+        H, W = frame.shape[:2]
+        b = np.asarray(box, float)
+        off = np.array([(-1.5, 0), (1.5, 0), (0, -1.5), (0, 1.5), (-1.5, -1.5), (1.5, -1.5),
+                        (-1.5, 1.5), (1.5, 1.5)]) * b[2:]
+        c = b[:2] + b[2:] / 2 + off
+        c = c[(c[:, 0] >= 0) & (c[:, 0] < W) & (c[:, 1] >= 0) & (c[:, 1] < H)]
+        if len(c) < 2:
+            return False
+        probes = np.column_stack([c - b[2:] / 2, np.tile(b[2:], (len(c), 1))])
+        return rho - float(np.median(self.match(frame, probes))) >= contrast
 
     def search(self, frame, max_boxes: int = 300, size=None):
         """Best box of ``size`` (default the first box's) over the whole frame: centres on a

@@ -83,7 +83,8 @@ class OpenCVMIL(Tracker):
     ``min_visible`` of its area in the frame is lost; a box whose kernel colour histogram
     (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012) matches the first frame's poorly is lost (rho
     below 0.5, or below 0.7 and far outside its recent range,
-    :class:`~trackbook.trackers.lost.MatchGate`). While lost, the whole frame is searched by
+    :class:`~trackbook.trackers.lost.MatchGate`, unless it stands out from the boxes around
+    it: a sudden change of light). While lost, the whole frame is searched by
     colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most 325 histograms a
     frame, paid only while lost); a box that passes the gate restarts MIL there (a fresh child process, as ``init``) and is reported ``ok=True``.
     """
@@ -182,9 +183,11 @@ class OpenCVMIL(Tracker):
         r = self._ask(b"U", frame)
         ok = r is not None and bool(r[0])
         box = np.asarray(r[1:], dtype=float) if ok else last
+        if ok and visible_fraction(box, frame.shape) < self.min_visible:
+            ok = False
         if ok:
-            ok = visible_fraction(box, frame.shape) >= self.min_visible and not self._gate.lost(
-                float(self._colour.match(frame, box[None])[0]))
+            rho = float(self._colour.match(frame, box[None])[0])
+            ok = not self._gate.lost(rho, lambda: self._colour.stands_out(frame, box, rho))
         if not ok and not self._dead:
             found, rho = self._colour.search(frame, max_boxes=300)
             if visible_fraction(found, frame.shape) >= self.min_visible \
