@@ -81,7 +81,9 @@ class OpenCVMIL(Tracker):
     returns: a constant frame (all black, all white, one grey: grey levels spanning at most
     ``flat_range``) is lost and not shown to MIL (it would learn it); a box with less than
     ``min_visible`` of its area in the frame is lost; a box whose kernel colour histogram
-    (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012) matches the first frame's poorly is lost (rho
+    (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012), at best over shifts of a quarter box
+    (:meth:`~trackbook.trackers.lost.ColourCheck.match_near`: MIL does not place its box by
+    colour), matches the first frame's poorly is lost (rho
     below 0.5, or below 0.7 and far outside its recent range,
     :class:`~trackbook.trackers.lost.MatchGate`, unless it stands out from the boxes around
     it: a sudden change of light). While lost, the whole frame is searched by
@@ -186,8 +188,8 @@ class OpenCVMIL(Tracker):
         if ok and visible_fraction(box, frame.shape) < self.min_visible:
             ok = False
         if ok:
-            rho = float(self._colour.match(frame, box[None])[0])
-            ok = not self._gate.lost(rho, lambda: self._colour.stands_out(frame, box, rho))
+            rho, near = self._colour.match_near(frame, box)
+            ok = not self._gate.lost(rho, lambda: self._colour.stands_out(frame, near, rho))
         if not ok and not self._dead:
             found, rho = self._colour.search(frame, max_boxes=300)
             if visible_fraction(found, frame.shape) >= self.min_visible \
