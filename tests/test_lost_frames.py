@@ -94,8 +94,34 @@ def test_distance_gate_matches_the_rule_by_hand(name, start, monkeypatch):
         return np.full(len(particles), np.exp(-d2 / 0.08))
 
     monkeypatch.setattr(t, "likelihood", fake_likelihood)
+    monkeypatch.setattr(t, "gate_contrast", 0.0)     # the distance gate alone (no second look)
     got = [not t.update(frames[1 + i % 3])[0] for i in range(len(d2s))]
     assert got == expected
+
+
+@pytest.mark.parametrize("name", ["color-pf", "hsi-color-pf"])
+@pytest.mark.parametrize("around, lost", [(0.3, False), (0.55, True), (0.45, False)])
+def test_second_look_keeps_a_match_that_stands_out(name, around, lost, start, monkeypatch):
+    """After six frames at D^2 = 0.05, a frame whose best match is 0.6 (D^2 = 0.4, far above
+    the range: the gate fires). Its second look compares 0.6 with the boxes around the best
+    particle, all matching ``around``: 0.6 - 0.3 = 0.3 and 0.6 - 0.45 = 0.15 stand out (>= 0.12:
+    kept, ok=True); 0.6 - 0.55 = 0.05 does not (lost)."""
+    frames, box = start
+    t = trackers.create(name, seed=0)
+    t.init(frames[0], box)
+    calls = []
+
+    def fake_likelihood(frame, particles):
+        calls.append(len(particles))
+        m = 0.95 if len(calls) <= 6 else (0.6 if len(calls) == 7 else around)
+        t._match = np.full(len(particles), m)
+        return np.full(len(particles), np.exp(-(1 - m) / 0.08))
+
+    monkeypatch.setattr(t, "_likelihood", fake_likelihood)
+    oks = [t.update(frames[1 + i % 3])[0] for i in range(7)]
+    assert oks[:6] == [True] * 6
+    assert oks[6] is (not lost)
+    assert len(calls) == 8 and calls[7] >= 2      # one extra call, on the probes only
 
 
 def test_distance_gate_is_off_in_the_paper_preset():

@@ -52,12 +52,47 @@ def hsi_bin_index(bgr: np.ndarray, bins=HSI_BINS) -> np.ndarray:
     """Bin index of every pixel in a ``bins[0] x bins[1] x bins[2]`` HSI histogram.
 
     Each channel is cut into equal intervals (H over [0, 360), S and I over [0, 1]).
+
+    The same bins as binning :func:`bgr_to_hsi` (up to rounding within a float32 step of a bin
+    edge), without its arccos: the hue's bin is found by comparing cos(theta) with the
+    cosines of the bin edges (theta = arccos(cos) is decreasing in cos), so a particle
+    filter's patches are binned about twice as fast.
     """
-    hsi = bgr_to_hsi(bgr)
+    a = np.asarray(bgr)
+    if a.shape[-1] != 3:
+        raise ValueError(f"hsi_bin_index needs 3 channels in the last axis, got shape {a.shape}.")
     bh, bs, bi = bins
-    h = np.minimum((hsi[..., 0] * (bh / 360.0)).astype(np.int32), bh - 1)
-    s = np.minimum((hsi[..., 1] * bs).astype(np.int32), bs - 1)
-    i = np.minimum((hsi[..., 2] * bi).astype(np.int32), bi - 1)
+    x = a.astype(np.float32) / 255.0            # the arithmetic of bgr_to_hsi, step by step
+    b, g, r = x[..., 0], x[..., 1], x[..., 2]
+    total = r + g + b
+    i = np.minimum((total / 3.0 * bi).astype(np.int32), bi - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        s = np.where(total > 0, 1.0 - 3.0 * np.minimum(np.minimum(r, g), b) / total, 0.0)
+        # cos(theta) from the 0..255 integers, exact in float32 (a hue of exactly 90 degrees
+        # has cos 0, not a rounding error away from it)
+        y = a.astype(np.float32)
+        rg, rb = y[..., 2] - y[..., 1], y[..., 2] - y[..., 0]
+        den = np.sqrt(rg * rg + rb * (y[..., 1] - y[..., 0]))
+        cos = np.where(den > 0, 0.5 * (rg + rb) / den, np.float32(2.0))
+    s = np.minimum((np.clip(s, 0.0, 1.0) * bs).astype(np.int32), bs - 1)
+    # theta >= edge  <=>  cos <= cos(edge); H = theta (B <= G) or 360 - theta (B > G)
+    edges = np.arange(1, bh) * (360.0 / bh)
+    up = np.zeros(cos.shape, np.int32)          # number of edges e <= theta
+    down = np.zeros(cos.shape, np.int32)        # number of edges e <= 360 - theta
+    def cos_of(deg):             # exact 0 at 90 degrees (np.cos gives 6e-17)
+        c = np.cos(np.radians(deg))
+        return np.float32(0.0 if abs(c) < 1e-12 else c)
+
+    for e in edges:
+        if e <= 180.0:
+            up += cos <= cos_of(e)
+        if 360.0 - e >= 180.0:
+            down += 1
+        else:
+            down += cos >= cos_of(360.0 - e)
+    # theta = 0 with B > G is H = 360 = 0; no hue (grey, den ~ 0, cos = 2) is bin 0
+    h = np.where(b <= g, up, np.where(cos >= 1.0, 0, down))
+    h = np.where(cos > 1.5, 0, h)
     return (h * bs + s) * bi + i
 
 

@@ -63,6 +63,11 @@ class CentreParticleFilter(ParticleFilterTracker):
     widened spread ``sigma * lost_growth^k`` (k lost frames in a row, capped at a quarter of
     the frame), so the filter searches a growing area until the target returns.
 
+    Lost rule: that of ``ParticleFilterTracker`` (flat frames, all weights zero, and for the
+    appearance filters the distance gate); while lost the search is the widening spread
+    around the last estimate, up to a quarter of the frame's larger side (which covers the
+    whole frame), at the cost of a tracked frame (N particles).
+
     Attributes
     ----------
     velocity : (2,) the estimated motion per frame added in the prediction.

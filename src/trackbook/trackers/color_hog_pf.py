@@ -46,6 +46,9 @@ class ColorHogPF(ColorPF):
 
     ``features`` returns ``"color"`` (eq. 1) and ``"hog"`` (eq. 2-5) of every box, both from one
     resampling of the boxes to ``PATCH_SIZE``; ``similarities`` and ``reference`` have both keys.
+
+    Lost rule: that of ``ParticleFilterTracker`` (flat frames, the distance gate with its
+    second look, the scatter while lost); the gate's match is the colour term 1 - D^2_color.
     """
 
     name = "color-hog-pf"
@@ -66,8 +69,8 @@ class ColorHogPF(ColorPF):
         d2 = self._distances2(self.features(frame, states_to_boxes(particles)))
         self._similarities = {"color": similarity(d2["color"], p.sigma_color),
                               "hog": similarity(d2["hog"], p.sigma_hog)}
-        # the match 1 - D^2 of the lost gate, fused with the same alpha as eq. 14
-        self._match = np.clip(p.alpha * (1.0 - d2["color"]) + (1.0 - p.alpha) * (1.0 - d2["hog"]),
-                              0.0, 1.0)
+        # the match 1 - D^2 of the lost gate is the colour term alone: whether the target is
+        # there at all; HOG's match swings with small misalignments and on small boxes
+        self._match = np.clip(1.0 - d2["color"], 0.0, 1.0)
         return fuse(gaussian_likelihood(d2["color"], p.sigma_color),
                     gaussian_likelihood(d2["hog"], p.sigma_hog), p.alpha)   # eq. 14

@@ -229,7 +229,8 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
 
     name = "condensation"
     Params = CondensationParams
-    #: Its lost rule is ``min_rho`` on the best candidate's Bhattacharyya coefficient (a
+    #: Lost rule: ``ParticleFilterTracker``'s (flat frames, scatter while lost) and
+    #: ``min_rho`` on the best candidate's Bhattacharyya coefficient (a
     #: candidate's ``match`` is its rho); while lost, four in five candidates are scattered over
     #: the frame (``ParticleFilterTracker._scatter``) so the target is found where it returns.
 
@@ -459,6 +460,9 @@ class MeanShift(_EllipseColourModel, Tracker):
     particles : (1, 7) the single "candidate" as a Condensation state; weights : ``[1.0]``
     rho : (1,) its Bhattacharyya coefficient
     trajectory : (T, 2) the centres visited by the last frame's iterations (steps ①-⑥)
+
+    Lost rule: a flat frame, or a climb that ends below ``min_rho``, is lost; the latter climbs
+    again from a grid over the whole frame (``_search_frame``, at most ``max_starts`` starts).
     """
 
     name = "mean-shift"

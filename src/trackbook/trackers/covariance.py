@@ -191,7 +191,11 @@ class _CovarianceSearch(Tracker):
     gradient variation at all in an all-black, all-white or constant frame -- carries no
     information about the target: the regularised ρ of eq. 5-6 against such a window is only
     a number produced by ε, so the frame is reported lost (``ok=False``) and the model is not
-    updated.
+    updated. A target leaving across the border: candidate windows stay inside the frame, so
+    the best window's ρ rises as the target's visible part shrinks, and is lost above
+    ``threshold``. While lost (``fallback="frame"``) the whole frame is searched every frame,
+    at a bounded cost (``max_global_windows`` coarse windows, then a few refinements), and
+    ``ok=True`` comes back only with a best ρ at most ``threshold``.
     """
 
     Params = CovarianceParams
@@ -199,8 +203,12 @@ class _CovarianceSearch(Tracker):
     singular_tol = 1e-10
 
     def _informative(self, frame, box) -> bool:
-        """Whether the window ``box`` has a non-singular feature covariance (see Lost rule)."""
-        C = self._covariances(frame, np.asarray(box, dtype=np.int64)[None])[0]
+        """Whether the window ``box`` has a non-singular feature covariance (see Lost rule).
+        A window the last search scored reuses its covariance instead of computing it again."""
+        b = np.asarray(box, dtype=np.int64)
+        boxes, Cs = getattr(self, "_scored", (np.zeros((0, 4), np.int64), None))
+        hit = np.flatnonzero(np.all(boxes == b, axis=1)) if len(boxes) else []
+        C = Cs[hit[0]] if len(hit) else self._covariances(frame, b[None])[0]
         ev = np.linalg.eigvalsh((C + C.T) / 2.0)
         return bool(np.all(np.isfinite(ev)) and ev[-1] > 0
                     and ev[0] > self.singular_tol * ev[-1])
@@ -226,7 +234,12 @@ class _CovarianceSearch(Tracker):
         return ic.covariances(boxes)
 
     def _score(self, frame, boxes):
-        rho = forstner_distance(self._model, self._covariances(frame, boxes), self.params.eps)
+        Cs = self._covariances(frame, boxes)
+        rho = forstner_distance(self._model, Cs, self.params.eps)
+        # keep the covariances of the set holding this frame's best window (for _informative)
+        if len(boxes) and (self._n_evaluated == 0 or rho.min() <= self._scored_best):
+            self._scored = (np.array(boxes, np.int64), np.array(Cs))
+            self._scored_best = float(rho.min())
         self._n_evaluated += len(boxes)
         return rho
 
@@ -237,18 +250,29 @@ class _CovarianceSearch(Tracker):
         i = int(np.argmin(rho))
         return boxes[i].astype(float), float(rho[i]), boxes, rho
 
+    #: The coarse whole-frame search scores at most about this many windows (its stride grows
+    #: with the frame beyond ``global_stride``), so a lost frame's cost is bounded.
+    max_global_windows = 600
+
     def _whole_frame_search(self, frame):
-        """Coarse search over the whole frame at ``global_stride``, refined at ``stride``."""
+        """Coarse search over the whole frame at ``global_stride`` (coarser on a large frame:
+        at most about ``max_global_windows`` windows), refined in steps of a quarter of the
+        stride down to ``stride`` around the best window."""
         H, W = frame.shape[:2]
         w, h = self._size
-        g = self.params.global_stride
+        n1 = (W - w + 1) * (H - h + 1)
+        g = max(self.params.global_stride, int(np.ceil(np.sqrt(n1 / self.max_global_windows))))
         centre = (W / 2.0, H / 2.0)
         box, rho, _, _ = self._search_with_stride(frame, centre, (W, H), g)
-        if g > self.params.stride:
+        while g > self.params.stride:
+            g2 = max(self.params.stride, g // 4)
             c = (box[0] + w / 2.0, box[1] + h / 2.0)
-            box2, rho2, _, _ = self._search(frame, c, (g - 1, g - 1))
-            if rho2 < rho:
-                box, rho = box2, rho2
+            boxes = grid_boxes(frame.shape, self._size, c, (g - 1, g - 1), g2)
+            rhos = self._score(frame, boxes)
+            i = int(np.argmin(rhos))
+            if rhos[i] < rho:
+                box, rho = boxes[i].astype(float), float(rhos[i])
+            g = g2
         return box, rho
 
     def _search_with_stride(self, frame, center, radius, stride):

@@ -26,6 +26,7 @@ import numpy as np
 from ..features import edge_rays as er
 from ..params import NOT_PRINTED, param
 from .centre_pf import CentreParticleFilter, CentrePFParams
+from .lost import ColourCheck, MatchGate, visible_fraction
 from .registry import register
 
 
@@ -73,9 +74,27 @@ class EdgeRayPF(CentreParticleFilter):
     ratios : (N,) Ratio of eq. 5 of the last frame's particles.
     edges : (H, W) bool Canny edge map of the last frame.
     particles, weights, likelihoods, estimate, lost : see ``ParticleFilterTracker``.
+    colour_rho : rho of the estimate's colour histogram against the first frame's (lost rule).
+
+    Lost rule
+    ---------
+    Edge rays cannot say that the target is gone: a textured background has edges everywhere
+    and many particles fall inside the Ratio window. So besides the rules of
+    ``ParticleFilterTracker`` (every weight zero, a constant frame), a frame is lost when less
+    than ``min_visible`` of the estimate's box is inside the frame, or when the estimate's
+    kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012) matches the first
+    frame's poorly: rho below 0.5, or below 0.7 and far outside its recent range
+    (:class:`~trackbook.trackers.lost.MatchGate`) unless it stands out from the boxes around
+    it (the second look of ``ParticleFilterTracker``: a sudden change of light). The edge rays alone still place the box;
+    the colour only vetoes it. While lost, the spread widens (``lost_growth``) and the whole
+    frame is searched by colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most
+    325 histograms a frame, paid only while lost); a box that passes the gate restarts the
+    filter there (``ok=True``).
     """
 
     name = "edge-ray-pf"
+    #: Less than this fraction of the box in the frame: the target is leaving (lost).
+    min_visible = 0.5
     Params = EdgeRayParams
 
     def model(self, frame, box):
@@ -91,6 +110,9 @@ class EdgeRayPF(CentreParticleFilter):
         self._m0 = self.model_rays.astype(float)
         self.particle_rays = np.zeros((0, 8))
         self.ratios = np.zeros(0)
+        self._colour = ColourCheck(frame, box)
+        self._colour_gate = MatchGate()
+        self.colour_rho = 1.0
 
     def state(self):
         """The particle filter's state plus ``rays``: pDis of every particle (eq. 4)."""
@@ -122,7 +144,16 @@ class EdgeRayPF(CentreParticleFilter):
         return er.edge_weight(self.particle_rays, m, (p.ratio_low, p.ratio_high))
 
     def _update(self, frame):
+        previous = np.array(self.estimate, dtype=float)
         ok, box = super()._update(frame)
+        if ok and not self._confirmed(frame, box):
+            # the edges placed the box, but it is not on the target (see "Lost rule")
+            self.estimate, self.lost = previous, True
+            self.on_lost()
+            ok, box = False, self.state_to_box(previous)
+        if not ok and not self._is_flat(frame):
+            ok, box = self._search(frame, box)
+            return ok, box
         p = self.params
         if ok and (p.adapt_scale or p.model_rate > 0):
             if p.adapt_scale:
@@ -134,6 +165,28 @@ class EdgeRayPF(CentreParticleFilter):
                 self.model_rays = (1 - p.model_rate) * self.model_rays + p.model_rate * here
             box = self.state_to_box(self.estimate)
         return ok, box
+
+    def _confirmed(self, frame, box) -> bool:
+        """The lost rule's checks of an estimate the edges accepted: in view, colour match."""
+        if visible_fraction(box, frame.shape) < self.min_visible:
+            return False
+        b = np.asarray(box, float)
+        rho = self.colour_rho = float(self._colour.match(frame, b[None])[0])
+        return not self._colour_gate.lost(rho, lambda: self._colour.stands_out(frame, b, rho))
+
+    def _search(self, frame, box):
+        """Lost: search the whole frame by colour; restart the filter on a box that passes."""
+        found, rho = self._colour.search(frame, max_boxes=300, size=self._size * self.scale)
+        if visible_fraction(found, frame.shape) < self.min_visible or self._colour_gate.lost(rho):
+            return False, box
+        self.colour_rho = rho
+        c = self.box_to_state(found)
+        n = self._particles.shape[0]
+        self._particles = self._clip(c + self.rng.normal(0.0, self.params.sigma, size=(n, 2)))
+        self._weights = np.full(n, 1.0 / n)
+        self.estimate, self.lost, self._lost_run = c, False, 0
+        self.velocity = np.zeros(2)
+        return True, self.state_to_box(c)
 
     def frame_report(self) -> dict:
         """Per-frame numbers: the fraction of particles inside the Ratio window, the scale."""

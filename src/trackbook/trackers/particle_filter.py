@@ -41,6 +41,18 @@ def lost_k_param():
                  "book's choice (only used when lost_below > 0)")
 
 
+def scatter_grid(k: int, frame_wh, rng) -> np.ndarray:
+    """``k`` points spread evenly over a frame of size ``frame_wh = (W, H)``: a grid of about
+    ``k`` cells of the frame's aspect, ``k`` distinct cells drawn at random, one uniform point
+    in each (a jittered grid: no part of the frame is left out, as i.i.d. uniform points may)."""
+    W, H = (float(v) for v in frame_wh)
+    nx = max(1, int(np.ceil(np.sqrt(k * W / H))))
+    ny = max(1, int(np.ceil(k / nx)))
+    cells = rng.choice(nx * ny, size=k, replace=False)
+    u = rng.uniform(0.0, 1.0, size=(k, 2))
+    return np.column_stack([(cells % nx + u[:, 0]) / nx * W, (cells // nx + u[:, 1]) / ny * H])
+
+
 class ParticleFilterTracker(Tracker):
     """Sequential importance resampling (SIR, Condensation) as in Lee et al. 2012's
     pseudocode, for subclasses.
@@ -102,19 +114,32 @@ class ParticleFilterTracker(Tracker):
     best ``D^2`` of the last ``gate_window`` frames that were not lost (the first five frames
     always pass). The gate is on the distance, not on the likelihood: ``exp(-D^2 / 2 sigma^2)``
     of a given match changes by orders of magnitude with sigma, ``D^2`` does not. Both tests
-    are needed: on the Crossing sequence a box still on the pedestrian (IoU 0.6-0.8) has a
-    best HOG match of only 0.66, and a colour distance that rises from 0.02 to 0.17; the two
-    together marked 145 frames of ``color-pf`` and ``hsi-color-pf`` lost on the seven
-    sequences (seed 0), 4 of them with the box still on the target (chapter 2). After
+    are needed: a box still on a pedestrian can match only moderately (a HOG that swings with
+    small misalignments, a colour distance that rises as the light changes). The colour + HOG
+    trackers gate on the colour term alone (whether the target is there at all). After
     ``gate_patience`` lost frames in a row the recent range is forgotten and rebuilt, so a
     target whose look changed for good is not reported lost for ever.
 
-    Recovery: while lost, every prediction moves ``scatter_fraction`` of the particles to
-    uniform positions over the whole frame (``_scatter``), so that a target that comes back
-    somewhere else is found; the rest stay around the last estimate for a target that
-    reappears where it vanished. On a frame that is never lost nothing is scattered and no
-    random number is drawn for it, so trackers that never lose the target run exactly as
-    without the rule.
+    Second look (``gate_contrast`` > 0): before the gate calls a frame lost, the best
+    particle's match is compared with the median match of eight boxes of its size around it
+    (``probe_offsets``, 1.5 box sizes away; ``_stands_out``). A match of at least
+    ``contrast_floor`` that beats its surroundings by ``gate_contrast`` is the target under a
+    sudden change of light (every match drops, the target's stays the best around), not a
+    target that has gone: the frame is kept. A target that left, or is covered, leaves no
+    such peak. Only frames the gate would call lost pay for the look (one more likelihood of
+    eight boxes); ``hog-pf`` has none (a textured background's HOG stands out as much).
+
+    Leaving across the border: the boxes are kept inside the frame, so the visible part of a
+    leaving target shrinks in them and the match drops with it: the same two rules report it.
+
+    Recovery: while lost, every prediction restarts ``scatter_fraction`` of the particles at
+    rest, at the size of the first box, on a jittered grid over the whole frame
+    (``scatter_grid``: one particle per cell, so the whole frame is covered at a cost bounded
+    by N); of the rest, half keep what the last frame's weights selected (the search closes in
+    on a good match over a few frames) and half wait at rest at the last estimate, for a target
+    that reappears where it vanished. ``ok=True`` comes back only when the best match passes
+    the gate again. On a frame that is never lost nothing is scattered and no random number
+    is drawn for it, so trackers that never lose the target run exactly as without the rule.
     """
 
     #: Below this the weights are treated as carrying no information (frame "lost").
@@ -125,6 +150,16 @@ class ParticleFilterTracker(Tracker):
     gate_window = 30
     #: After this many lost frames in a row the gate forgets its range and rebuilds it.
     gate_patience = 30
+    #: A frame the gate would call lost is kept when the best particle's match beats the
+    #: median of the boxes around it by this much (0 = no second look).
+    gate_contrast = 0.12
+    #: ... but never when that best match is below this (a sliver at the border, a look-alike).
+    contrast_floor = 0.5
+    #: Where the second look's boxes are, in box sizes from the best particle's centre.
+    probe_offsets = ((-1.5, 0), (1.5, 0), (0, -1.5), (0, 1.5), (-1.5, -1.5), (1.5, -1.5),
+                     (-1.5, 1.5), (1.5, 1.5))
+    #: Per-frame records a probe's ``_likelihood`` call must not overwrite.
+    _probe_keeps = ("_similarities", "_report", "_rho", "_likelihoods")
 
     def _init(self, frame, box):
         self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
@@ -136,6 +171,7 @@ class ParticleFilterTracker(Tracker):
         self.estimate = self.box_to_state(box)
         self.lost = False
         self._match = np.ones(n)
+        self._start_state = np.asarray(self.box_to_state(box), dtype=float)
         self._gate_d2 = []          # best D^2 of recent frames that were not lost
         self._lost_in_a_row = 0
 
@@ -156,7 +192,7 @@ class ParticleFilterTracker(Tracker):
         w, informative = normalize_weights(lik)
         if informative and lik.sum() <= self.min_total_likelihood:
             informative = False
-        if informative and self._gated_out():
+        if informative and self._gated_out() and not self._stands_out(frame, particles):
             informative = False                     # the distance gate (see "Lost rule")
         self._lost_in_a_row = 0 if informative else self._lost_in_a_row + 1
         self._particles, self._likelihoods = particles, lik
@@ -227,16 +263,55 @@ class ParticleFilterTracker(Tracker):
         del hist[:-self.gate_window]
         return False
 
+    def _stands_out(self, frame, particles) -> bool:
+        """The gate's second look (see "Lost rule"): whether the best particle's match is at
+        least ``contrast_floor`` and beats the median match of the ``probe_offsets`` boxes
+        around it, of its own size, by at least ``gate_contrast``. Computed only on frames the
+        distance gate would call lost."""
+        m = self._match
+        i = int(np.nanargmax(m))
+        best = float(m[i])
+        if self.gate_contrast <= 0 or best < self.contrast_floor:
+            return False
+        box = np.asarray(self.state_to_box(particles[i]), dtype=float)
+        centres = box[:2] + box[2:] / 2 + np.asarray(self.probe_offsets) * box[2:]
+        inside = np.all((centres >= 0) & (centres < self._frame_wh), axis=1)
+        if inside.sum() < 2:
+            return False
+        probes = np.repeat(particles[i:i + 1], int(inside.sum()), axis=0)
+        probes[:, 0:2] += centres[inside] - (box[:2] + box[2:] / 2)
+        saved = {k: getattr(self, k) for k in self._probe_keeps if hasattr(self, k)}
+        self.likelihood(frame, probes)
+        around = float(np.nanmedian(self._match))
+        for k, v in saved.items():
+            setattr(self, k, v)
+        self._match = m
+        self._contrast = best - around
+        return best - around >= self.gate_contrast
+
     def _scatter(self, particles):
-        """Recovery while lost: move a random ``scatter_fraction`` of the particles to uniform
-        positions over the frame (state columns 0-1 are the centre in every tracker here) and
-        let ``_scatter_reset`` clear what should not carry over (e.g. velocities)."""
+        """Recovery while lost (see "Lost rule"): a random ``scatter_fraction`` of the
+        particles restart at rest at the size of the first box, on a jittered grid over the
+        whole frame (one particle per grid cell, so the frame is covered evenly at a cost
+        bounded by N); of the others, half keep what the last frame's weights selected (so the
+        search closes in on a good match over a few frames) and half restart at rest at the
+        last estimate (all of them after a frame with nothing to weigh, uniform weights). ``_scatter_reset`` clears
+        what else should not carry over."""
         n = particles.shape[0]
         k = int(round(self.scatter_fraction * n))
         if k <= 0:
             return particles
-        idx = self.rng.choice(n, size=k, replace=False)
-        particles[idx, 0:2] = self.rng.uniform(0.0, 1.0, size=(k, 2)) * self._frame_wh
+        # at rest: the state of a box (zero velocity, unit size change); columns 0-1 are the
+        # centre in every tracker here
+        home = self.box_to_state(self.state_to_box(self.estimate))
+        order = self.rng.permutation(n)
+        idx = order[:k]
+        if np.ptp(self._weights) == 0:
+            particles[:] = home
+        else:
+            particles[order[k:k + (n - k) // 2]] = home  # half of the rest waits where it left
+        particles[idx] = self._start_state
+        particles[idx, 0:2] = scatter_grid(k, self._frame_wh, self.rng)
         self._scatter_reset(particles, idx)
         return particles
 

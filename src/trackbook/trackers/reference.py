@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .base import Tracker
+from .lost import ColourCheck, MatchGate, visible_fraction
 
 _CHILD = str(Path(__file__).with_name("_mil_child.py"))
 _LIVE: "weakref.WeakSet[OpenCVMIL]" = weakref.WeakSet()
@@ -72,9 +73,27 @@ class OpenCVMIL(Tracker):
     ``EDGE_MARGIN`` px of the frame's are shrunk (MIL asserts on them), and frames below
     ``MIN_FRAME`` px are refused with a ``ValueError``. A child that does not answer within
     ``TIMEOUT_S`` seconds is killed and the run reports ``ok=False`` from then on.
+
+    Lost rule
+    ---------
+    OpenCV's MIL answers ``ok=True`` on almost every frame, and its classifier's response is
+    not exposed, so the wrapper applies the rules of the book's trackers to the box MIL
+    returns: a constant frame (all black, all white, one grey: grey levels spanning at most
+    ``flat_range``) is lost and not shown to MIL (it would learn it); a box with less than
+    ``min_visible`` of its area in the frame is lost; a box whose kernel colour histogram
+    (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012), at best over shifts of a quarter box
+    (:meth:`~trackbook.trackers.lost.ColourCheck.match_near`: MIL does not place its box by
+    colour), matches the first frame's poorly is lost (rho
+    below 0.5, or below 0.7 and far outside its recent range,
+    :class:`~trackbook.trackers.lost.MatchGate`, unless it stands out from the boxes around
+    it: a sudden change of light). While lost, the whole frame is searched by
+    colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most 325 histograms a
+    frame, paid only while lost); a box that passes the gate restarts MIL there (a fresh child process, as ``init``) and is reported ``ok=True``.
     """
 
     name = "opencv-mil"
+    #: Less than this fraction of the box in the frame: the target is leaving (lost).
+    min_visible = 0.5
 
     def __init__(self, seed: int | None = 0, **params):
         super().__init__(seed=seed, **params)
@@ -154,12 +173,33 @@ class OpenCVMIL(Tracker):
         b = safe_box(box, frame.shape)
         self._start()
         self._ask(b"I", frame, b)
+        self._colour = ColourCheck(frame, box)
+        self._gate = MatchGate()
+        self._lost = False
 
     def _update(self, frame):
+        last = np.asarray(self.bbox, dtype=float)
+        if self._is_flat(frame):
+            self._lost = True
+            return False, last                  # nothing to match (see "Lost rule")
         r = self._ask(b"U", frame)
-        if r is None or not r[0]:
-            return False, np.asarray(self.bbox, dtype=float)
-        return True, np.asarray(r[1:], dtype=float)
+        ok = r is not None and bool(r[0])
+        box = np.asarray(r[1:], dtype=float) if ok else last
+        if ok and visible_fraction(box, frame.shape) < self.min_visible:
+            ok = False
+        if ok:
+            rho, near = self._colour.match_near(frame, box)
+            ok = not self._gate.lost(rho, lambda: self._colour.stands_out(frame, near, rho))
+        if not ok and not self._dead:
+            found, rho = self._colour.search(frame, max_boxes=300)
+            if visible_fraction(found, frame.shape) >= self.min_visible \
+                    and not self._gate.lost(rho):
+                b = safe_box(found, frame.shape)
+                self._start()                   # MIL learned the wrong box: restart it there
+                self._ask(b"I", frame, b)
+                ok, box = True, np.asarray(b, dtype=float)
+        self._lost = not ok
+        return ok, (box if ok else last)
 
 
 @atexit.register
