@@ -117,7 +117,7 @@ def test_second_look_keeps_a_match_that_stands_out(name, around, lost, start, mo
         t._match = np.full(len(particles), m)
         return np.full(len(particles), np.exp(-(1 - m) / 0.08))
 
-    monkeypatch.setattr(t, "_likelihood", fake_likelihood)
+    monkeypatch.setattr(t, "likelihood", fake_likelihood)
     oks = [t.update(frames[1 + i % 3])[0] for i in range(7)]
     assert oks[:6] == [True] * 6
     assert oks[6] is (not lost)
