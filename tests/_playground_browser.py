@@ -73,7 +73,7 @@ def exercise(page, root, wait_run=None, timeout=60_000):
         fails.append("no enabled knob")
     if static:
         # the HTML book holds runs for a few values of EVERY knob of the first clip and tracker
-        # (issue 15): a greyed "Jupyter only" knob there is a knob the reader cannot move
+        # (every knob moves in the HTML book): a greyed "Jupyter only" knob there is a knob the reader cannot move
         fails += [f"knob {k.get_attribute('data-knob')}: greyed (no precomputed run)"
                   for k in all_knobs if not k.is_enabled()]
         fails += _every_sample(page, root, knobs)

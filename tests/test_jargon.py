@@ -14,7 +14,7 @@ Two scopes:
 Files are listed with ``git ls-files`` from the repository root; outside a git checkout the
 folders are walked. Every hit is reported as ``file:line: word: text``.
 
-The patterns are built from pieces (``_SEED`` ...) so this file does not match itself.
+The patterns are built from pieces (``_SD`` ...) so this file does not match itself.
 """
 import pathlib
 import re
@@ -44,25 +44,26 @@ BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE = (
 )
 
 # the words, in pieces
-_SEED, _SPEC, _ISSUE, _MISSION = "se" + "ed", "SP" + "EC", "is" + "sue", "mis" + "sion"
-_BUDGET, _PAPER, _CHAPTER = "bud" + "get", "pa" + "per", "chap" + "ter"
+_SD, _SPC, _ISU, _MSN = "se" + "ed", "SP" + "EC", "is" + "sue", "mis" + "sion"
+_BGT, _PPR, _CHP = "bud" + "get", "pa" + "per", "chap" + "ter"
+_START = r"(?<![A-Za-z0-9])"                 # a word start that an underscore also makes
 
 #: Process words, checked everywhere (code, prose, file names).
 PROCESS_WORDS = {
     # seed000, seed_001, seed-002, seed 003, table_seed000, "seed 001: ..."
-    "seed 00x": re.compile(_SEED + r"[ _-]?00\d", re.I),
-    "spec": re.compile(r"\b" + _SPEC + r"\b"),
-    "issue N": re.compile(r"\b" + _ISSUE + r"s?\s*#?\d+|\b" + _ISSUE + r"'s\b", re.I),
-    "planning word": re.compile(r"\b" + _MISSION + r"s?\b", re.I),
+    "seed 00x": re.compile(_SD + r"[ _-]?00\d", re.I),
+    "spec": re.compile(_START + _SPC + r"\b"),
+    "issue N": re.compile(_START + _ISU + r"s?[\s_]*#?\d+|" + _START + _ISU + r"'s\b", re.I),
+    "planning word": re.compile(_START + _MSN, re.I),
     # a cost limit named as a process word; Chrome's own --virtual-time-... flag is its word
-    "cost-limit word": re.compile(r"(?<!virtual-time-)\b" + _BUDGET, re.I),
+    "cost-limit word": re.compile(r"(?<!virtual-time-)" + _START + _BGT, re.I),
     # the papers numbered 000-003, also as an argument value
-    "paper 00x": re.compile(_PAPER + r"""(?:[ _-]?|\s*=\s*["']?)00\d""", re.I),
+    "paper 00x": re.compile(_PPR + r"""(?:[ _-]?|\s*=\s*["']?)00\d""", re.I),
 }
 
 #: A chapter by typed number (see the examples at the end); checked in src/,
 #: tests/, the README and the book pages.
-CHAPTER_NUMBER = re.compile(r"\b(?:" + _CHAPTER + r"s?\s*|ch\.?\s+)\d+", re.I)
+CHAPTER_NUMBER = re.compile(r"\b(?:" + _CHP + r"s?\s*|ch\.?\s+)\d+", re.I)
 
 #: Words a reader cannot act on, checked on the book pages only.
 BOOK_WORDS = {
@@ -199,14 +200,15 @@ def test_the_scan_covers_every_folder():
 
 
 def test_patterns_catch_what_they_should():
-    s, p, c = _SEED, _PAPER, _CHAPTER
-    bad_process = [f"see {_SPEC} section 4", f"({s} 002)", f"{s}000", f"{s}_001", f"{s}-002",
+    s, p, c = _SD, _PPR, _CHP
+    bad_process = [f"see {_SPC} section 4", f"({s} 002)", f"{s}000", f"{s}_001", f"{s}-002",
                    f"table_{s}000.py", f"{s.title()} 001: hsi-color-pf", f"{p} 000's",
-                   f'available({p}="002")', f"{_ISSUE} 13", f"({_ISSUE.title()} 15)",
-                   f"the {_ISSUE}'s limit", f"the {_MISSION} names", f"the {_BUDGET} of 2400",
-                   f"static_runs({_BUDGET}=10)"]
+                   f'available({p}="002")', f"{_ISU} 13", f"({_ISU.title()} 15)",
+                   f"the {_ISU}'s limit", f"the {_MSN} names", f"the {_BGT} of 2400",
+                   f"static_runs({_BGT}=10)", f"def test_static_{_BGT}_leaves",
+                   f"_{_MSN}_knobs", f"test_{_ISU}_13"]
     good_process = ["seeded by the motion vector", "specification", "a format spec",
-                    "--virtual-time-" + _BUDGET + "=20000", "seeds 0-9", "seed 0",
+                    "--virtual-time-" + _BGT + "=20000", "seeds 0-9", "seed 0",
                     "paper's eq. 6", "permission denied", "issued", "kim2016"]
     for t in bad_process:
         assert any(rx.search(t) for rx in PROCESS_WORDS.values()), t

@@ -22,7 +22,7 @@ def lost_below_param():
     :class:`ParticleFilterTracker`); a function so every params class gets its own field."""
     return param(0.7, 0.0, 1.0, 0.05, "a frame can be lost only if its best match 1 - D^2 is "
                  "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
-                 why="the paper reports no lost frames; the book's gate (chapter 2), chosen so "
+                 why="the paper reports no lost frames; the book's gate (02_particle_filters), chosen so "
                  "that on the seven public sequences it fires where the box has left the target")
 
 
@@ -105,7 +105,7 @@ class ParticleFilterTracker(Tracker):
     are needed: on the Crossing sequence a box still on the pedestrian (IoU 0.6-0.8) has a
     best HOG match of only 0.66, and a colour distance that rises from 0.02 to 0.17; the two
     together marked 145 frames of ``color-pf`` and ``hsi-color-pf`` lost on the seven
-    sequences (seed 0), 4 of them with the box still on the target (chapter 2). After
+    sequences (seed 0), 4 of them with the box still on the target (``02_particle_filters``). After
     ``gate_patience`` lost frames in a row the recent range is forgotten and rebuilt, so a
     target whose look changed for good is not reported lost for ever.
 
