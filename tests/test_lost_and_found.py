@@ -24,7 +24,7 @@ PENDING: set = set()
 
 
 def _names(pending=PENDING):
-    return [pytest.param(n, marks=pytest.mark.xfail(reason="lost-and-found not yet met by this tracker",
+    return [pytest.param(n, marks=pytest.mark.xfail(reason="not yet met",
                                                     strict=False))
             if n in pending else n for n in trackers.available()]
 

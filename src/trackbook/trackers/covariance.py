@@ -15,7 +15,7 @@
     fallback of the book default (``fallback="frame"``).
     Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
     target has probably changed velocity (a bounce); the window is searched again as if the
-    velocity were uncertain by ``manoeuvre_sigma`` px/frame (``07_region_covariance``, "The bounce").
+    velocity were uncertain by ``manoeuvre_sigma`` px/frame (07_region_covariance, "The bounce").
 
 Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
 ``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
@@ -101,7 +101,7 @@ class KalmanCovarianceParams(CovarianceParams):
         choices=("frame", "window"),
         paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
         why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
-            "the yellow ball again after its first bounce; 'window' is the paper's (07_region_covariance)")
+            "the yellow ball again after its first bounce; 'window' is the paper's")
     q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
                      paper=1.0)   # sec. 2.2: Q = I_4 printed
     r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
@@ -136,7 +136,7 @@ class KalmanCovarianceParams(CovarianceParams):
         "`init_from_motion`'s frame difference",
         paper=NOT_PRINTED,   # sec. 2.3 / Fig. 2: frame differencing, no threshold printed
         why="at 25 grey levels RedCube's 1.6 px move between frames 0 and 1 leaves only its "
-            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube (07_region_covariance)")
+            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube")
     init_size: int = param(
         24, 4, 128, 1, doc="side (px) of the model window centred on the moving region "
         "when initialising without a box (`init_from_motion`)",

@@ -35,7 +35,7 @@ class AppearanceParams(CentrePFParams):
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
         "their settings; 0.2 is the book's choice (02_particle_filters, 03_hog)")
-    # Not in the paper, which never reports a lost target: the book's distance gate (``02_particle_filters``).
+    # Not in the paper, which reports no lost target: the book's distance gate (02_particle_filters).
     lost_below: float = lost_below_param()
     lost_k: float = lost_k_param()
 
