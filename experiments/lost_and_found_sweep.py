@@ -1,4 +1,4 @@
-"""The lost-and-found test of issue 13 over more seeds: for each tracker, on
+"""The lost-and-found test (tests/test_lost_and_found.py) over more seeds: for each tracker, on
 ``leave_and_return`` clips with seeds 0-2 and tracker seeds 0-3, how many absent frames it
 calls ``ok=True`` and how many frames after the target's return it needs to reach IoU > 0.5
 again (99: not within the clip's 20 frames).

@@ -72,8 +72,8 @@ def exercise(page, root, wait_run=None, timeout=60_000):
     if all_knobs and not knobs:
         fails.append("no enabled knob")
     if static:
-        # the HTML book holds runs for a few values of EVERY knob of the first clip and tracker
-        # (issue 15): a greyed "Jupyter only" knob there is a knob the reader cannot move
+        # the HTML book holds runs for a few values of EVERY knob of the first clip and tracker:
+        # a greyed "Jupyter only" knob there is a knob the reader cannot move
         fails += [f"knob {k.get_attribute('data-knob')}: greyed (no precomputed run)"
                   for k in all_knobs if not k.is_enabled()]
         fails += _every_sample(page, root, knobs)

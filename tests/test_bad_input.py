@@ -1,4 +1,4 @@
-"""Issue 13: bad input from the CLI, the loaders and the clip names is refused in our words.
+"""Bad input from the CLI, the loaders and the clip names is refused in our words.
 
 One reproducer per class of the hostile probe: every CLI error is one line on stderr and a
 non-zero exit code (never a traceback); every ground-truth error names the file, the line and

@@ -1,6 +1,7 @@
-"""The built book as a reader sees it in a 1280 px window (issue 11, "done when").
+"""The built book as a reader sees it in a 1280 px window.
 
-* the sidebar numbers the chapters 1.-9. (the introduction is the root page, chapter 0);
+* the sidebar numbers the chapters as their file names do (the introduction is the root page,
+  unnumbered);
 * no table is wider than its column on any page (the table's container does not scroll);
 * the exercises appendix shows no stray output (a bare ``True``/``False``/``None`` or an empty
   output box).

@@ -46,7 +46,7 @@ def test_paper_defaults():
     assert (p.n_particles, p.alpha, p.T, p.K, p.forgetting, p.resampler) == \
         (100, 0.1, 40, 2, 0.95, "multinomial")
     assert p.learn_threshold == 0.0 and p.gate_k == 0.0 and p.learn_every == 1
-    assert p.anchor == 0.7          # beyond the paper (0); chosen on the dev sequences, ch. 08
+    assert p.anchor == 0.7          # beyond the paper (0); chosen on the dev sequences
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -1,4 +1,4 @@
-"""Region covariance (eq. 4), the Förstner metric (eq. 5–6) and the seed-002 trackers."""
+"""Region covariance (eq. 4), the Förstner metric (eq. 5–6) and the lee2015 trackers."""
 
 import cv2
 import numpy as np

@@ -1,4 +1,4 @@
-"""Property-based fuzz of all eleven trackers (issue 13, item 6).
+"""Property-based fuzz of all eleven trackers.
 
 Random valid params drawn from each tracker's ``Params`` metadata (range, step, choices) and
 random degenerate clips -- black, white, constant grey, noise, a target that leaves the frame,

@@ -153,7 +153,7 @@ def test_bins_on_axes_and_diagonals():
         gx = np.array([a, -a, -a, a, a, 0.0, -a, 0.0, 0.0])
         gy = np.array([a, a, -a, -a, 0.0, a, 0.0, -a, 0.0])
         np.testing.assert_array_equal(orientation_bin(gx, gy), [1, 3, 5, 7, 0, 2, 4, 6, 0])
-    assert orientation_bin(np.array(0.0), np.array(-1.0)) == 6      # 0-d input (chapter 3)
+    assert orientation_bin(np.array(0.0), np.array(-1.0)) == 6      # 0-d input (03_hog)
 
 
 

@@ -115,7 +115,7 @@ def test_bad_input():
 def test_reconstruction_error_is_one_plus_rho_times_the_bhattacharyya_distance():
     """With z = sqrt(h) and one learned appearance u = sqrt(h_ref), eq. 12-13 (book's reading)
     give ||z - u u^T z||^2 = (1 - rho)(1 + rho): about twice eq. 10's D^2 = 1 - rho, so the
-    same sigma is narrower after learning (chapter 4). Hand-worked identity, checked on
+    same sigma is narrower after learning (04_incremental_svd). Hand-worked identity, checked on
     random histograms."""
     import numpy as np
     from trackbook.learning.incremental_svd import IncrementalSVD

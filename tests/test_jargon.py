@@ -1,19 +1,62 @@
-"""No words on a reader's page that belong to the repository rather than the reader.
+"""No words that belong to how the repository was made rather than to the reader.
 
-Scans every book page (``book/*.md``): the prose and the code cells (their comments and
-strings are displayed). Reports every hit as ``file:line: word``.
+Two scopes:
+
+* every tracked text file under ``src/``, ``tests/``, ``experiments/``, ``benchmarks/`` and
+  ``book/`` (prose and code cells), plus ``README.md``, ``_config.yml``, ``_toc.yml`` and
+  ``pyproject.toml``, and every tracked file NAME, are checked for process words (the old
+  numbered names of the papers, a specification or ticket number, the words of how the work
+  was planned: see ``PROCESS_WORDS``);
+  chapters are named by file stem (``06_kalman``) or title, never by a typed number;
+* the book pages (``book/*.md``) are also checked for words a reader cannot act on ("this
+  machine", "an earlier version", numeric citations, unqualified "development sequences").
+
+Files are listed with ``git ls-files`` from the repository root; outside a git checkout the
+folders are walked. Every hit is reported as ``file:line: word: text``.
+
+The patterns are built from pieces (``_SD`` ...) so this file does not match itself.
 """
 import pathlib
 import re
+import subprocess
 
 import pytest
 
-BOOK = pathlib.Path(__file__).resolve().parents[1] / "book"
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+BOOK = ROOT / "book"
+FOLDERS = ("src", "tests", "experiments", "benchmarks", "book")
+TOP_FILES = ("README.md", "_config.yml", "_toc.yml", "pyproject.toml")
 
-PATTERNS = {
-    "SPEC": re.compile(r"\bSPEC\b"),
-    "seed 00x": re.compile(r"\bseed[ -]00\d\b", re.I),
-    "paper 00x": re.compile(r"\bpaper[ -]00\d\b", re.I),
+# Files being replaced by the experiment pipeline (the branch that declares experiments as
+# data deletes or renames each of them, together with every line that names them). Until
+# that branch is merged they, and a line elsewhere that names one of them, are not scanned.
+# Delete this list (and its two uses below) once that branch is merged.
+BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE = ()
+
+# the words, in pieces
+_SD, _SPC, _ISU, _MSN = "se" + "ed", "SP" + "EC", "is" + "sue", "mis" + "sion"
+_BGT, _PPR, _CHP = "bud" + "get", "pa" + "per", "chap" + "ter"
+_START = r"(?<![A-Za-z0-9])"                 # a word start that an underscore also makes
+
+#: Process words, checked everywhere (code, prose, file names).
+PROCESS_WORDS = {
+    # the word, then 00 and a digit, joined by nothing, a space, "_" or "-"; also inside a name
+    "seed 00x": re.compile(_SD + r"[ _-]?00\d", re.I),
+    "spec": re.compile(_START + _SPC + r"\b"),
+    "issue N": re.compile(_START + _ISU + r"s?[\s_]*#?\d+|" + _START + _ISU + r"'s\b", re.I),
+    "planning word": re.compile(_START + _MSN, re.I),
+    # a cost limit named as a process word; Chrome's own --virtual-time-... flag is its word
+    "cost-limit word": re.compile(r"(?<!virtual-time-)" + _START + _BGT, re.I),
+    # the papers numbered 000-003, also as an argument value
+    "paper 00x": re.compile(_PPR + r"""(?:[ _-]?|\s*=\s*["']?)00\d""", re.I),
+}
+
+#: A chapter by typed number (see the examples at the end); checked in src/,
+#: tests/, the README and the book pages.
+CHAPTER_NUMBER = re.compile(r"\b(?:" + _CHP + r"s?\s*|ch\.?\s+)\d+", re.I)
+
+#: Words a reader cannot act on, checked on the book pages only.
+BOOK_WORDS = {
     "../shared": re.compile(r"\.\./shared"),
     "this machine": re.compile(r"\bthis machine\b", re.I),
     "an earlier version": re.compile(r"\ban earlier version\b", re.I),
@@ -27,42 +70,160 @@ PATTERNS = {
     "numeric citation": re.compile(r"(?:^|(?<=\s))\[(?![01]\b)\d+(?:\s*[-–]\s*\d+)?\](?!\()"),
 }
 
-
 #: Patterns checked in prose only: in code, ``[5, 6]`` is a list, not a citation.
 PROSE_ONLY = {"numeric citation"}
 
+_BINARY = {".png", ".jpg", ".jpeg", ".gif", ".ico", ".pdf", ".npz", ".npy", ".zip", ".gz"}
 
-def _hits(path):
-    out = []
-    in_code = False
-    for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-        if line.lstrip().startswith("```"):
+
+def _tracked() -> list[str]:
+    """Repository-relative paths of the files in scope (text or not)."""
+    try:
+        out = subprocess.run(["git", "ls-files", "--", *FOLDERS, *TOP_FILES], cwd=ROOT,
+                             capture_output=True, text=True, check=True, timeout=60).stdout
+        paths = [p for p in out.splitlines() if p]
+    except (OSError, subprocess.SubprocessError):
+        paths = []
+    if not paths:                           # not a git checkout: walk the folders
+        paths = [str(p.relative_to(ROOT)) for f in FOLDERS for p in (ROOT / f).rglob("*")
+                 if p.is_file() and "__pycache__" not in p.parts]
+        paths += [f for f in TOP_FILES if (ROOT / f).is_file()]
+    return sorted(paths)
+
+
+def _being_replaced(rel: str) -> bool:
+    return any(rel == p or (p.endswith("/") and rel.startswith(p))
+               for p in BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE)
+
+
+def _replaced_names() -> tuple[str, ...]:
+    """Names of the files being replaced (a folder's path, each file's stem when it holds a
+    process word); a line naming one of them goes with them."""
+    folders = {p for p in BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE if p.endswith("/")}
+    stems = {pathlib.PurePosixPath(p).stem for p in ALL_FILES if _being_replaced(p)}
+    stems |= {pathlib.PurePosixPath(p).stem for p in BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE}
+    return tuple(sorted(folders | {n for n in stems if PROCESS_WORDS["seed 00x"].search(n)}))
+
+
+ALL_FILES = _tracked()
+SCANNED = [p for p in ALL_FILES
+           if not _being_replaced(p) and pathlib.PurePosixPath(p).suffix.lower() not in _BINARY]
+REPLACED_NAMES = _replaced_names()
+
+
+def _lines(rel: str):
+    """(number, line, in_code) of a text file; nothing for a binary or missing one."""
+    path = ROOT / rel
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return
+    if "\0" in text:
+        return
+    markdown = rel.endswith(".md")
+    in_code = not markdown
+    for n, line in enumerate(text.splitlines(), 1):
+        if markdown and line.lstrip().startswith("```"):
             in_code = not in_code
             continue
-        for word, rx in PATTERNS.items():
-            if in_code and word in PROSE_ONLY:
-                continue
-            if rx.search(line):
-                out.append(f"{path.relative_to(BOOK.parent)}:{n}: {word}: {line.strip()[:100]}")
-    return out
+        if any(name in line for name in REPLACED_NAMES):
+            continue                        # goes with the file the experiment pipeline replaces
+        yield n, line, in_code
 
 
-PAGES = sorted(BOOK.glob("*.md"))
+def _report(rel, n, word, line):
+    return f"{rel}:{n}: {word}: {line.strip()[:100]}"
 
 
-@pytest.mark.parametrize("page", PAGES, ids=[p.name for p in PAGES])
+def _process_hits(rel):
+    return [_report(rel, n, word, line) for n, line, _ in _lines(rel)
+            for word, rx in PROCESS_WORDS.items() if rx.search(line)]
+
+
+def _chapter_hits(rel):
+    book_page = rel.startswith("book/") and rel.endswith(".md")
+    return [_report(rel, n, "chapter by number", line) for n, line, in_code in _lines(rel)
+            if not (book_page and in_code) and CHAPTER_NUMBER.search(line)]
+
+
+def _book_hits(rel):
+    return [_report(rel, n, word, line) for n, line, in_code in _lines(rel)
+            for word, rx in BOOK_WORDS.items()
+            if not (in_code and word in PROSE_ONLY) and rx.search(line)]
+
+
+CHAPTER_SCOPE = [p for p in SCANNED
+                 if p.startswith(("src/", "tests/")) or p == "README.md"
+                 or (p.startswith("book/") and p.count("/") == 1 and p.endswith(".md"))]
+PAGES = [p for p in SCANNED if p.startswith("book/") and p.count("/") == 1
+         and p.endswith(".md")]
+
+
+@pytest.mark.parametrize("rel", SCANNED)
+def test_no_process_words(rel):
+    hits = _process_hits(rel)
+    assert not hits, "process words in the repository:\n" + "\n".join(hits)
+
+
+def test_no_process_words_in_file_names():
+    hits = [p for p in ALL_FILES if not _being_replaced(p)
+            for rx in PROCESS_WORDS.values() if rx.search(p)]
+    assert not hits, "process words in file names:\n" + "\n".join(hits)
+
+
+@pytest.mark.parametrize("rel", CHAPTER_SCOPE)
+def test_chapters_named_by_file_stem_not_number(rel):
+    hits = _chapter_hits(rel)
+    assert not hits, ("a chapter named by a typed number (name it by its file stem, e.g. "
+                      "06_kalman, or in the book by {doc} link or title):\n" + "\n".join(hits))
+
+
+@pytest.mark.parametrize("page", PAGES)
 def test_no_repository_jargon_on_the_page(page):
-    hits = _hits(page)
+    hits = _book_hits(page)
     assert not hits, "repository words on a reader's page:\n" + "\n".join(hits)
 
 
+def test_the_scan_covers_every_folder():
+    for folder in FOLDERS:
+        assert any(p.startswith(folder + "/") for p in SCANNED), folder
+    assert "tests/test_jargon.py" in SCANNED
+
+
 def test_patterns_catch_what_they_should():
-    bad = ["see SPEC section 4", "(seed 002)", "paper 000's", "../shared/data",
-           "on this machine", "an earlier version of", "the development sequences",
-           "the baseline [20] uses", "see [3-5]"]
-    good = ["the seven public development sequences", "[chapter 2](02_particle_filters.md)",
-            "x[0] + y[1]", "seeded by the motion vector", "specification"]
-    for s in bad:
-        assert any(rx.search(s) for rx in PATTERNS.values()), s
-    for s in good:
-        assert not any(rx.search(s) for rx in PATTERNS.values()), s
+    s, p, c = _SD, _PPR, _CHP
+    bad_process = [f"see {_SPC} section 4", f"({s} 002)", f"{s}000", f"{s}_001", f"{s}-002",
+                   f"table_{s}000.py", f"{s.title()} 001: hsi-color-pf", f"{p} 000's",
+                   f'available({p}="002")', f"{_ISU} 13", f"({_ISU.title()} 15)",
+                   f"the {_ISU}'s limit", f"the {_MSN} names", f"the {_BGT} of 2400",
+                   f"static_runs({_BGT}=10)", f"def test_static_{_BGT}_leaves",
+                   f"_{_MSN}_knobs", f"test_{_ISU}_13"]
+    good_process = ["seeded by the motion vector", "specification", "a format spec",
+                    "--virtual-time-" + _BGT + "=20000", "seeds 0-9", "seed 0",
+                    "paper's eq. 6", "permission denied", "issued", "kim2016"]
+    for t in bad_process:
+        assert any(rx.search(t) for rx in PROCESS_WORDS.values()), t
+    for t in good_process:
+        assert not any(rx.search(t) for rx in PROCESS_WORDS.values()), t
+
+    for t in [f"{c} 6", f"{c.title()} 08", f"{c}s 2, 3 and 4", "ch" " 7", "Ch." " 8"]:
+        assert CHAPTER_NUMBER.search(t), t
+    for t in ["{doc}`06_kalman`", "eq. 6 of Kim et al.", "section 4.2", "search 7", "each 3"]:
+        assert not CHAPTER_NUMBER.search(t), t
+
+    bad_book = ["../shared/data", "on this machine", "an earlier version of",
+                "the development sequences", "the baseline [20] uses", "see [3-5]"]
+    good_book = ["the seven public development sequences", "[the filter](02_particle_filters.md)",
+                 "x[0] + y[1]"]
+    for t in bad_book:
+        assert any(rx.search(t) for rx in BOOK_WORDS.values()), t
+    for t in good_book:
+        assert not any(rx.search(t) for rx in BOOK_WORDS.values()), t
+
+
+def test_the_replaced_files_are_named_exactly():
+    """The skip list holds paths that exist (or a folder), so it cannot hide a typo'd file;
+    once the experiment pipeline has replaced them this fails: delete the list then."""
+    for p in BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE:
+        assert any(f == p or (p.endswith("/") and f.startswith(p)) for f in ALL_FILES), (
+            f"{p} is gone: delete BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE and its uses")

@@ -1,5 +1,5 @@
 """The playground in a real JupyterLab (started on 127.0.0.1, driven by headless Chromium)
-(issue 15, "done when"): a chapter exported by ``trackbook notebooks`` runs ALL its cells (a
+: a chapter exported by ``trackbook notebooks`` runs ALL its cells (a
 last cell appended by the test writes a marker file, and the kernel stops a Run All at the
 first error), its first playground renders and answers a knob (the kernel re-runs) and the
 frame slider. ``TRACKBOOK_LAB_NOTEBOOK=book/NN_name.md`` picks another chapter;

@@ -1,4 +1,4 @@
-"""The Kalman filter of chapter 6 (eq. 7-13 of Lee 2015) against filterpy and by hand."""
+"""The Kalman filter of 06_kalman (eq. 7-13 of Lee 2015) against filterpy and by hand."""
 import numpy as np
 import pytest
 

@@ -1,4 +1,4 @@
-"""Issue 13, item 1: a tracker says when the target is gone and finds it again.
+"""A tracker says when the target is gone and finds it again.
 
 On :func:`trackbook.clips.synthetic.leave_and_return` (the target drifts right, is out of view
 for 18 frames, and reappears 88 px to the left of where it left) every tracker must answer
@@ -24,7 +24,7 @@ PENDING: set = set()
 
 
 def _names(pending=PENDING):
-    return [pytest.param(n, marks=pytest.mark.xfail(reason="issue 13 item 1 pending",
+    return [pytest.param(n, marks=pytest.mark.xfail(reason="not yet met",
                                                     strict=False))
             if n in pending else n for n in trackers.available()]
 

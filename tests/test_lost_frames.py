@@ -1,4 +1,4 @@
-"""Frames that carry no information are reported lost (issue 13).
+"""Frames that carry no information are reported lost.
 
 Every tracker is started on a textured frame (the ``red-cube`` sample) and then shown an
 all-black, an all-white and a constant grey frame: each must answer ``ok=False`` with a finite,

@@ -1,4 +1,4 @@
-"""Mean-shift (Comaniciu et al. 2003), the motion vector (eq. 5-8) and the seed-003 trackers."""
+"""Mean-shift (Comaniciu et al. 2003), the motion vector (eq. 5-8) and the cho2005 trackers."""
 
 import cv2
 import numpy as np
@@ -313,7 +313,7 @@ def test_cost_counts_histograms_and_pixels(blob):
 
 
 def test_prediction_moves_the_position_by_the_new_noised_velocity():
-    """The module docstring's dynamics (issue 12): x_t = x + x_dot_t + w_x, with x_dot_t the
+    """The module docstring's dynamics: x_t = x + x_dot_t + w_x, with x_dot_t the
     velocity AFTER its noise, not x + x_dot_{t-1}. With no position noise the displacement of
     every candidate equals its new velocity exactly."""
     import numpy as np

@@ -1,4 +1,4 @@
-"""OTB scores on hand-worked cases and their definitions (SPEC section 4)."""
+"""OTB scores on hand-worked cases and their definitions (the OTB conventions)."""
 import numpy as np
 import pytest
 from hypothesis import given, settings

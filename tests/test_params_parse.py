@@ -1,6 +1,6 @@
 """The one parameter parser (``trackbook.params.parse``) behind the API and the CLI.
 
-One regression test per class of bad input found by the hostile probe (issue 13), plus a
+One regression test per class of bad input found by a hostile probe of the parser, plus a
 hypothesis fuzz: whatever a user passes, the parser returns a valid value or raises a
 ``ValueError`` that names the parameter.
 

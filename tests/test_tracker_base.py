@@ -1,4 +1,4 @@
-"""The tracker contract, the registry and bad input (SPEC sections 2 and 7)."""
+"""The tracker contract, the registry and bad input."""
 import dataclasses
 
 import numpy as np

@@ -142,12 +142,16 @@ def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monke
                if "n_particles" not in k)
 
 
-def test_static_budget_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa: F811
+def test_static_cost_limit_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa: F811
     pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
                     params=["n_particles", "speed"], n_frames=10)
-    runs = pg.static_runs(budget=10 + 3 * 10)     # defaults + speed's three other samples
+    runs = pg.static_runs(max_cost=10 + 3 * 10)     # defaults + speed's three other samples
     assert not any("n_particles#" in k for k in runs)   # 10..100 particles cost too much
     assert sum("speed#" in k for k in runs) == 3
+    old = "bud" + "get"                              # the cost limit's former name
+    for method in (pg.static_runs, pg.static_payload, pg.static_html):
+        with pytest.raises(TypeError, match=f"'{old}'.*max_cost="):
+            method(**{old: 40})
 
 
 def test_samples_stay_within_the_range():
@@ -159,7 +163,7 @@ def test_samples_stay_within_the_range():
 
 
 def test_static_page_has_runs_for_every_knob(registered, tiny_folder):  # noqa: F811
-    """Issue 15: the HTML book moves EVERY knob; a knob the mission does not name keeps its
+    """The HTML book moves EVERY knob; a knob the chapter does not name keeps its
     default and at most three other samples (nearest below, nearest above, an end)."""
     pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
                     params=["speed", "n_particles", "mode"], n_frames=8)

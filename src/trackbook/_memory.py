@@ -4,9 +4,9 @@ A particle tracker allocates the same few arrays every frame: 100 patches of 16 
 38,400 values, about 300 kB per float64 temporary, and a frame of HOG or HSI features makes
 a dozen of them. glibc's ``malloc`` serves blocks over 128 kB with ``mmap`` and hands them
 back to the kernel on ``free`` (and trims the heap once more than twice that is free at its
-top), so every frame the same memory is mapped again and touched page by page: in a virtual
-machine those page faults measured as half of ``hsi-color-pf``'s time and a third of
-``hog-pf``'s (``trackbook bench`` on MotorRolling, same frames, same boxes).
+top), so every frame the same memory is mapped again and touched page by page: those page
+faults can take a large share of a particle tracker's time (compare ``trackbook bench`` on
+MotorRolling with and without ``TRACKBOOK_KEEP_MEMORY=0``: same frames, same boxes).
 
 :func:`keep_freed_memory` raises the two thresholds with ``mallopt`` so that arrays under
 16 MB come from the heap and up to 64 MB of freed heap stays mapped for the next frame. The

@@ -1,4 +1,4 @@
-"""OTB scores (SPEC section 4): ``from trackbook import metrics``.
+"""OTB scores (the OTB conventions, Wu et al. 2013): ``from trackbook import metrics``.
 
 The implementation lives in :mod:`trackbook.evaluation.metrics`; this module is the short name
 assignments use.

@@ -1,2 +1,3 @@
-"""Appearance features of a region: colour histograms (01), HOG (02), edge rays (03),
-region covariance (04). One module per chapter."""
+"""Appearance features of a region: colour histograms (``01_kernel_histograms``),
+HOG (``03_hog``), edge rays (``05_edge_rays``), region covariance (``07_region_covariance``).
+One module per feature."""

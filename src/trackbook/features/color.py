@@ -148,8 +148,8 @@ def hsv_bin_index_u8(bgr: np.ndarray, bins=HSV_BINS) -> np.ndarray:
         _TABLES[key] = _channel_tables(key)
     bgr = np.ascontiguousarray(bgr)
     shape = bgr.shape[:-1]
-    # One long row: OpenCV pays per row, so the N x 1 column image of hsv_bin_index is ~10x
-    # slower than the same pixels laid out as a single row.
+    # One long row: OpenCV pays per row, so the N x 1 column image of hsv_bin_index is several
+    # times slower than the same pixels laid out as a single row.
     hsv = cv2.cvtColor(bgr.reshape(1, -1, 3), cv2.COLOR_BGR2HSV)
     shares = cv2.LUT(hsv, _TABLES[key])
     idx = cv2.transform(shares, np.ones((1, 3)))

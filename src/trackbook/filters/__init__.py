@@ -1,2 +1,2 @@
-"""Estimation machinery: the Kalman filter (05), particle filters / Condensation (06),
-mean-shift (07). One module per chapter."""
+"""Estimation machinery: the Kalman filter (``06_kalman``), particle filters / Condensation
+(``02_particle_filters``), mean-shift (``08_mean_shift``). One module per method."""

@@ -1,6 +1,6 @@
 """Correlation filters: ridge regression over all cyclic shifts, solved in the Fourier domain.
 
-Chapter 10 of the book (``10_correlation_filters``). The pure steps shared by the ``mosse``
+The book's ``10_correlation_filters``. The pure steps shared by the ``mosse``
 (Bolme et al. 2010) and ``kcf`` (Henriques et al. 2015) trackers, each on arrays whose last
 two axes are an image (rows, columns):
 

@@ -1,6 +1,6 @@
 """The particle filter's pure steps: normalised weights, effective sample size, resamplers, estimate.
 
-Chapter 2 of the book (the Bayes filter, factored sampling, SIR/Condensation, degeneracy and
+Chapter ``02_particle_filters`` (Bayes filter, factored sampling, SIR/Condensation, degeneracy and
 resampling). The SIR tracker built from these steps is
 :class:`trackbook.trackers.particle_filter.ParticleFilterTracker`. Resamplers are pure
 functions that take normalised weights and a ``numpy.random.Generator`` and return the indices
@@ -34,8 +34,8 @@ def normalize_weights(w) -> tuple[np.ndarray, bool]:
 def effective_sample_size(weights) -> float:
     """N_eff = 1 / sum w_i^2 of normalised weights: N when uniform, 1 when one particle has all.
 
-    The usual measure of weight degeneracy (Arulampalam et al. 2002); chapter 2 plots it with
-    and without resampling.
+    The usual measure of weight degeneracy (Arulampalam et al. 2002), plotted with and without
+    resampling in ``02_particle_filters``.
     """
     w = np.asarray(weights, dtype=float)
     return float(1.0 / np.sum(w**2))

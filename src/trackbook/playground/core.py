@@ -100,6 +100,14 @@ def _refuse(what: str, value, choices) -> ValueError:
                       f"choose from {list(choices)}.")
 
 
+def _refuse_unknown_keywords(where: str, kwargs: dict) -> None:
+    """The static runs' cost limit is ``max_cost`` (tracker-frames); any other keyword is
+    refused naming it (an older name of that limit included)."""
+    if kwargs:
+        raise TypeError(f"{where}() got {', '.join(map(repr, kwargs))}: the limit on the "
+                        "precomputed runs' cost is max_cost= (tracker-frames)")
+
+
 def _jsonable(v):
     return list(v) if isinstance(v, tuple) else v
 
@@ -393,17 +401,18 @@ class Playground(anywidget.AnyWidget):
                 _RUN_CACHE[ck] = {"error": str(e)}
         return _RUN_CACHE[ck]
 
-    def static_runs(self, budget: int = 2400, room: int = MAX_PAGE_BYTES) -> dict:
+    def static_runs(self, max_cost: int = 2400, room: int = MAX_PAGE_BYTES, **kwargs) -> dict:
         """The runs the HTML book embeds, keyed ``clip|tracker|`` (defaults) and
         ``clip|tracker|knob#i`` (knob at its i-th sample in :meth:`static_knobs`, the others
         at their defaults).
 
         Every clip x tracker at defaults first; then, on the first clip and tracker, each knob's
-        samples (the promised knobs first) while the cost stays under ``budget`` tracker-frames
+        samples (the promised knobs first) while the cost stays under ``max_cost`` tracker-frames
         (a run of n frames with P particles costs n * max(1, P / default P)): the build stays
         quick; and while the runs' JSON stays under ``room`` bytes (the page under 3 MB). Knobs
         left out are marked "Jupyter only" in the page.
         """
+        _refuse_unknown_keywords("static_runs", kwargs)
         runs, cost, size = {}, 0, 0
         t0, c0 = self.config["trackers"][0], self.config["clips"][0]["key"]
         for t in self.config["trackers"]:
@@ -424,7 +433,7 @@ class Playground(anywidget.AnyWidget):
             need = sum(n * max(1.0, (v if k["name"] == "n_particles" else p0) / p0)
                        for _, v in todo)
             typical = size / max(len(runs), 1)
-            if cost + need > budget or size + typical * len(todo) > room:
+            if cost + need > max_cost or size + typical * len(todo) > room:
                 continue
             for i, v in todo:
                 r = self._cached_run(t0, c0, {**defaults, k["name"]: v}, n)
@@ -457,7 +466,8 @@ class Playground(anywidget.AnyWidget):
             out.append(k)
         return out
 
-    def static_payload(self, budget: int = 2400) -> dict:
+    def static_payload(self, max_cost: int = 2400, **kwargs) -> dict:
+        _refuse_unknown_keywords("static_payload", kwargs)
         # the frames take most of the page: lower the JPEG quality until they fit in 2 MB
         for quality in (D.JPEG_QUALITY, 60, 50, 40, 30):
             clip_data = {c: D.clip_payload(clip, self._n(clip, STATIC_MAX_FRAMES), quality)
@@ -465,17 +475,18 @@ class Playground(anywidget.AnyWidget):
             if len(json.dumps(clip_data)) <= 2_000_000:
                 break
         room = MAX_PAGE_BYTES - len(json.dumps(clip_data)) - 150_000   # viewer, PNG, config
-        runs = self.static_runs(budget, room)
+        runs = self.static_runs(max_cost, room)
         t0 = self.config["trackers"][0]
         config = {**self.config, "knobs": {**self.config["knobs"], t0: self.static_knobs(t0)}}
         return {"config": config, "clips": clip_data, "runs": runs,
                 "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
 
-    def static_html(self, budget: int = 2400) -> str:
+    def static_html(self, max_cost: int = 2400, **kwargs) -> str:
         """The panel as one self-contained HTML fragment: root ``div.tb-playground``, the data
         in a ``<script type="application/json">``, the viewer module inline (so ``file://``
         works) and a PNG of the first run in ``<noscript>`` for print and no-JavaScript."""
-        return page_html(self.static_payload(budget), self._static_png(),
+        _refuse_unknown_keywords("static_html", kwargs)
+        return page_html(self.static_payload(max_cost), self._static_png(),
                          "the playground's first run: frames and IoU")
 
     def _static_png(self) -> bytes:

@@ -3,7 +3,7 @@
 Subclasses implement ``_init(frame, box)`` and ``_update(frame) -> (ok, box)`` only. This class
 owns everything that must be the same for all eleven trackers: the params dataclass, the seeded
 ``numpy.random.Generator`` (re-created on every ``init`` so a re-run repeats exactly), the input
-checks of SPEC section 7, and the last line of defence against a NaN or empty box.
+checks that refuse bad input naming a fix, and the last line of defence against a NaN or empty box.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""A particle filter over the box centre only: the common frame of the seed-001 trackers.
+"""A particle filter over the box centre only: the common frame of the kim2016 trackers.
 
 Kim, Kim & Choi 2016 track the state X = {x, y} (eq. 3) with a fixed box, and compare their
 edge observation model with an HSI-colour and a HOG particle filter. To make that comparison
@@ -20,7 +20,7 @@ from ..params import NOT_PRINTED, param
 
 @dataclasses.dataclass(frozen=True)
 class CentrePFParams:
-    """The knobs every seed-001 tracker shares: the filter, not the observation model."""
+    """The knobs every kim2016 tracker shares: the filter, not the observation model."""
 
     # Kim et al. (2016), section 3 before eq. 2: "at most 999 particles" (the seed text has no
     # page numbers; the comments name the passage).
@@ -57,8 +57,8 @@ class CentreParticleFilter(ParticleFilterTracker):
 
     Motion model: ``x_t = x_{t-1} + v + N(0, sigma^2)``, with ``v = g (C_t - C_{t-1})`` the
     last change of the estimate times the gain ``g = velocity_gain`` (1 in the paper and
-    SPEC 5.2; 0 right after ``init`` and after a lost frame). A gain below 1 damps a velocity
-    measured from two noisy estimates (chapter 03 measures it). After a frame in which all
+    by default; 0 right after ``init`` and after a lost frame). A gain below 1 damps a velocity
+    measured from two noisy estimates (``03_hog`` measures it). After a frame in which all
     particles weighed zero, the particles are drawn afresh around the last estimate with the
     widened spread ``sigma * lost_growth^k`` (k lost frames in a row, capped at a quarter of
     the frame), so the filter searches a growing area until the target returns.

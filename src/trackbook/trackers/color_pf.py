@@ -91,7 +91,7 @@ class ColorPFParams:
                             paper=NOT_PRINTED,
                             why="eq. 9 has no floor, but a box must cover pixels to have a "
                             "histogram: every side stays >= 4 px (in the paper preset too)")
-    # Not in the paper, which never reports a lost target: the book's distance gate (ch. 2).
+    # Not in the paper, which reports no lost target: the book's distance gate (02_particle_filters).
     lost_below: float = lost_below_param()
     lost_k: float = lost_k_param()
 

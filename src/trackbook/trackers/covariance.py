@@ -15,7 +15,7 @@
     fallback of the book default (``fallback="frame"``).
     Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
     target has probably changed velocity (a bounce); the window is searched again as if the
-    velocity were uncertain by ``manoeuvre_sigma`` px/frame (chapter 7, "The bounce").
+    velocity were uncertain by ``manoeuvre_sigma`` px/frame (07_region_covariance, "The bounce").
 
 Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
 ``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
@@ -56,7 +56,7 @@ class CovarianceParams:
         choices=FEATURE_SETS,
         paper="xyIIxIy",   # sec. 2.1, eq. 2: f_k = [x y I(x,y) I_x(x,y) ...], signed gradients
         why="|Ix|, |Iy| as in Tuzel et al. (2006): a dark-on-light and a light-on-dark edge "
-            "give the same feature (chapter 7)")
+            "give the same feature (07_region_covariance)")
     stride: int = param(
         1, 1, 8, 1, doc="pixels between neighbouring candidate windows",
         paper=NOT_PRINTED,   # sec. 2.1 and 3 give no candidate spacing
@@ -64,14 +64,14 @@ class CovarianceParams:
     search_radius: int = param(
         8, 1, 64, 1, doc="candidates' centres within ±radius px of the last position",
         paper=NOT_PRINTED,   # sec. 2.3 names a "search range" with no size
-        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (chapter 7 "
+        why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (07_region_covariance "
             "compares the search rates)")
     threshold: float = param(
         3.0, 0.1, 20.0, 0.1, doc="d_F (eq. 5) above which the match is poor: the target is "
         "lost and `fallback` says where to search again",
         paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
         why="on RedCube the tracked cube scores d_F ≈ 0.5 and background windows above 4; 3 lies "
-            "between (chapter 7 measures it)")
+            "between (07_region_covariance measures it)")
     fallback: str = param(
         "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
         "frame ('frame') or nowhere else, keeping the prediction ('window')",
@@ -101,7 +101,7 @@ class KalmanCovarianceParams(CovarianceParams):
         choices=("frame", "window"),
         paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
         why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
-            "the yellow ball again after its first bounce; 'window' is the paper's (chapter 7)")
+            "the yellow ball again after its first bounce; 'window' is the paper's")
     q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
                      paper=1.0)   # sec. 2.2: Q = I_4 printed
     r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
@@ -125,7 +125,7 @@ class KalmanCovarianceParams(CovarianceParams):
         "frames) signals a manoeuvre; 0 = never",
         paper=NOT_PRINTED, paper_value=0.0,   # not in the paper; 0 switches it off
         why="the book's addition: a ball's bounce leaves the constant-velocity window while d_F "
-            "stays below `threshold` (chapter 7, the bounce)")
+            "stays below `threshold` (07_region_covariance, the bounce)")
     manoeuvre_sigma: float = param(
         8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity change allowed on a "
         "manoeuvre: the second, larger window",
@@ -136,7 +136,7 @@ class KalmanCovarianceParams(CovarianceParams):
         "`init_from_motion`'s frame difference",
         paper=NOT_PRINTED,   # sec. 2.3 / Fig. 2: frame differencing, no threshold printed
         why="at 25 grey levels RedCube's 1.6 px move between frames 0 and 1 leaves only its "
-            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube (chapter 7)")
+            "bottom edge (a 19x3 strip, 0 % tracking); 10 sees the whole cube")
     init_size: int = param(
         24, 4, 128, 1, doc="side (px) of the model window centred on the moving region "
         "when initialising without a box (`init_from_motion`)",

@@ -1,7 +1,7 @@
 """``edge-ray-pf``: the particle filter with the 8-ray edge observation model.
 
 Kim, Kim & Choi, "Tracking moving objects using particle filter and edge observation model",
-J. KSII 2016 (chapter 5 of the book). Table 2 of the paper, step by step:
+J. KSII 2016 (the book's ``05_edge_rays``). Table 2 of the paper, step by step:
 
 1. init: Canny edges of the first frame; the model M = the 8 nearest-edge distances mDis_j
    from the centre of the box (eq. 1); N particles around the centre with equal weights.

@@ -34,8 +34,8 @@ class AppearanceParams(CentrePFParams):
         0.2, 0.01, 1.0, 0.01, "sigma of the likelihood exp(-D^2 / 2 sigma^2)",
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
-        "their settings; 0.2 is the book's choice (chapters 2-3)")
-    # Not in the paper, which never reports a lost target: the book's distance gate (ch. 2).
+        "their settings; 0.2 is the book's choice (02_particle_filters, 03_hog)")
+    # Not in the paper, which reports no lost target: the book's distance gate (02_particle_filters).
     lost_below: float = lost_below_param()
     lost_k: float = lost_k_param()
 

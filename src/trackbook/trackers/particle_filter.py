@@ -22,7 +22,7 @@ def lost_below_param():
     :class:`ParticleFilterTracker`); a function so every params class gets its own field."""
     return param(0.7, 0.0, 1.0, 0.05, "a frame can be lost only if its best match 1 - D^2 is "
                  "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
-                 why="the paper reports no lost frames; the book's gate (chapter 2), chosen so "
+                 why="the paper reports no lost frames; the book's gate, chosen so "
                  "that on the seven public sequences it fires where the box has left the target")
 
 

@@ -64,9 +64,8 @@ class OpenCVMIL(Tracker):
     (``_mil_child.py``, which imports only cv2 and numpy) that runs exactly one MIL run; frames
     go to it through a pipe. Every run is thus the *first* run of its process: the same clip
     gives the same boxes in ``evaluate``, frame by frame, in ``bench`` (fresh or resumed, any
-    number of workers) and on every page of the book. The cost is the child's start (about
-    0.3 s per run on a quiet 2-core machine, 0.5 s under load) plus copying each frame
-    through the pipe.
+    number of workers) and on every page of the book. The cost is the child's start (once per
+    run) plus copying each frame through the pipe.
 
     The box is adjusted before OpenCV sees it (:func:`safe_box`): sides below ``MIN_SIDE`` px
     are grown about the centre (MIL never returns from ``init`` on a 4 x 4 box), sides within
