@@ -1,4 +1,4 @@
-"""Comparing trackers across clips and against the papers' own figures (chapter 09).
+"""Comparing trackers across clips and against the papers' own figures (``09_trackers_compared``).
 
 Everything here works on benchmark rows (``trackbook.evaluation.bench.run`` / ``load``): dicts
 with ``tracker``, ``clip``, ``auc``, ``precision20``, ``tracking_rate``, ``ms_median`` and the
