@@ -86,15 +86,38 @@ def test_long_run_on_a_small_clip(name):
             f"{name}: ok=True on {m['ok_off']:.0%} of {m['n_off']} frames with IoU < 0.1"
 
 
+@lru_cache(maxsize=None)
+def _in_view(name):
+    """Frames of sample clip ``name`` whose target shows at least half of itself: a target
+    mostly hidden behind something drawn over it (a tree, the other face) is behind an
+    occluder, where ``ok=False`` is the right answer, whatever the box's IoU."""
+    from trackbook.clips import samples
+
+    support = samples.render_masks(name).sum(axis=(1, 2))
+    visible = samples.render_masks(name, visible=True).sum(axis=(1, 2))
+    return visible >= 0.5 * np.maximum(support, 1)
+
+
+#: Cells of the matrix that fail today, each with what happens; strict, so a fix that makes one
+#: pass fails here until the mark goes.
+KNOWN_FAILING = {
+    "hsi-color-pf": "robot-corridor-night: the light drops at frame 58 and the HSI colour match "
+                    "falls to 0.49, 0.35, 0.18 while the box stays on the target (IoU > 0.5): "
+                    "3 of 54 frames reported lost",
+}
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("name", NAMES)
+@pytest.mark.parametrize("name", [
+    pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=KNOWN_FAILING[n]))
+    if n in KNOWN_FAILING else n for n in NAMES])
 def test_no_false_losses_on_the_sample_clips(name):
     worst = []
     for c in clips.available():
         clip = clips.load(c)
         r = trackbook.evaluate(name, clip, seed=0)
         iou = np.nan_to_num(metrics.iou(r.boxes, clip.groundtruth), nan=0.0)[1:]
-        on = iou > 0.5
+        on = (iou > 0.5) & _in_view(c)[1:len(iou) + 1]
         lost = int((~np.asarray(r.ok, bool)[1:][on]).sum())
         if lost > 0.01 * on.sum():
             worst.append(f"{c}: {lost} of {int(on.sum())}")
