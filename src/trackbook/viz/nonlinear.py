@@ -98,10 +98,13 @@ def plot_identity_strip(labels: dict, ax=None, title=None):
     cols = [OKABE_ITO["blue"], OKABE_ITO["orange"], OKABE_ITO["bluish green"],
             OKABE_ITO["reddish purple"]]
     for i, (_, _, ids) in enumerate(rows):
-        for j in np.unique(ids):
-            frames = np.flatnonzero(ids == j)
-            ax.scatter(frames, np.full(frames.size, i), marker="s", s=6, lw=0,
-                       color="#DDDDDD" if j < 0 else cols[int(j) % len(cols)])
+        starts = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])    # runs of one identity
+        ends = np.r_[starts[1:], ids.size]
+        for a, b in zip(starts, ends):
+            j = int(ids[a])
+            ax.broken_barh([(a - 0.5, b - a)], (i - 0.3, 0.6),
+                           color="#DDDDDD" if j < 0 else cols[j % len(cols)])
+    ax.set_xlim(-0.5, max(np.asarray(r[2]).size for r in rows) - 0.5)
     ax.set_yticks(range(len(rows)))
     ax.set_yticklabels([f"{run}: track {k + 1}" for run, k, _ in rows], fontsize=8)
     ax.invert_yaxis(); ax.set_xlabel("frame")
