@@ -235,7 +235,7 @@ def _mean_z(sigmas, Wm):
 
 
 def run_ukf(zs, x0, P0, Q, R, fx=f, hx=h, alpha: float = 0.3, beta: float = 2.0,
-            kappa: float = 0.0, residual=residual_z, z_mean=_mean_z, dt: float = 1.0) -> Estimate:
+            kappa: float = 0.0, residual=residual_z, z_mean=_mean_z) -> Estimate:
     """filterpy's ``UnscentedKalmanFilter`` with ``MerweScaledSigmaPoints(alpha, beta, kappa)``.
 
     No Jacobians: 2n + 1 sigma points of the belief are pushed through f (predict) and h
@@ -246,7 +246,8 @@ def run_ukf(zs, x0, P0, Q, R, fx=f, hx=h, alpha: float = 0.3, beta: float = 2.0,
     x0 = np.asarray(x0, dtype=float)
     zs = np.asarray(zs, dtype=float)
     points = MerweScaledSigmaPoints(x0.size, alpha=alpha, beta=beta, kappa=kappa)
-    ukf = UnscentedKalmanFilter(dim_x=x0.size, dim_z=zs.shape[1], dt=dt,
+    # fx carries its own time step, so filterpy's dt is only passed through
+    ukf = UnscentedKalmanFilter(dim_x=x0.size, dim_z=zs.shape[1], dt=1.0,
                                 fx=lambda x, dt: fx(x), hx=hx, points=points,
                                 z_mean_fn=z_mean, residual_z=residual)
     ukf.x, ukf.P = x0.copy(), np.asarray(P0, dtype=float).copy()
@@ -320,12 +321,13 @@ def run_particle_filter(zs, x0, P0, Q, R, rng: np.random.Generator, n_particles:
 
 def compare(truth, zs, rng: np.random.Generator, q: float = 0.01, sigma_r: float = 0.2,
             sigma_theta: float = 0.2, x0_error=(20.0, 20.0, 0.5, 0.5), p0=(400.0, 400.0, 1.0, 1.0),
-            n_particles: int = 10000, sensor=SENSOR) -> dict:
+            n_particles=10000, sensor=SENSOR) -> dict:
     """The four filters on one simulated track, all started from the same wrong guess.
 
     Every filter starts at the true initial state plus ``x0_error``, with P0 = diag(p0), and
-    knows the true Q and R. Returns ``{name: Estimate}`` in the order KF, EKF, UKF, particle
-    filter; score them with :func:`position_rmse`.
+    knows the true Q and R. ``n_particles`` may be a list: one particle filter per size, run
+    one after the other from ``rng``. Returns ``{name: Estimate}`` in the order KF, EKF, UKF,
+    particle filter(s); score them with :func:`position_rmse`.
     """
     truth = np.asarray(truth, dtype=float)
     Q, R = Q_cv(q), np.diag([sigma_r ** 2, sigma_theta ** 2])
@@ -335,6 +337,7 @@ def compare(truth, zs, rng: np.random.Generator, q: float = 0.01, sigma_r: float
     hs = lambda x: h(x, sensor)
     runs = [run_kf(zs, x0, P0, Q, sigma_r, sigma_theta, sensor),
             run_ekf(zs, x0, P0, Q, R, hx=hs, HJ=lambda x: H_j(x, sensor)),
-            run_ukf(zs, x0, P0, Q, R, hx=hs),
-            run_particle_filter(zs, x0, P0, Q, R, rng, n_particles=n_particles, hx=hs)]
+            run_ukf(zs, x0, P0, Q, R, hx=hs)]
+    runs += [run_particle_filter(zs, x0, P0, Q, R, rng, n_particles=int(n), hx=hs)
+             for n in np.atleast_1d(n_particles)]
     return {e.name: e for e in runs}
