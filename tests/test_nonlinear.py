@@ -1,4 +1,4 @@
-"""The extended and unscented Kalman filters of ``06_kalman`` against filterpy, numpy and calculus."""
+"""The extended and unscented Kalman filters of ``06_kalman``: filterpy, numpy, calculus."""
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -64,7 +64,8 @@ def test_jacobians_equal_central_finite_differences(x):
     eps = 1e-6
     num_H = np.column_stack([(nl.h(x + eps * e, sensor) - nl.h(x - eps * e, sensor)) / (2 * eps)
                              for e in np.eye(4)])
-    num_F = np.column_stack([(nl.f(x + eps * e) - nl.f(x - eps * e)) / (2 * eps) for e in np.eye(4)])
+    num_F = np.column_stack([(nl.f(x + eps * e) - nl.f(x - eps * e)) / (2 * eps)
+                             for e in np.eye(4)])
     np.testing.assert_allclose(nl.H_j(x, sensor), num_H, atol=1e-6)
     np.testing.assert_allclose(nl.F_j(x), num_F, atol=1e-6)
 

@@ -11,7 +11,8 @@ to (frames where it is matched to none do not count, nor break the memory).
 >>> gt = {"a": np.array([[0, 0, 10, 10]] * 3, float), "b": np.array([[50, 0, 10, 10]] * 3, float)}
 >>> identity_switches([gt["a"], gt["b"]], gt)
 0
->>> identity_switches([np.vstack([gt["a"][:2], gt["b"][2:]]), np.vstack([gt["b"][:2], gt["a"][2:]])], gt)
+>>> swapped = [np.vstack([gt["a"][:2], gt["b"][2:]]), np.vstack([gt["b"][:2], gt["a"][2:]])]
+>>> identity_switches(swapped, gt)
 2
 """
 

@@ -164,7 +164,7 @@ class Estimate:
 
 
 def position_rmse(estimate, truth) -> float:
-    """Root-mean-square position error sqrt(mean ‖p̂_k − p_k‖²) of an Estimate (or (n, ≥2) array)."""
+    """Root-mean-square position error sqrt(mean ‖p̂_k − p_k‖²) of an Estimate or (n, ≥2) array."""
     x = estimate.x if isinstance(estimate, Estimate) else np.asarray(estimate, dtype=float)
     d = x[:, :2] - np.asarray(truth, dtype=float)[:, :2]
     return float(np.sqrt(np.mean(np.sum(d * d, axis=1))))
