@@ -158,3 +158,61 @@ def test_without_association_it_is_the_independent_multi_tracker():
     for name in clips.load("two-faces").targets:
         np.testing.assert_array_equal(a[name], b[name])
         np.testing.assert_array_equal(a["_ok"][name], b["_ok"][name])
+
+
+class _Stub:
+    """A tracker that proposes a given box every frame."""
+
+    def __init__(self, box, ok=True):
+        self.box, self.ok = box, ok
+
+    def update(self, frame):
+        return self.ok, self.box
+
+
+def _started(boxes):
+    clip = clips.load("occluder")
+    mt = AssociatedMultiTracker("mean-shift", seed=0)
+    mt.init(clip.frames[0], boxes)
+    return mt, clip.frames[1]
+
+
+def test_overlapping_candidates_are_assigned_but_do_not_update_the_tracks():
+    mt, frame = _started([(40.0, 40, 30, 30), (120.0, 40, 30, 30)])
+    mt.trackers = [_Stub((41.0, 40, 30, 30)), _Stub((45.0, 42, 30, 30))]   # IoU about 0.7
+    predicted = [kf.F @ kf.x for kf in mt.kfs]
+    oks, boxes = mt.update(frame)
+    assert mt.ambiguous.tolist() == [True, True]
+    for kf, x in zip(mt.kfs, predicted):
+        np.testing.assert_allclose(kf.x, x)      # predicted only: no Kalman update
+    assert boxes[0] == (41.0, 40, 30, 30) and oks[0]
+
+
+def test_separate_candidates_update_the_tracks_and_swapped_boxes_are_given_back():
+    mt, frame = _started([(40.0, 40, 30, 30), (120.0, 40, 30, 30)])
+    mt.trackers = [_Stub((121.0, 40, 30, 30)), _Stub((41.0, 40, 30, 30))]  # each on the other
+    oks, boxes = mt.update(frame)
+    assert mt.ambiguous.tolist() == [False, False]
+    assert boxes == [(41.0, 40, 30, 30), (121.0, 40, 30, 30)] and mt.owner == [1, 0]
+    assert mt.kfs[0].x[0] > 40 + 15            # updated towards the new centre (56)
+    # a candidate its tracker flags as lost is never assigned: the track coasts, ok = False
+    mt.trackers = [_Stub((121.0, 40, 30, 30)), _Stub((41.0, 40, 30, 30), ok=False)]
+    oks, boxes = mt.update(frame)
+    assert oks == [False, True]
+    with pytest.raises(ValueError, match="ambiguity_iou"):
+        AssociatedMultiTracker("mean-shift", ambiguity_iou=1.5)
+
+
+def test_two_faces_alike_is_two_faces_with_a_twin():
+    from trackbook.clips.scenes import two_faces_alike
+
+    alike, faces = two_faces_alike(), clips.load("two-faces")
+    assert len(alike) == len(faces) and list(alike.targets) == list(faces.targets)
+    for k in faces.targets:
+        np.testing.assert_allclose(alike.targets[k], faces.targets[k])
+    # frame 0: identical outside face2's box, different inside it
+    a, b = np.asarray(alike.frames[0], float), np.asarray(faces.frames[0], float)
+    x, y, w, h = np.round(faces.targets["face2"][0]).astype(int)
+    inside = np.zeros(a.shape[:2], bool)
+    inside[max(y - 2, 0):y + h + 2, max(x - 2, 0):x + w + 2] = True
+    assert np.abs(a - b)[~inside].max() == 0 and np.abs(a - b)[inside].mean() > 10

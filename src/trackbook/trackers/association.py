@@ -121,6 +121,9 @@ class AssociatedMultiTracker:
     gate_threshold : squared Mahalanobis distance of the gate (default the χ²₂ 99 % quantile)
     associate : with ``False``, track k always takes tracker k's box (the independent trackers
         of :class:`~trackbook.trackers.MultiTracker`, for comparison under the same code)
+    ambiguity_iou : a candidate whose box overlaps another candidate's by at least this IoU is
+        *ambiguous*: it is still assigned and reported, but the track's Kalman filter is not
+        updated with it (the track keeps its own velocity); ``None`` updates always
     q, r, p0 : the tracks' constant-velocity Kalman filters on box centres (``06_kalman``):
         Q = q·I₄, R = r·I₂, P₀ = p0·I₄, in pixels
     **params : the trackers' params
@@ -129,12 +132,13 @@ class AssociatedMultiTracker:
     ----------
     trackers : the per-target trackers; owner : for each track, the tracker whose box it took
         last (starts as ``[0, 1, ...]``); d2 : the last frame's (tracks × candidates) squared
-        Mahalanobis distances; pairs : the last assignment
+        Mahalanobis distances; pairs : the last assignment; ambiguous : the last frame's
+        ambiguous candidates
     """
 
     def __init__(self, name: str, seed: int | None = 0, gate_threshold: float = CHI2_GATE_99,
                  q: float = 1.0, r: float = 4.0, p0: float = 10.0, associate: bool = True,
-                 **params):
+                 ambiguity_iou: float | None = 0.3, **params):
         from . import create, get
 
         get(name)  # fail early, with the list of names, on a typo
@@ -143,6 +147,10 @@ class AssociatedMultiTracker:
         self.name, self.seed, self._params = name, seed, dict(params)
         self.gate_threshold, self.q, self.r, self.p0 = float(gate_threshold), q, r, p0
         self.associate = bool(associate)
+        if ambiguity_iou is not None and not 0.0 < float(ambiguity_iou) <= 1.0:
+            raise ValueError(f"ambiguity_iou must be in (0, 1] or None, got {ambiguity_iou!r}.")
+        self.ambiguity_iou = None if ambiguity_iou is None else float(ambiguity_iou)
+        self.ambiguous = np.zeros(0, dtype=bool)
         self._create = create
         self.trackers: list = []
         self.kfs: list = []
@@ -187,10 +195,19 @@ class AssociatedMultiTracker:
         else:
             self.pairs = [(k, k) for k in range(len(self.trackers))]
         taken = dict(self.pairs)
+        # Candidates that overlap another candidate cannot be told apart by position: their
+        # boxes are still reported, but the tracks keep their own motion (no Kalman update),
+        # so that two trackers stalled on a crossing do not teach both tracks to stand still.
+        self.ambiguous = np.zeros(len(cand), dtype=bool)
+        if self.associate and self.ambiguity_iou is not None and len(cand) > 1:
+            ov = iou_matrix(cand, cand)
+            np.fill_diagonal(ov, 0.0)
+            self.ambiguous = ov.max(axis=1) >= self.ambiguity_iou
         for i, kf in enumerate(self.kfs):
             if i in taken:
                 j = taken[i]
-                kf.update(box_centres(cand[j])[0])
+                if not self.ambiguous[j]:
+                    kf.update(box_centres(cand[j])[0])
                 self.boxes[i] = tuple(float(v) for v in cand[j])
                 self.oks[i], self.owner[i] = bool(cand_ok[j]), j
             else:   # nothing in the gate: coast on the prediction, keep the last size
