@@ -25,7 +25,7 @@ from ..filters.kalman import constant_velocity
 from .multi import target_seed
 
 __all__ = ["AssociatedMultiTracker", "CHI2_GATE_99", "assign", "box_centres", "gate",
-           "iou_matrix", "mahalanobis_matrix", "track_associated"]
+           "iou_matrix", "mahalanobis_matrix"]
 
 #: The 99 % quantile of the χ² distribution with 2 degrees of freedom, −2 ln 0.01: a candidate
 #: whose squared Mahalanobis distance from a track's prediction exceeds it is outside the gate.
@@ -219,37 +219,3 @@ class AssociatedMultiTracker:
     def __len__(self) -> int:
         return len(self.trackers)
 
-
-def track_associated(name: str, clip, seed: int | None = 0, max_frames: int | None = None,
-                     **params) -> dict:
-    """Track every annotated target of ``clip`` with :class:`AssociatedMultiTracker`.
-
-    Returns ``{target: (N, 4) boxes}`` (frame 0 is the ground-truth start) and, under
-    ``"_ok"``, each target's ``ok`` flags; the same layout as
-    :func:`trackbook.trackers.multi.track_clip`, so the two can be scored alike.
-    """
-    from .. import clips as _clips
-    from .._checks import check_max_frames
-
-    clip = _clips.load(clip)
-    names = list(clip.targets)
-    max_frames = check_max_frames(max_frames)
-    n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
-    first = clip.frames[0]
-    starts = [clip_box(np.asarray(clip.targets[t][0], dtype=float), first.shape) for t in names]
-    mt = AssociatedMultiTracker(name, seed=seed, **params)
-    mt.init(first, starts)
-    out = {t: np.full((n, 4), np.nan) for t in names}
-    oks = {t: np.ones(n, dtype=bool) for t in names}
-    for t, b in zip(names, starts):
-        out[t][0] = b
-    for i, frame in enumerate(clip.frames):
-        if i == 0:
-            continue
-        if i >= n:
-            break
-        flags, boxes = mt.update(frame)
-        for t, b, ok in zip(names, boxes, flags):
-            out[t][i], oks[t][i] = b, ok
-    out["_ok"] = oks
-    return out
