@@ -141,6 +141,11 @@ def test_associated_tracker_coasts_when_nothing_is_in_the_gate():
     mt.kfs[0].x[:2] += 50.0                     # the track predicts far from the tracker's box
     oks, boxes = mt.update(clip.frames[1])
     assert oks == [False] and np.all(np.isfinite(boxes[0]))
+    mt.kfs[0].x[:2] = [-1e4, 1e4]               # a prediction far off the frame
+    oks, boxes = mt.update(clip.frames[2])
+    x, y, w, h = boxes[0]
+    H, W = clip.frames[2].shape[:2]
+    assert oks == [False] and (x + w / 2, y + h / 2) == (0.0, float(H))
     with pytest.raises(ValueError, match="gate_threshold"):
         AssociatedMultiTracker("mean-shift", gate_threshold=-1)
     with pytest.raises(ValueError, match="init"):

@@ -181,6 +181,7 @@ class AssociatedMultiTracker:
         """Track into ``frame``: ``(oks, boxes)`` in track (target identity) order."""
         if not self.trackers:
             raise ValueError("AssociatedMultiTracker: call init(frame, [box1, ...]) before update.")
+        frame = check_frame(frame)
         out = [t.update(frame) for t in self.trackers]
         cand = np.array([b for _, b in out], dtype=float)
         cand_ok = np.array([bool(ok) for ok, _ in out])
@@ -212,7 +213,10 @@ class AssociatedMultiTracker:
                 self.oks[i], self.owner[i] = bool(cand_ok[j]), j
             else:   # nothing in the gate: coast on the prediction, keep the last size
                 w, h = self.boxes[i][2:]
-                self.boxes[i] = (float(kf.x[0] - w / 2), float(kf.x[1] - h / 2), w, h)
+                # the drawn centre stays on the frame, wherever the prediction wanders
+                cx = float(np.clip(kf.x[0], 0.0, frame.shape[1]))
+                cy = float(np.clip(kf.x[1], 0.0, frame.shape[0]))
+                self.boxes[i] = (cx - w / 2, cy - h / 2, w, h)
                 self.oks[i] = False
         return list(self.oks), list(self.boxes)
 
