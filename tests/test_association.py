@@ -222,3 +222,25 @@ def test_two_faces_alike_is_two_faces_with_a_twin():
     inside = np.zeros(a.shape[:2], bool)
     inside[max(y - 2, 0):y + h + 2, max(x - 2, 0):x + w + 2] = True
     assert np.abs(a - b)[~inside].max() == 0 and np.abs(a - b)[inside].mean() > 10
+
+
+def test_invisible_ground_truth_frames_match_nothing_and_switch_nothing():
+    gt = {k: v.copy() for k, v in GT.items()}
+    gt["a"][3:5] = np.nan                       # "a" out of view for two frames
+    m = matched_identities([GT["a"], GT["b"]], gt)
+    np.testing.assert_array_equal(m[0], [0, 0, 0, -1, -1, 0, 0, 0])
+    assert identity_switches([GT["a"], GT["b"]], gt) == 0
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2 ** 31 - 1))
+def test_switch_count_does_not_depend_on_the_order_of_the_tracks(seed):
+    # three tracks that trade the two targets at random frames, never two on one target (ties
+    # between equal overlaps are broken by order, as in any matching)
+    rng = np.random.default_rng(seed)
+    choice = np.array([rng.permutation(3) for _ in range(8)]).T   # 0: on "a", 1: on "b", 2: away
+    far = np.array([[500.0, 500, 10, 10]] * 8)
+    tracks = [np.where((c == 0)[:, None], GT["a"], np.where((c == 1)[:, None], GT["b"], far))
+              for c in choice]
+    n = identity_switches(tracks, GT)
+    assert n == identity_switches(tracks[::-1], GT) == identity_switches(tracks[1:] + tracks[:1], GT)

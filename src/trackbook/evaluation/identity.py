@@ -5,7 +5,8 @@ Each frame, tracks are matched to ground-truth identities as the CLEAR MOT metri
 stays at or above the threshold; the remaining tracks and identities are matched by the
 Hungarian assignment on IoU (pairs below the threshold never match). An **identity switch** is
 a frame in which an identity is matched to a different track than the one it was last matched
-to (frames where it is matched to none do not count, nor break the memory).
+to (frames where it is matched to none do not count, nor break the memory). Two tracks that
+overlap one identity equally well are a tie, broken by their order.
 
 >>> import numpy as np
 >>> gt = {"a": np.array([[0, 0, 10, 10]] * 3, float), "b": np.array([[50, 0, 10, 10]] * 3, float)}
