@@ -390,10 +390,15 @@ Two faces, the astronaut's (face1, the ground truth) and the cat's from "chelsea
 the cat in front (it partly hides face1 at frames 50-76) and separate again (Cho and Kang 2005's
 multi-target experiment). Both boxes are given in Clip.targets.""")
 def _two_faces(n: int) -> Rendering:
+    return _crossing_faces(n, crop("chelsea", 95, 20, 375, 295, (60, 58)))
+
+
+def _crossing_faces(n: int, texture2: np.ndarray) -> Rendering:
+    """The astronaut's face and a second face (``texture2``, 60 x 58) crossing: ``two-faces``."""
     bg = crop("motorcycle", 40, 0, 707, 500, (W, H))
     bg = cv2.GaussianBlur(bg, (0, 0), 2.0) * np.float32(0.9)
     f1 = ellipse_sprite(crop("astronaut", 170, 40, 285, 185, (48, 60)))
-    f2 = ellipse_sprite(crop("chelsea", 95, 20, 375, 295, (60, 58)))
+    f2 = ellipse_sprite(texture2)
     t = np.arange(n)
     c1 = np.c_[path(n, [(0, 50), (119, 255)], sigma=0), 108 + 7 * np.sin(t / 9)]
     c2 = np.c_[path(n, [(0, 270), (119, 60)], sigma=0), 128 + 6 * np.cos(t / 11)]
@@ -405,6 +410,23 @@ def _two_faces(n: int) -> Rendering:
         p2 = canvas.paste(f2, c2[i], scale=s2[i])
         film.record(i, canvas, expose(canvas.img), face1=p1, face2=p2)
     return film.done()
+
+
+def two_faces_alike(n: int = 120) -> Clip:
+    """``two-faces`` with the cat replaced by the astronaut's own face, mirrored: one colour.
+
+    Same background, paths, scales and frames as the ``two-faces`` sample; only face2's texture
+    differs (the astronaut crop, flipped left-right, at the cat's size), so the two targets
+    have the same colour histogram up to resampling. Not a registered sample:
+    ``08_mean_shift`` builds it to test Cho and Kang 2005's two-face claim with two faces of
+    one colour.
+    """
+    twin = np.ascontiguousarray(crop("astronaut", 170, 40, 285, 185, (60, 58))[:, ::-1])
+    r = _crossing_faces(int(n), twin)
+    r.frames.setflags(write=False)
+    return Clip("two-faces-alike", ArrayFrames(r.frames), r.targets["face1"], fps=30.0,
+                targets=r.targets, attributes=("OCC", "BC"), source="generated",
+                description="two faces of one colour cross (two-faces with a twin for the cat)")
 
 
 # ---------------------------------------------------------------- lost-and-found test clip
