@@ -90,3 +90,7 @@ PAPERS = {
         "kind": "speed_accuracy",
     },
 }
+
+#: The trackers of the four papers (baselines and proposed), paper by paper: what the
+#: comparisons of ``09_trackers_compared`` are about (``mosse`` and ``kcf`` come after it).
+TRACKERS = tuple(t for p in PAPERS.values() for t in p["trackers"])

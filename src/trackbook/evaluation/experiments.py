@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import papers as _papers
 from .. import trackers as _trackers
 from .bench import (REFERENCE, Task, _frozen, _jsonable, fingerprint, load_run, parse_seeds,
                     resolve_clips, write_atomic)
@@ -55,8 +56,8 @@ class Experiment:
     ----------
     name : the results file's name (``trackbook.results.load(name)``)
     description : what the rows are, one sentence
-    configs : the grid's configurations; ``None`` means every registered tracker, at each of
-        ``presets``, labelled by its name
+    configs : the grid's configurations; ``None`` means every registered tracker (or those of
+        ``trackers``), at each of ``presets``, labelled by its name
     clips : clip specs (``"shared"``: the real sequences; sample names)
     seeds : the seeds of every configuration
     presets : for ``configs=None``
@@ -73,11 +74,14 @@ class Experiment:
     presets: tuple = ("book",)
     reference: bool = False
     plugins: tuple = ()
+    trackers: tuple | None = None
 
     def grid(self) -> list[Config]:
         """The configurations, in order (MIL last when ``reference``)."""
         if self.configs is None:
-            out = [Config(t, t, preset=p) for t in _trackers.available() for p in self.presets]
+            names = [t for t in _trackers.available()
+                     if self.trackers is None or t in self.trackers]
+            out = [Config(t, t, preset=p) for t in names for p in self.presets]
         else:
             out = list(self.configs)
         if self.reference:
@@ -187,9 +191,9 @@ def _plain(*names) -> tuple:
 EXPERIMENTS = {e.name: e for e in (
     Experiment("real", "every registered tracker at the book's defaults on the real "
                "sequences, seed 0, with OpenCV's MIL", reference=True),
-    Experiment("claims", "every registered tracker, both presets, the real sequences, seeds "
+    Experiment("claims", "the four papers' trackers, both presets, the real sequences, seeds "
                "0-2 (the paired comparisons of 09_trackers_compared)",
-               seeds=(0, 1, 2), presets=("book", "paper")),
+               seeds=(0, 1, 2), presets=("book", "paper"), trackers=_papers.TRACKERS),
     Experiment("lee2012_real", "Table 3 of Lee et al. 2012 on the real sequences: the three "
                "trackers at their defaults, seeds 0-2, MIL with seed 0",
                _plain(*LEE2012_TRACKERS), seeds=(0, 1, 2), reference=True),
