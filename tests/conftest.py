@@ -61,3 +61,20 @@ def clean_registry(monkeypatch):
     yield
     registry._REGISTRY.clear()
     registry._REGISTRY.update(saved)
+
+
+def moving_square_frames(n, *, size=(100, 80), side=20, grey=(90, 140), top=30, left=20,
+                         step=3, colour=(20, 20, 220), stripes=None):
+    """``n`` BGR frames of ``size`` (width, height): a ``colour`` square of ``side`` px at row
+    ``top`` moving ``step`` px a frame to the right from column ``left`` over grey noise
+    (seed 0), every fifth row painted ``stripes`` when given; and its first box."""
+    g = np.random.default_rng(0)
+    frames = []
+    for t in range(n):
+        f = g.integers(grey[0], grey[1], (size[1], size[0], 3), dtype=np.uint8)
+        x = left + step * t
+        f[top:top + side, x:x + side] = colour
+        if stripes is not None:
+            f[top:top + side:5, x:x + side] = stripes
+        frames.append(f)
+    return frames, (left, top, side, side)

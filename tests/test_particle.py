@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
+from .conftest import moving_square_frames
 from trackbook.filters.motion import (EQ9_NOISE, box_to_state, clamp_states, fuse,
                                       gaussian_likelihood, predict_eq9, similarity,
                                       states_to_boxes)
@@ -146,13 +147,7 @@ def test_fuse_eq14():
 
 def _square_frames(n=6):
     """A red 20 x 20 square moving 3 px a frame over a grey noise background."""
-    rng = np.random.default_rng(0)
-    frames = []
-    for t in range(n):
-        f = rng.integers(90, 140, (80, 100, 3), dtype=np.uint8)
-        f[30:50, 20 + 3 * t:40 + 3 * t] = (20, 20, 220)
-        frames.append(f)
-    return frames, (20, 30, 20, 20)
+    return moving_square_frames(n)
 
 
 @pytest.fixture

@@ -10,6 +10,7 @@ search window.
 import numpy as np
 import pytest
 
+from .conftest import moving_square_frames
 from trackbook import trackers
 from trackbook.trackers import TrackerState
 from trackbook.trackers.particle_filter import ParticleFilterTracker
@@ -37,14 +38,8 @@ KIND = {
 
 def _frames(n=5):
     """A red, blue-striped 30 x 30 square moving 4 px a frame over grey noise."""
-    rng = np.random.default_rng(0)
-    out = []
-    for t in range(n):
-        f = rng.integers(60, 140, (120, 160, 3), dtype=np.uint8)
-        f[40:70, 30 + 4 * t:60 + 4 * t] = (20, 30, 220)
-        f[40:70:5, 30 + 4 * t:60 + 4 * t] = (220, 60, 20)
-        out.append(f)
-    return out
+    return moving_square_frames(n, size=(160, 120), side=30, grey=(60, 140), top=40, left=30,
+                                step=4, colour=(20, 30, 220), stripes=(220, 60, 20))[0]
 
 
 @pytest.fixture(scope="module")

@@ -54,6 +54,11 @@ def plot_polar_belief(samples, linear, unscented, sigmas, sensor=(0.0, 0.0), ax=
         cov_ellipse(ax, m, P, color=col, label=name)
         ax.plot(*m, "x", color=col, ms=8)
     ax.plot(*np.asarray(sigmas).T, "o", mfc="none", color=OKABE_ITO["blue"], label="sigma points")
+    return _finish(ax, sensor, title)
+
+
+def _finish(ax, sensor, title):
+    """The sensor, equal axes, the legend outside the plot (never over a track), the title."""
     ax.plot(*sensor, "^", color=OKABE_ITO["black"], ms=9, label="sensor")
     ax.set_aspect("equal")
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), frameon=False, fontsize=8)
@@ -77,12 +82,7 @@ def plot_estimates(truth, estimates: dict, measurements=None, sensor=(0.0, 0.0),
     for (name, est), col in zip(estimates.items(), FILTER_COLORS * 3):
         x = np.asarray(getattr(est, "x", est), dtype=float)
         ax.plot(x[:, 0], x[:, 1], "-", lw=1, color=col, label=name)
-    ax.plot(*sensor, "^", color=OKABE_ITO["black"], ms=9, label="sensor")
-    ax.set_aspect("equal")
-    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), frameon=False, fontsize=8)
-    if title:
-        ax.set_title(title, fontsize=10)
-    return ax
+    return _finish(ax, sensor, title)
 
 
 def plot_identity_strip(labels: dict, ax=None, title=None):
