@@ -304,11 +304,11 @@ class _CorrelationTracker(Tracker):
             if self._in_view(c, frame.shape) and not self._gate.lost(rho):
                 resp = self._responses(self._features(self._patches(gray, [c])))[0]
                 conf = float(self._confidence(resp[None])[0])
-                if conf >= self._threshold():
-                    dy, dx = cf.peak_offset(resp)
+                found = self._moved(c, *cf.peak_offset(resp))
+                if conf >= self._threshold() and self._in_view(found, frame.shape):
                     self.response, self.confidence = resp, conf
                     self.search_window = self._window_box(c)
-                    return self._moved(c, dy, dx)
+                    return found
         return self._tile_sweep(frame, gray)
 
     def _tile_sweep(self, frame, gray):
