@@ -16,14 +16,33 @@
 
 Lost rule (both)
 ----------------
-A frame whose grey levels span at most ``flat_range`` (all black, all white) carries nothing
-to match: ``ok=False``, the box stays and the model is not updated. Otherwise the confidence
-of the best peak (the peak-to-sidelobe ratio, PSR, of the response) below its threshold
-means the target is not in the search window: ``ok=False``, the box stays, no update. With
-``redetect`` (the book's addition) the frame is then searched with the same filter in
-overlapping tiles of the window's size (a bounded number per frame, swept round robin), and
-the best tile whose confidence passes ``redetect_factor`` × the threshold is taken as the
-target found again.
+In order, on every frame:
+
+1. A frame whose grey levels span at most ``flat_range`` (all black, all white) carries
+   nothing to match: ``ok=False``, the box stays, the model is not updated.
+2. The filter's peak moves the box. A box with less than ``min_visible`` of its area in the
+   frame (:func:`~trackbook.trackers.lost.visible_fraction`) is a target leaving: lost.
+3. A peak whose confidence (the peak-to-sidelobe ratio, PSR) reaches the threshold must also
+   match the first frame's kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012,
+   :class:`~trackbook.trackers.lost.ColourCheck`, when ``colour_check``): the match may not
+   fall far below its recent range (:class:`~trackbook.trackers.lost.MatchGate`) unless the
+   box stands out by colour from the boxes around it. Passed: ``ok=True`` and the model
+   learns the frame. Nothing else updates the model.
+4. Otherwise, with ``redetect``, the whole frame is searched: first by colour
+   (:meth:`~trackbook.trackers.lost.ColourCheck.search`, about 325 histograms), the best
+   box taken if its colours pass the gate, it is in view and the filter answers there with
+   a PSR at the threshold; else by the filter itself over overlapping tiles of the window's
+   size (a bounded number per frame, swept round robin), the best tile taken if its PSR
+   reaches ``redetect_factor`` x the threshold and its colours pass the gate.
+5. Otherwise a peak below the threshold whose box is in view and stands out by colour from
+   the boxes around it is kept, ``ok=True`` without learning (the filter's template has
+   faded; the target is still the best colour match around). Anything else: ``ok=False``,
+   the box stays.
+
+The gate has no absolute floor: under a sudden change of light every colour match drops,
+and the target is told from a drift by its range and by standing out. The paper preset runs
+the papers' rule only (MOSSE: PSR below 7 is lost; KCF: never lost): ``min_visible = 0``,
+no colour check, no re-detection.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                              # doctest: +SKIP
@@ -375,7 +394,13 @@ class MosseTracker(_CorrelationTracker):
     and unit norm, cosine window. Training: A = Σ G ⊙ F*, B = Σ F ⊙ F* over
     ``n_perturbations`` random affine warps of the first patch, then A_i = η G ⊙ F_i* +
     (1 − η) A_{i−1} and B_i likewise on every accepted frame; H* = A / (B + λ).
-    Lost rule: see the module docstring (PSR < ``psr_threshold``).
+    Lost rule
+    ---------
+    The module's rule, with the PSR threshold ``psr_threshold`` (7, Bolme et al.'s). The
+    window is the target's box alone, so a PSR of ``redetect_factor`` x the threshold or more
+    is the target's own grey pattern: such a peak is kept without asking the colours (the log
+    and unit-norm preprocessing make the filter blind to a change of light; the colour
+    histogram is not).
     """
 
     name = "mosse"
@@ -454,7 +479,12 @@ class KcfTracker(_CorrelationTracker):
     times a cosine window. Labels: a Gaussian of σ_y = sqrt(w h) · ``output_sigma_factor`` /
     cell cells. Training: α̂ = ŷ / (k̂^{xx} + λ) with the Gaussian kernel correlation;
     detection f(z) = ifft2(k̂^{xz} ⊙ α̂); model α̂ ← (1 − η) α̂ + η α̂_new, x̂ likewise.
-    Lost rule: see the module docstring (PSR < ``psr_threshold``).
+    Lost rule
+    ---------
+    The module's rule, with the PSR threshold ``psr_threshold`` on KCF's response (its
+    sidelobe excluding ±3 σ_y around the peak). Every accepted peak must pass the colour
+    check, however high its PSR: the padded window is mostly background, which keeps matching
+    the model while an occluder covers the target.
     """
 
     name = "kcf"
