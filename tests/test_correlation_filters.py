@@ -228,3 +228,54 @@ def test_paper_values_recorded():
     assert (kcf.padding, kcf.lam, kcf.kernel_sigma, kcf.eta, kcf.output_sigma_factor) == \
         (1.5, 1e-4, 0.5, 0.02, 0.1)
     assert {r["param"] for r in trackers.departures("kcf")} >= {"bins", "psr_threshold"}
+
+
+def test_paper_preset_has_no_border_or_colour_rule():
+    for name in ("mosse", "kcf"):
+        p = trackers.create(name, preset="paper").params
+        assert (p.min_visible, p.colour_check, p.redetect) == (0.0, False, False)
+        assert {r["param"] for r in trackers.departures(name)} >= {"min_visible",
+                                                                  "colour_check"}
+
+
+# (f) the lost rule on the scenario clips of the lost matrix ----------------------------------
+def _run(name, key, **params):
+    from . import _scenarios as S
+    sc = S.SCENARIOS[key]()
+    t = trackers.create(name, seed=0, **params)
+    t.init(sc.clip.frames[0], sc.clip.groundtruth[0])
+    out = []
+    for i in range(1, len(sc.clip)):
+        model = np.copy(t._H if name == "mosse" else t._alphaf)
+        ok, box = t.update(sc.clip.frames[i])
+        after = t._H if name == "mosse" else t._alphaf
+        out.append((i, ok, np.asarray(box, float), np.array_equal(model, after)))
+    return sc, out
+
+
+@pytest.mark.parametrize("name", ["mosse", "kcf"])
+def test_a_box_mostly_out_of_view_is_never_ok(name):
+    from trackbook.trackers.lost import visible_fraction
+    sc, out = _run(name, "edge-exit")
+    shape = sc.clip.frames[0].shape
+    assert any(not ok for _, ok, _, _ in out)
+    for i, ok, box, _ in out:
+        if ok:
+            assert visible_fraction(box, shape) >= 0.5, (i, box)
+
+
+@pytest.mark.parametrize("name", ["mosse", "kcf"])
+def test_a_lost_frame_leaves_the_model_unchanged(name):
+    _, out = _run(name, "occluder")
+    lost = [same for _, ok, _, same in out if not ok]
+    assert lost and all(lost)
+
+
+def test_without_the_colour_rule_kcf_stays_ok_on_the_occluder():
+    """What the colour rule is for: KCF's padded window keeps matching the background around
+    an occluder, so its PSR alone does not say the target is covered."""
+    from . import _scenarios as S
+    absent = S.SCENARIOS["occluder"]().absent[1:]
+    ok_off = np.array([ok for _, ok, _, _ in _run("kcf", "occluder", colour_check=False)[1]])
+    ok_on = np.array([ok for _, ok, _, _ in _run("kcf", "occluder")[1]])
+    assert ok_off[absent].mean() > 0.5 and ok_on[absent].mean() < 0.1

@@ -16,14 +16,33 @@
 
 Lost rule (both)
 ----------------
-A frame whose grey levels span at most ``flat_range`` (all black, all white) carries nothing
-to match: ``ok=False``, the box stays and the model is not updated. Otherwise the confidence
-of the best peak (the peak-to-sidelobe ratio, PSR, of the response) below its threshold
-means the target is not in the search window: ``ok=False``, the box stays, no update. With
-``redetect`` (the book's addition) the frame is then searched with the same filter in
-overlapping tiles of the window's size (a bounded number per frame, swept round robin), and
-the best tile whose confidence passes ``redetect_factor`` × the threshold is taken as the
-target found again.
+In order, on every frame:
+
+1. A frame whose grey levels span at most ``flat_range`` (all black, all white) carries
+   nothing to match: ``ok=False``, the box stays, the model is not updated.
+2. The filter's peak moves the box. A box with less than ``min_visible`` of its area in the
+   frame (:func:`~trackbook.trackers.lost.visible_fraction`) is a target leaving: lost.
+3. A peak whose confidence (the peak-to-sidelobe ratio, PSR) reaches the threshold must also
+   match the first frame's kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012,
+   :class:`~trackbook.trackers.lost.ColourCheck`, when ``colour_check``): the match may not
+   fall far below its recent range (:class:`~trackbook.trackers.lost.MatchGate`) unless the
+   box stands out by colour from the boxes around it. Passed: ``ok=True`` and the model
+   learns the frame. Nothing else updates the model.
+4. Otherwise, with ``redetect``, the whole frame is searched: first by colour
+   (:meth:`~trackbook.trackers.lost.ColourCheck.search`, about 325 histograms), the best
+   box taken if its colours pass the gate, it is in view and the filter answers there with
+   a PSR at the threshold; else by the filter itself over overlapping tiles of the window's
+   size (a bounded number per frame, swept round robin), the best tile taken if its PSR
+   reaches ``redetect_factor`` x the threshold and its colours pass the gate.
+5. Otherwise a peak below the threshold whose box is in view and stands out by colour from
+   the boxes around it is kept, ``ok=True`` without learning (the filter's template has
+   faded; the target is still the best colour match around). Anything else: ``ok=False``,
+   the box stays.
+
+The gate has no absolute floor: under a sudden change of light every colour match drops,
+and the target is told from a drift by its range and by standing out. The paper preset runs
+the papers' rule only (MOSSE: PSR below 7 is lost; KCF: never lost): ``min_visible = 0``,
+no colour check, no re-detection.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                              # doctest: +SKIP
@@ -43,6 +62,7 @@ from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..params import NOT_PRINTED, param
 from .base import Tracker, readonly
+from .lost import ColourCheck, MatchGate, visible_fraction
 from .registry import register
 
 #: Random affine perturbations of the first patch: rotation up to ±this/2 rad and each
@@ -75,6 +95,25 @@ def _redetect_factor_param():
             "plain threshold by chance; a margin keeps the absent target lost")
 
 
+def _min_visible_param():
+    return param(
+        0.5, 0.0, 1.0, 0.05, doc="a box with less than this fraction of its area in the frame "
+        "is lost (the target is leaving)",
+        paper=NOT_PRINTED, paper_value=0.0,   # neither paper has a border rule
+        why="the book's rule, as every tracker's: a filter keeps finding a peak on the "
+            "background left in its window when the target leaves across the border")
+
+
+def _colour_check_param():
+    return param(
+        True, doc="check the box against the first frame's kernel colour histogram (eq. 1 "
+        "of Lee et al. 2012) and search the frame by colour while lost",
+        paper=NOT_PRINTED, paper_value=False,   # in neither paper
+        why="the book's rule, as opencv-mil's: a filter that has drifted onto texture, or "
+            "onto an occluder, can still answer with a sharp peak; the target's colours "
+            "are not there")
+
+
 @dataclasses.dataclass(frozen=True)
 class MosseParams:
     # Bolme, Beveridge, Draper, Lui, CVPR 2010 (bolme2010). The paper's text is not among the
@@ -101,6 +140,8 @@ class MosseParams:
             "frequency, so λ only guards frequencies with no energy")
     redetect: bool = _redetect_param("psr_threshold")
     redetect_factor: float = _redetect_factor_param()
+    min_visible: float = _min_visible_param()
+    colour_check: bool = _colour_check_param()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -138,6 +179,8 @@ class KcfParams:
             "separated target from background less well on the lost-and-found probe")
     redetect: bool = _redetect_param("psr_threshold")
     redetect_factor: float = _redetect_factor_param()
+    min_visible: float = _min_visible_param()
+    colour_check: bool = _colour_check_param()
 
 
 class _CorrelationTracker(Tracker):
@@ -152,6 +195,9 @@ class _CorrelationTracker(Tracker):
 
     #: Minimum side of the sampled window, in px of the patch.
     min_side = 8
+    #: Whether a peak at ``redetect_factor`` x the threshold or above is kept whatever the
+    #: colour says (see each tracker's "Lost rule").
+    firm_peak_vouches = False
 
     # -- geometry ----------------------------------------------------------------------
     def _window_box(self, centre):
@@ -201,6 +247,10 @@ class _CorrelationTracker(Tracker):
         self.response = np.zeros(self._response_shape)
         self.search_window = self._window_box(self._centre)
         self._sweep = 0
+        self._colour = ColourCheck(frame, box) if self.params.colour_check else None
+        # No absolute floor: under a sudden change of light every colour match drops, and
+        # the target is told from a drift by standing out from the boxes around it.
+        self._gate = MatchGate(floor=0.0)
 
     def _update(self, frame):
         if self._is_flat(frame):
@@ -212,27 +262,79 @@ class _CorrelationTracker(Tracker):
         conf = float(self._confidence(resp[None])[0])
         self.response, self.confidence = resp, conf
         self.search_window = self._window_box(self._centre)
-        if conf >= self._threshold():
-            dy, dx = cf.peak_offset(resp)
-            self._centre = self._moved(self._centre, dy, dx)
+        dy, dx = cf.peak_offset(resp)
+        centre = self._moved(self._centre, dy, dx)
+        sure = conf >= self._threshold()
+        in_view = self._in_view(centre, frame.shape)
+        firm = self.firm_peak_vouches and \
+            conf >= self.params.redetect_factor * self._threshold()
+        if sure and in_view and (firm or self._colour_ok(frame, centre, True)):
+            self._centre = centre
             self._learn(gray)
             return True, self._box()
         if self.params.redetect:
-            found = self._redetect(gray)
+            found = self._redetect(frame, gray)
             if found is not None:
                 self._centre = found
                 self._sweep = 0
                 return True, self._box()
+        if not sure and in_view and self._colour_ok(frame, centre, False):
+            self._centre = centre
+            return True, self._box()
         return False, self._box()
+
+    def _box_at(self, centre):
+        w, h = self._size
+        return np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h])
+
+    def _in_view(self, centre, shape):
+        """Whether at least ``min_visible`` of the box at ``centre`` is in the frame."""
+        return visible_fraction(self._box_at(centre), shape) >= self.params.min_visible
+
+    def _colour_ok(self, frame, centre, sure):
+        """The colour half of the lost rule. A sure peak (PSR at the threshold or above) must
+        match the first frame's colours (``MatchGate``: not poor, not far below its recent
+        range unless it stands out from the boxes around it); an unsure peak is kept only
+        when its colours pass the gate *and* stand out (the filter's template has faded, the
+        target is still the best colour match around)."""
+        if self._colour is None:
+            return sure
+        box = self._box_at(centre)
+        rho = float(self._colour.match(frame, box[None])[0])
+
+        def stands_out():
+            return self._colour.stands_out(frame, box, rho, floor=0.0)
+
+        if sure:
+            return not self._gate.lost(rho, stands_out)
+        return stands_out() and not self._gate.lost(rho, lambda: True)
 
     def _moved(self, centre, dy, dx):
         s = self._step
         return (centre[0] + dx * s, centre[1] + dy * s)
 
-    def _redetect(self, gray):
+    def _redetect(self, frame, gray):
+        """While lost: the best colour match of the frame (``ColourCheck.search``, bounded),
+        taken when its colours pass the gate and the filter answers there at the threshold;
+        else the filter over the frame's tiles (``_tile_sweep``)."""
+        if self._colour is not None:
+            box, rho = self._colour.search(frame, max_boxes=300, size=self._size)
+            c = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
+            if self._in_view(c, frame.shape) and not self._gate.lost(rho):
+                resp = self._responses(self._features(self._patches(gray, [c])))[0]
+                conf = float(self._confidence(resp[None])[0])
+                found = self._moved(c, *cf.peak_offset(resp))
+                if conf >= self._threshold() and self._in_view(found, frame.shape):
+                    self.response, self.confidence = resp, conf
+                    self.search_window = self._window_box(c)
+                    return found
+        return self._tile_sweep(frame, gray)
+
+    def _tile_sweep(self, frame, gray):
         """Search the frame's tiles for the target; the tiles are swept ``TILE_PIXELS`` of
         patch a frame at a time (round robin), so a lost frame costs a bounded time and a
-        full sweep of a large frame takes a few frames."""
+        full sweep of a large frame takes a few frames. The best tile must pass
+        ``redetect_factor`` x the threshold, and the colour gate when it is on."""
         centres = self._tile_centres(gray.shape)
         n = len(centres)
         k = int(min(n, max(1, TILE_PIXELS // (self._patch_size[0] * self._patch_size[1]))))
@@ -246,9 +348,15 @@ class _CorrelationTracker(Tracker):
         if not conf[i] >= self.params.redetect_factor * self._threshold():
             return None
         dy, dx = cf.peak_offset(resp[i])
+        found = self._moved(centres[i], dy, dx)
+        if not self._in_view(found, frame.shape):
+            return None
+        if self._colour is not None and self._gate.lost(
+                float(self._colour.match(frame, self._box_at(found)[None])[0])):
+            return None
         self.response, self.confidence = resp[i], float(conf[i])
         self.search_window = self._window_box(centres[i])
-        return self._moved(centres[i], dy, dx)
+        return found
 
     def _learn(self, gray):
         feats = self._features(self._patches(gray, [self._centre]))[0]
@@ -286,11 +394,21 @@ class MosseTracker(_CorrelationTracker):
     and unit norm, cosine window. Training: A = Σ G ⊙ F*, B = Σ F ⊙ F* over
     ``n_perturbations`` random affine warps of the first patch, then A_i = η G ⊙ F_i* +
     (1 − η) A_{i−1} and B_i likewise on every accepted frame; H* = A / (B + λ).
-    Lost rule: see the module docstring (PSR < ``psr_threshold``).
+    Lost rule
+    ---------
+    The module's rule, with the PSR threshold ``psr_threshold`` (7, Bolme et al.'s). The
+    window is the target's box alone, so a PSR of ``redetect_factor`` x the threshold or more
+    is the target's own grey pattern: such a peak is kept without asking the colours (the log
+    and unit-norm preprocessing make the filter blind to a change of light; the colour
+    histogram is not).
     """
 
     name = "mosse"
     Params = MosseParams
+    # The window is the target's box alone: a firm peak is the target's own grey pattern
+    # (log and unit-norm preprocessing make it blind to a change of light, which the colour
+    # histogram is not).
+    firm_peak_vouches = True
 
     def _setup_geometry(self, w, h):
         ww, wh = max(w, self.min_side), max(h, self.min_side)
@@ -361,7 +479,12 @@ class KcfTracker(_CorrelationTracker):
     times a cosine window. Labels: a Gaussian of σ_y = sqrt(w h) · ``output_sigma_factor`` /
     cell cells. Training: α̂ = ŷ / (k̂^{xx} + λ) with the Gaussian kernel correlation;
     detection f(z) = ifft2(k̂^{xz} ⊙ α̂); model α̂ ← (1 − η) α̂ + η α̂_new, x̂ likewise.
-    Lost rule: see the module docstring (PSR < ``psr_threshold``).
+    Lost rule
+    ---------
+    The module's rule, with the PSR threshold ``psr_threshold`` on KCF's response (its
+    sidelobe excluding ±3 σ_y around the peak). Every accepted peak must pass the colour
+    check, however high its PSR: the padded window is mostly background, which keeps matching
+    the model while an occluder covers the target.
     """
 
     name = "kcf"
