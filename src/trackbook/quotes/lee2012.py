@@ -264,4 +264,11 @@ QUOTES = [
           "Also, since the proposed algorithm takes 55 ms on average, real-time processing is "
           "expected to be possible with the faster processing that CPU- or GPU-based parallel "
           "programming would bring."),
+    Quote("lee2012.update_eq6", "§IV, eq. 6 and the sentence after it",
+          r"$$[A \ B] = [U \ \tilde{B}] \begin{bmatrix} \Sigma & U^T B \\ 0 & B^T B \end{bmatrix} "
+          r"\begin{bmatrix} V^T & 0 \\ 0 & I \end{bmatrix} \quad (6)$$ "
+          r"여기서 $\tilde{B}$ 는 $U$ 에 직교인 $B$ 의 요소를 나타내며,",
+          "[A B] = [U B̃] [[Σ, UᵀB], [0, BᵀB]] [[Vᵀ, 0], [0, I]] (6), as printed; where B̃ "
+          "denotes the component of B orthogonal to U,"),
+
 ]
