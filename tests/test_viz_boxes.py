@@ -61,3 +61,26 @@ def test_draw_box_raises_on_what_it_cannot_draw(ax, bad):
 def test_show_frame_raises_on_malformed_boxes(ax, bad):
     with pytest.raises(ValueError, match="boxes must be"):
         viz.show_frame(FRAME, ax=ax, boxes=bad)
+
+
+def _paper_column(name):
+    lines = viz.departures_table(name).splitlines()[2:]
+    return {line.split("|")[1].strip(): line.split("|")[2].strip() for line in lines}
+
+
+@pytest.mark.parametrize("name", ["color-pf", "color-hog-ipca", "kalman-covariance"])
+def test_departures_table_marks_readings_and_only_readings(name):
+    from trackbook import trackers
+    from trackbook.quotes.fields import FIELDS
+
+    paper = _paper_column(name)
+    for row in trackers.departures(name):
+        state = FIELDS.get(name, {}).get(row["param"], (None, None))[1]
+        shown = paper[row["param"]]
+        assert shown.endswith("(a reading)") == (state == "reading"), (row["param"], shown)
+        assert shown.startswith(str(row["paper"])), (row["param"], shown)
+
+
+def test_anchor_of_lee2012_is_shown_as_a_reading():
+    # eq. 12-13 print no anchor term; 0.0 is the book's reading of the garbled print
+    assert _paper_column("color-hog-ipca")["anchor"] == "0.0 (a reading)"
