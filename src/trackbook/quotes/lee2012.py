@@ -168,6 +168,13 @@ QUOTES = [
           r"$i$ 찾기",
           "1. Generate a uniform random number r ∈ [0, 1]. 2. Find the smallest i with "
           "c_(t−1)^(i) ≥ r."),
+    Quote("lee2012.pseudocode_predict", "§V, pseudocode (ELSE branch)",
+          r"새로운 파티클 $x_t^{(i)} = Ax_{t-1}^{(i)} + Bz_t$ 예측하기",
+          "predict the new particle x_t^(i) = A x_{t-1}^(i) + B z_t"),
+    Quote("lee2012.pseudocode_weight", "§V, pseudocode (ELSE branch)",
+          r"$w_t^{(i)} = p(z_t | x_{t-1}^{(i)}) = \alpha w_{t-1}^{(i),color} + "
+          r"(1-\alpha)w_{t-1}^{(i),hog}$",
+          "w_t^(i) = p(z_t | x_{t-1}^(i)) = α w_{t-1}^(i),color + (1 − α) w_{t-1}^(i),hog"),
     Quote("lee2012.n100", "§V, after the pseudocode",
           r"$N$ 은 파티클의 개수를 의미하며, $N=100$ 을 사용하였다.",
           "N is the number of particles; N = 100 was used."),
@@ -221,6 +228,17 @@ QUOTES = [
           r"DB 01 3015 2128 70.6 2883 95.6 2923 96.9",
           "DB 01: Total Frame 3015; Color: Frame Pos 2128, 70.6 %; Color + HOG: 2883, 95.6 %; "
           "Proposed: 2923, 96.9 %"),
+    Quote("lee2012.table3_rows", "§VI, Table 3, the eight rows",
+          r"DB 01 3015 2128 70.6 2883 95.6 2923 96.9 DB 02 2790 2361 84.6 2555 91.6 2689 96.4 "
+          r"DB 03 3545 2413 68.1 3397 95.8 3365 94.9 DB 04 3215 2198 68.4 3035 94.4 3052 94.9 "
+          r"DB 05 774 501 64.7 628 81.1 658 85.0 DB 06 1360 731 53.8 957 70.4 922 67.8 "
+          r"DB 07 1129 735 65.1 861 76.3 1014 89.8 DB 08 1347 1147 85.2 1187 88.1 1253 93.0",
+          "Total Frame, then Frame Pos and % for Color, Color + HOG and Proposed, per DB: "
+          "DB 01 3015: 2128 70.6, 2883 95.6, 2923 96.9; DB 02 2790: 2361 84.6, 2555 91.6, "
+          "2689 96.4; DB 03 3545: 2413 68.1, 3397 95.8, 3365 94.9; DB 04 3215: 2198 68.4, "
+          "3035 94.4, 3052 94.9; DB 05 774: 501 64.7, 628 81.1, 658 85.0; DB 06 1360: 731 53.8, "
+          "957 70.4, 922 67.8; DB 07 1129: 735 65.1, 861 76.3, 1014 89.8; DB 08 1347: "
+          "1147 85.2, 1187 88.1, 1253 93.0"),
     Quote("lee2012.table3_average", "§VI, Table 3, last rows",
           r"Average 71.1 % 90.3 % 92.4 % Processing Time 7 ms 13 ms 55 ms",
           "Average: Color 71.1 %, Color + HOG 90.3 %, Proposed 92.4 %. Processing Time: 7 ms, "

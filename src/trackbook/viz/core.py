@@ -30,11 +30,22 @@ def _axes(ax, figsize=(4.8, 3.6)):
 
 
 def draw_box(ax, box, color=EST_COLOR, label=None, lw=1.8, ls="-"):
-    """Draw a box ``(x, y, w, h)`` (continuous coordinates) on ``ax``; NaN boxes are skipped."""
-    box = np.asarray(box, dtype=float)
-    if box.shape != (4,) or not np.all(np.isfinite(box)):
+    """Draw a box ``(x, y, w, h)`` (continuous coordinates) on ``ax``.
+
+    ``None`` or a box with a NaN coordinate (a tracker's answer while the target is lost) draws
+    nothing; anything that is not four numbers raises ``ValueError``, so a figure never silently
+    misses a box its caption names.
+    """
+    if box is None:
         return ax
-    x, y, w, h = box
+    arr = np.asarray(box, dtype=float)
+    if arr.size != 4:
+        raise ValueError(f"draw_box draws one box (x, y, w, h); got an array of shape {arr.shape}"
+                         " - pass several boxes to show_frame, or draw them one by one")
+    arr = arr.reshape(4)
+    if not np.all(np.isfinite(arr)):
+        return ax
+    x, y, w, h = arr
     # Continuous box [x, x+w) drawn on pixel centres: shift by half a pixel.
     ax.add_patch(mpatches.Rectangle((x - 0.5, y - 0.5), w, h, fill=False, ec=color, lw=lw,
                                     ls=ls, label=label))
@@ -46,7 +57,10 @@ def show_frame(frame, ax=None, boxes=None, title=None, gt=None):
 
     Parameters
     ----------
-    boxes : dict label -> box, or a single box (drawn as the estimate)
+    boxes : dict label -> box, a single box ``(x, y, w, h)`` (drawn as the estimate), or a
+        sequence / ``(n, 4)`` array of boxes (drawn in the colours of ``CYCLE``: the first
+        vermillion, the second blue, ...). Every box given is drawn; a malformed one raises
+        ``ValueError`` (see ``draw_box``).
     gt : box, drawn dashed in green as the ground truth
     """
     ax = _axes(ax)
@@ -57,7 +71,14 @@ def show_frame(frame, ax=None, boxes=None, title=None, gt=None):
         draw_box(ax, gt, GT_COLOR, "ground truth", ls="--")
     if boxes is not None:
         if not isinstance(boxes, dict):
-            boxes = {"estimate": boxes}
+            arr = np.asarray(boxes, dtype=float)
+            if arr.ndim == 1:
+                boxes = {"estimate": arr}
+            elif arr.ndim == 2 and arr.shape[1] == 4:
+                boxes = {("estimate" if i == 0 else f"box {i}"): b for i, b in enumerate(arr)}
+            else:
+                raise ValueError("show_frame: boxes must be one box (x, y, w, h), an (n, 4) "
+                                 f"array or a dict label -> box; got shape {arr.shape}")
         for i, (label, b) in enumerate(boxes.items()):
             draw_box(ax, b, CYCLE[i % len(CYCLE)], label)
     if title:

@@ -10,12 +10,17 @@ def departures_table(name) -> str:
 
     Columns param | paper | book | why, one row per field whose default is the book's choice
     (``trackers.departures(name)``): the value the paper prints (or "not printed"), the book's
-    default and one line on why. A chapter shows it with
-    ``display(Markdown(viz.departures_table("color-pf")))``.
+    default and one line on why. A paper value that is the book's reading of an ambiguous
+    passage (``trackbook.quotes.fields``) is marked "(a reading)", so that it is never shown as
+    printed. A chapter shows it with ``display(Markdown(viz.departures_table("color-pf")))``.
     """
     from .. import trackers
+    from ..quotes.fields import FIELDS
 
-    rows = trackers.departures(name)
+    backed = FIELDS.get(name, {})
+    rows = [{**r, "paper": f"{r['paper']} (a reading)"}
+            if backed.get(r["param"], (None, None))[1] == "reading" else r
+            for r in trackers.departures(name)]
     lines = [table(rows, ["param", "paper", "book", "why"])]
     if not rows:
         lines.append(f"| – | – | – | every default of `{name}` is the printed value |")
