@@ -131,7 +131,18 @@ def precision(pred, gt, threshold: float = 20.0) -> float:
 
 
 def tracking_rate(pred, gt, iou_threshold: float = 0.5) -> float:
-    """The papers' "tracking rate" / "detection rate": fraction of frames with IoU > threshold."""
+    """The tracking rate: fraction of scored frames with IoU > ``iou_threshold``.
+
+    This is the book's reading of the papers' success counts, not a criterion any of them
+    prints: Lee et al. (2012) count "Frame Pos", the frames in which tracking succeeded
+    [quote: lee2012.frame_pos]; Kim et al. (2016) the "Correct" frames [quote: kim2016.correct];
+    Lee (2015) the frames "in which the region was detected", eq. 14
+    [quote: lee2015.detection_rate_eq14]. Cho and Kang (2005) count no frames: they report
+    error curves, the candidates' mean likelihood and seconds per frame
+    [quote: cho2005.error_curves] [quote: cho2005.mean_likelihood]
+    [quote: cho2005.table1_seconds]. IoU > 0.5 is the threshold of the OTB benchmark's
+    success rate, which turns "tracked correctly" into a rule.
+    """
     v = _scored(iou(pred, gt))
     return float((v > iou_threshold).mean())
 
