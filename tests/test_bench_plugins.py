@@ -14,6 +14,9 @@ from trackbook import params as _params
 from trackbook import trackers
 from trackbook.evaluation import bench, runs
 
+#: the benches load user trackers into this process too: leave the registry as it was
+pytestmark = pytest.mark.usefixtures("clean_registry")
+
 TRACKER_FILE = '''
 import numpy as np
 from trackbook import trackers
