@@ -222,4 +222,9 @@ QUOTES = [
           r"\quad (4)$$",
           "Δx = Σ_a K(a − x) w(a) a / Σ_a K(a − x) w(a) (4) — as printed: the weighted mean "
           "itself, without the subtraction of x"),
+    Quote("cho2005.weights_eq11", "§4, eq. 11",
+          r"$$w_i^n = \sum_{u=1}^m \sqrt{\frac{\hat{q}}{\hat{p}_n(\mathbf{y}_0)}} "
+          r"\delta[h(\mathbf{x}_i^n) - u] \quad (11)$$",
+          "w_i^n = Σ_u √(q̂ / p̂_n(y_0)) δ[h(x_i^n) − u] (11) — as printed: q̂ and p̂_n "
+          "without the bin index u"),
 ]
