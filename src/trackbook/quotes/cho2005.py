@@ -217,4 +217,14 @@ QUOTES = [
           r"바꿔줘야 하는 단점을 가지고 있다.",
           "However, the proposed system has the drawback that several parameters that govern "
           "its performance have to be adjusted appropriately."),
+    Quote("cho2005.mean_shift_eq4", "§3.3, eq. 4",
+          r"$$\Delta\mathbf{x} = \frac{\sum_a K(a - \mathbf{x})w(a)a}{\sum_a K(a - \mathbf{x})w(a)} "
+          r"\quad (4)$$",
+          "Δx = Σ_a K(a − x) w(a) a / Σ_a K(a − x) w(a) (4) — as printed: the weighted mean "
+          "itself, without the subtraction of x"),
+    Quote("cho2005.weights_eq11", "§4, eq. 11",
+          r"$$w_i^n = \sum_{u=1}^m \sqrt{\frac{\hat{q}}{\hat{p}_n(\mathbf{y}_0)}} "
+          r"\delta[h(\mathbf{x}_i^n) - u] \quad (11)$$",
+          "w_i^n = Σ_u √(q̂ / p̂_n(y_0)) δ[h(x_i^n) − u] (11) — as printed: q̂ and p̂_n "
+          "without the bin index u"),
 ]
