@@ -70,6 +70,17 @@ BOOK_WORDS = {
     "numeric citation": re.compile(r"(?:^|(?<=\s))\[(?![01]\b)\d+(?:\s*[-–]\s*\d+)?\](?!\()"),
 }
 
+#: Words about how the results were made, not what they mean: in a chapter's prose (its code
+#: cells call the library, and the lab notes keep the commands and file names).
+CHAPTER_PROSE_WORDS = {
+    "PYTHONPATH": re.compile(r"\bPYTHONPATH\b"),
+    "python -m": re.compile(r"\bpython3? -m\b"),
+    "book/results": re.compile(r"\bbook/results\b"),
+    "a results file name": re.compile(r"\b[\w-]+\.(?:csv|json)\b"),
+    "experiments/": re.compile(r"\bexperiments/"),
+    "the test suite": re.compile(r"\b(?:the )?test suite\b|\bthe tests? checks?\b", re.I),
+}
+
 #: Patterns checked in prose only: in code, ``[5, 6]`` is a list, not a citation.
 PROSE_ONLY = {"numeric citation"}
 
@@ -184,10 +195,30 @@ def test_no_repository_jargon_on_the_page(page):
     assert not hits, "repository words on a reader's page:\n" + "\n".join(hits)
 
 
+CHAPTERS = [p for p in PAGES if re.match(r"book/\d\d_", p)]
+
+
+@pytest.mark.parametrize("page", CHAPTERS)
+def test_chapter_prose_has_no_build_commands_or_file_names(page):
+    hits = [_report(page, n, word, line) for n, line, in_code in _lines(page) if not in_code
+            for word, rx in CHAPTER_PROSE_WORDS.items() if rx.search(line)]
+    assert not hits, ("build commands, file names or test talk in a chapter's prose (they "
+                      "belong in the lab notes):\n" + "\n".join(hits))
+
+
 def test_the_scan_covers_every_folder():
     for folder in FOLDERS:
         assert any(p.startswith(folder + "/") for p in SCANNED), folder
     assert "tests/test_jargon.py" in SCANNED
+
+
+def test_chapter_prose_patterns_catch_what_they_should():
+    bad = ["run PYTHONPATH=src python -m trackbook", "python3 -m trackbook.evaluation",
+           "see book/results/real", "the file lee2012_real.json", "claims.csv holds",
+           "see experiments/lost_matrix.py", "the test suite checks it", "The tests check both"]
+    good = ["the results of the benchmark", "a test of the hypothesis", "JSON is a format"]
+    assert all(any(rx.search(b) for rx in CHAPTER_PROSE_WORDS.values()) for b in bad)
+    assert not any(rx.search(g) for g in good for rx in CHAPTER_PROSE_WORDS.values())
 
 
 def test_patterns_catch_what_they_should():
