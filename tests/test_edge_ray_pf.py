@@ -220,3 +220,26 @@ def test_velocity_gain_scales_the_motion_added_to_the_prediction(name):
         t.update(frames[1])
         assert not t.lost
         np.testing.assert_allclose(t.velocity, g * (np.asarray(t.estimate) - before), atol=1e-12)
+
+
+def test_the_paper_preset_runs_without_the_books_lost_rule(monkeypatch):
+    """The colour check and the whole-frame colour search are the book's: the paper preset
+    switches them off, and then neither is ever called."""
+    from trackbook.trackers.edge_ray import EdgeRayPF
+
+    assert trackers.create("edge-ray-pf", preset="paper").params.lost_check is False
+    assert trackers.create("edge-ray-pf").params.lost_check is True
+    assert "lost_check" in {r["param"] for r in trackers.departures("edge-ray-pf")}
+
+    def never(*a, **k):
+        raise AssertionError("the book's lost rule ran in the paper preset")
+
+    monkeypatch.setattr(EdgeRayPF, "_confirmed", never)
+    monkeypatch.setattr(EdgeRayPF, "_search", never)
+    clip = clips.load("patterned-object")
+    t = trackers.create("edge-ray-pf", preset="paper", seed=0)
+    t.init(clip.frames[0], clip.groundtruth[0])
+    black = np.zeros_like(clip.frames[1])
+    for f in [*clip.frames[1:6], black, black, *clip.frames[6:9]]:
+        ok, box = t.update(f)
+        assert np.all(np.isfinite(box))

@@ -61,6 +61,13 @@ class EdgeRayParams(CentrePFParams):
         0.0, 0.0, 0.5, 0.01, "rate of blending M towards the estimate's rays (0 = off)",
         paper=NOT_PRINTED, paper_value=0.0,
         why="the paper keeps M from the first frame; the book's option, off by default")
+    lost_check: bool = param(
+        True, doc="the book's lost rule: the estimate must be in view and match the first "
+        "frame's colours; while lost, a whole-frame colour search restarts the filter",
+        paper=NOT_PRINTED, paper_value=False,
+        why="the book's addition (the docstring's Lost rule): edge rays alone cannot say that "
+        "the target is gone; off, only the frame's rules remain (every weight zero, a flat "
+        "frame)")
 
 
 @register
@@ -89,7 +96,8 @@ class EdgeRayPF(CentreParticleFilter):
     the colour only vetoes it. While lost, the spread widens (``lost_growth``) and the whole
     frame is searched by colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most
     325 histograms a frame, paid only while lost); a box that passes the gate restarts the
-    filter there (``ok=True``).
+    filter there (``ok=True``). ``lost_check=False`` (the paper preset) leaves only the rules of
+    ``ParticleFilterTracker``.
     """
 
     name = "edge-ray-pf"
@@ -146,6 +154,8 @@ class EdgeRayPF(CentreParticleFilter):
     def _update(self, frame):
         previous = np.array(self.estimate, dtype=float)
         ok, box = super()._update(frame)
+        if not self.params.lost_check:
+            return self._adapt(ok, box)
         if ok and not self._confirmed(frame, box):
             # the edges placed the box, but it is not on the target (see "Lost rule")
             self.estimate, self.lost = previous, True
@@ -154,6 +164,10 @@ class EdgeRayPF(CentreParticleFilter):
         if not ok and not self._is_flat(frame):
             ok, box = self._search(frame, box)
             return ok, box
+        return self._adapt(ok, box)
+
+    def _adapt(self, ok, box):
+        """The book's options on a frame that is not lost: the scale and the model M."""
         p = self.params
         if ok and (p.adapt_scale or p.model_rate > 0):
             if p.adapt_scale:
