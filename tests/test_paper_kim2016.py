@@ -17,7 +17,7 @@ PRINTED = {
     "ratio_high": 1.2,    # same sentence
 }
 NOT_IN_PAPER = {"sigma", "velocity_gain", "lost_growth", "resampler", "canny_low",
-                "canny_high", "blur", "max_ray", "adapt_scale", "model_rate"}
+                "canny_high", "blur", "max_ray", "adapt_scale", "model_rate", "lost_check"}
 
 
 def test_eight_rays_at_45_degrees():
@@ -33,11 +33,11 @@ def test_ratio_window_constant_is_the_printed_one():
 def test_fields_are_the_printed_and_the_not_printed():
     assert_fields_are("edge-ray-pf", PRINTED, NOT_IN_PAPER)
     # the two filters it compares with: the paper names them and prints none of their settings
-    # beyond the shared particle count
+    # (its 999 particles are the proposed filter's: the paper preset gives them 999 as a reading)
     shared = {"sigma", "velocity_gain", "lost_growth", "resampler"}
     for name in ("hsi-color-pf", "hog-pf"):
-        assert_fields_are(name, {"n_particles": 999},
-                          shared | {"obs_sigma", "lost_below", "lost_k"})
+        assert_fields_are(name, {}, shared | {"n_particles", "obs_sigma", "lost_below", "lost_k"})
+        assert trackers.create(name, preset="paper").params.n_particles == 999
 
 
 def test_velocity_gain_paper_reading_is_one():

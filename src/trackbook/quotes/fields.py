@@ -78,12 +78,7 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
 }
 
 #: ``(tracker, field)``: ``paper=`` values that no passage backs.
-UNSUPPORTED: dict[tuple[str, str], str] = {
-    ("hsi-color-pf", "n_particles"): "the 999 particles are the proposed filter's "
-                                     "[quote: kim2016.max999]; no baseline setting is printed",
-    ("hog-pf", "n_particles"): "the 999 particles are the proposed filter's "
-                               "[quote: kim2016.max999]; no baseline setting is printed",
-}
+UNSUPPORTED: dict[tuple[str, str], str] = {}
 
 
 def backing(tracker: str, field: str) -> tuple[str, str] | None:

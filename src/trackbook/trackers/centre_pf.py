@@ -26,7 +26,8 @@ class CentrePFParams:
     # page numbers; the comments name the passage).
     n_particles: int = param(
         300, 1, 999, 1, "N, number of particles (Kim et al. 2016: up to 999)", paper=999,
-        why="300 keeps a chapter's clips within seconds; the paper prints only its maximum, 999")
+        why="300 keeps a chapter's clips within seconds; 999 is the most the paper gives its "
+        "proposed filter [quote: kim2016.max999]")
     sigma: float = param(
         4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction (and of the Gaussian start "
         "spread around the box centre), pixels", paper=NOT_PRINTED,
@@ -56,8 +57,8 @@ class CentreParticleFilter(ParticleFilterTracker):
     ``resampler``.
 
     Motion model: ``x_t = x_{t-1} + v + N(0, sigma^2)``, with ``v = g (C_t - C_{t-1})`` the
-    last change of the estimate times the gain ``g = velocity_gain`` (1 in the paper and
-    by default; 0 right after ``init`` and after a lost frame). A gain below 1 damps a velocity
+    last change of the estimate times the gain ``g = velocity_gain`` (1 by default, the
+    book's reading of the paper's prediction step, which prints no gain; 0 right after ``init`` and after a lost frame). A gain below 1 damps a velocity
     measured from two noisy estimates (``03_hog`` measures it). After a frame in which all
     particles weighed zero, the particles are drawn afresh around the last estimate with the
     widened spread ``sigma * lost_growth^k`` (k lost frames in a row, capped at a quarter of

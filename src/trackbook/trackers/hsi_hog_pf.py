@@ -30,12 +30,17 @@ from .registry import register
 
 @dataclasses.dataclass(frozen=True)
 class AppearanceParams(CentrePFParams):
+    n_particles: int = param(
+        300, 1, 999, 1, "N, number of particles", paper=NOT_PRINTED, paper_value=999,
+        why="the paper prints no setting of its baselines; 300 as for edge-ray-pf, and the "
+        "paper preset gives them the proposed filter's 999 [quote: kim2016.max999] so that the "
+        "three filters differ in their observation model only (a reading)")
     obs_sigma: float = param(
         0.2, 0.01, 1.0, 0.01, "sigma of the likelihood exp(-D^2 / 2 sigma^2)",
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
         "their settings; 0.2 is the book's choice (02_particle_filters, 03_hog)")
-    # Not in the paper, which reports no lost target: the book's distance gate (02_particle_filters).
+    # The book's distance gate (02_particle_filters): the paper's trackers have no lost state.
     lost_below: float = lost_below_param()
     lost_k: float = lost_k_param()
 
