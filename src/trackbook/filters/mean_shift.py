@@ -276,7 +276,7 @@ class MeanShiftResult:
     evaluations : int, batched histogram evaluations (one at the starts, one per iteration,
         one per round of step halving that needed one)
     histograms : int, colour histograms computed (candidates per evaluation, summed): the
-        cost the paper counts
+        book's count of the cost (the paper measures seconds per frame)
     pixels : int, pixels read for them (histograms x pixels per ellipse)
     trajectory : (T, N, 2) the centres after every iteration, the starts first (for drawings)
     rho_trajectory : (T, N) rho along the trajectory

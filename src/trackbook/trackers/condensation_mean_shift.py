@@ -294,7 +294,8 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     # -- for the book ------------------------------------------------------------------
     def frame_report(self) -> dict:
         """``mean_likelihood`` of this frame's candidates (Cho & Kang 2005 Fig. 5), ``mean_rho``,
-        and the cost the paper counts: colour ``histograms`` computed and ``pixels`` read."""
+        and the book's count of the cost: colour ``histograms`` computed and ``pixels`` read (the
+        paper measures seconds per frame)."""
         return dict(self._report)
 
     @property
