@@ -101,24 +101,15 @@ def _with_fn(parser, fn):
 
 # --- names ------------------------------------------------------------------------------------
 
-def test_describe_unknown_clip_suggests_near_miss():
-    with pytest.raises(ValueError, match="did you mean 'red-cube'"):
-        clips.describe("red-cub")
-
-
-def test_load_unknown_clip_suggests_near_miss():
-    with pytest.raises(ValueError, match="did you mean 'two-faces'"):
-        clips.load("two_faces")
-
-
-def test_load_empty_name_says_what_is_wrong():
-    with pytest.raises(ValueError, match="sample name"):
-        clips.load("")
-
-
-def test_unknown_tracker_name_is_a_value_error():
-    with pytest.raises(ValueError, match="unknown tracker"):
-        trackers.create("colour-pf")
+@pytest.mark.parametrize("call, arg, says", [
+    (clips.describe, "red-cub", "did you mean 'red-cube'"),        # a near miss is suggested
+    (clips.load, "two_faces", "did you mean 'two-faces'"),
+    (clips.load, "", "sample name"),                                 # what an empty name lacks
+    (trackers.create, "colour-pf", "unknown tracker"),
+])
+def test_unknown_names_are_value_errors_that_help(call, arg, says):
+    with pytest.raises(ValueError, match=says):
+        call(arg)
 
 
 # --- boxes and seeds --------------------------------------------------------------------------

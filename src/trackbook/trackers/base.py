@@ -18,6 +18,11 @@ from .._memory import keep_freed_memory
 from ..params import make_params
 
 
+def readonly_attr(name: str, doc: str | None = None) -> property:
+    """A property giving a read-only view of ``self.<name>`` (see :func:`readonly`)."""
+    return property(lambda self: readonly(getattr(self, name)), doc=doc)
+
+
 def readonly(a) -> np.ndarray:
     """A read-only view of ``a``: trackers expose their state for drawings, never for editing."""
     v = np.asarray(a).view()
@@ -157,10 +162,17 @@ class Tracker:
     def state(self) -> TrackerState:
         """What to draw of this tracker after the last frame (see :class:`TrackerState`).
 
-        This base gives the box and ``ok``; trackers with particles, a search window, an
-        ellipse, candidates or rays extend it (``dataclasses.replace(super().state(), ...)``).
+        This base gives the box and ``ok``; after ``init`` it adds the fields of
+        :meth:`_drawn`, which trackers with particles, a search window, an ellipse, candidates
+        or rays extend.
         """
-        return TrackerState(box=self.bbox, ok=bool(self.ok))
+        st = TrackerState(box=self.bbox, ok=bool(self.ok))
+        return st if self._shape is None else dataclasses.replace(st, **self._drawn())
+
+    def _drawn(self) -> dict:
+        """The :class:`TrackerState` fields this tracker has once started, by name; a subclass
+        returns ``{**super()._drawn(), ...}``."""
+        return {}
 
     def _is_flat(self, frame: np.ndarray) -> bool:
         """Whether ``frame`` is constant up to ``flat_range`` grey levels (nothing to match)."""

@@ -39,7 +39,7 @@ from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift
 from ..filters.optical_flow import motion_vector, pyramid
 from .particle_filter import ParticleFilterTracker, resampler_param
 from ..params import NOT_PRINTED, param
-from .base import Tracker, readonly
+from .base import Tracker, readonly, readonly_attr
 from .registry import register
 
 #: Names of the seven components of a candidate (eq. 1).
@@ -298,21 +298,16 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
         paper measures seconds per frame)."""
         return dict(self._report)
 
-    @property
-    def rho(self) -> np.ndarray:
-        return readonly(self._rho)
+    rho = readonly_attr("_rho")
 
     @property
     def ellipse(self) -> tuple:
         e = self.estimate
         return (float(e[0]), float(e[1]), float(e[4]), float(e[5]))
 
-    def state(self):
-        """The particle filter's state plus the estimate's ``ellipse`` (cx, cy, Hx, Hy)."""
-        st = super().state()
-        if self._shape is None:
-            return st
-        return dataclasses.replace(st, ellipse=self.ellipse)
+    def _drawn(self) -> dict:
+        """The particle filter's fields plus the estimate's ``ellipse`` (cx, cy, Hx, Hy)."""
+        return {**super()._drawn(), "ellipse": self.ellipse}
 
 
 @register
@@ -442,13 +437,8 @@ class CondensationMeanShift(Condensation):
             histograms=float(res.histograms), pixels=float(res.pixels))
         return lik
 
-    @property
-    def predicted(self) -> np.ndarray:
-        return readonly(self._predicted)
-
-    @property
-    def rho_before(self) -> np.ndarray:
-        return readonly(self._rho_before)
+    predicted = readonly_attr("_predicted")
+    rho_before = readonly_attr("_rho_before")
 
 
 @register
@@ -549,19 +539,10 @@ class MeanShift(_EllipseColourModel, Tracker):
     def weights(self) -> np.ndarray:
         return readonly(np.ones(1))
 
-    @property
-    def rho(self) -> np.ndarray:
-        return readonly(self._rho)
+    rho = readonly_attr("_rho")
+    trajectory = readonly_attr("_trajectory")
 
-    @property
-    def trajectory(self) -> np.ndarray:
-        return readonly(self._trajectory)
-
-    def state(self):
-        """The box, ``ok``, the ``ellipse`` (cx, cy, Hx, Hy) and its single candidate as a
-        particle of weight 1."""
-        st = super().state()
-        if self._shape is None:
-            return st
-        return dataclasses.replace(st, ellipse=self.ellipse, particles=self.particles,
-                                   weights=self.weights)
+    def _drawn(self) -> dict:
+        """The ``ellipse`` (cx, cy, Hx, Hy) and its single candidate as a particle of weight 1."""
+        return {**super()._drawn(), "ellipse": self.ellipse, "particles": self.particles,
+                "weights": self.weights}

@@ -224,12 +224,11 @@ class _CorrelationTracker(Tracker):
         X, Y = np.meshgrid(xs, ys)
         return np.column_stack([X.ravel(), Y.ravel()])
 
-    def state(self):
-        """What to draw: the box, ``ok`` and the last search window (``Tracker.state()``)."""
-        st = super().state()
-        sw = getattr(self, "search_window", None) if self._shape is not None else None
-        return dataclasses.replace(
-            st, search_window=None if sw is None else tuple(float(v) for v in sw))
+    def _drawn(self) -> dict:
+        """The last search window (``Tracker.state()``)."""
+        sw = getattr(self, "search_window", None)
+        return {**super()._drawn(),
+                "search_window": None if sw is None else tuple(float(v) for v in sw)}
 
     def _box(self):
         w, h = self._size

@@ -329,13 +329,10 @@ class _CovarianceSearch(Tracker):
     def model(self):
         return self._model
 
-    def state(self):
-        """The box, ``ok``, the last local search's window and its candidate boxes."""
-        st = super().state()
-        if self._shape is None:
-            return st
-        return dataclasses.replace(st, search_window=self.search_window,
-                                   candidates=np.asarray(self.candidates, dtype=float)[:, :4])
+    def _drawn(self) -> dict:
+        """The last local search's window and its candidate boxes."""
+        return {**super()._drawn(), "search_window": self.search_window,
+                "candidates": np.asarray(self.candidates, dtype=float)[:, :4]}
 
 
 @register
@@ -448,12 +445,9 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     def kalman(self):
         return self._kf
 
-    def state(self):
+    def _drawn(self) -> dict:
         """As ``covariance``'s, plus the Kalman gate ``ellipse`` (cx, cy, hx, hy, angle)."""
-        st = super().state()
-        if self._shape is None:
-            return st
-        return dataclasses.replace(st, ellipse=self.ellipse)
+        return {**super()._drawn(), "ellipse": self.ellipse}
 
     @property
     def ellipse(self):

@@ -122,12 +122,12 @@ class EdgeRayPF(CentreParticleFilter):
         self._colour_gate = MatchGate()
         self.colour_rho = 1.0
 
-    def state(self):
-        """The particle filter's state plus ``rays``: pDis of every particle (eq. 4)."""
-        st = super().state()
-        if st.particles is None or len(self.particle_rays) != len(st.particles):
-            return st                   # before the first weighted frame (or a flat one)
-        return dataclasses.replace(st, rays=self.particle_rays)
+    def _drawn(self) -> dict:
+        """The particle filter's fields plus ``rays``: pDis of every particle (eq. 4)."""
+        d = super()._drawn()
+        if len(self.particle_rays) != len(d["particles"]):
+            return d                    # before the first weighted frame (or a flat one)
+        return {**d, "rays": self.particle_rays}
 
     def _rays(self, xy):
         """pDis_j (eq. 4) of centres ``xy`` (N, 2) in the current edge map, capped at max_ray.

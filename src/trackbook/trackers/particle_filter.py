@@ -7,14 +7,13 @@ The estimation steps it calls (weights, resamplers, estimate) are pure functions
 
 from __future__ import annotations
 
-import dataclasses
 
 import numpy as np
 
 from ..filters.particle import (RESAMPLER_NAMES, check_indices, get_resampler,
                                 normalize_weights, weighted_mean)
 from ..params import NOT_PRINTED, param
-from .base import Tracker, TrackerState, readonly
+from .base import Tracker, readonly_attr
 
 
 def lost_below_param():
@@ -209,28 +208,14 @@ class ParticleFilterTracker(Tracker):
         return True, self.state_to_box(self.estimate)
 
     # read-only views for the book's drawings -------------------------------------------
-    def state(self) -> TrackerState:
-        """The box, ``ok``, and the particles with their normalised weights."""
-        st = super().state()
-        if self._shape is None:
-            return st
-        return dataclasses.replace(st, particles=self._particles, weights=self._weights)
+    def _drawn(self) -> dict:
+        """The particles with their normalised weights."""
+        return {**super()._drawn(), "particles": self._particles, "weights": self._weights}
 
-    @property
-    def particles(self) -> np.ndarray:
-        return readonly(self._particles)
-
-    @property
-    def weights(self) -> np.ndarray:
-        return readonly(self._weights)
-
-    @property
-    def likelihoods(self) -> np.ndarray:
-        return readonly(self._likelihoods)
-
-    @property
-    def match(self) -> np.ndarray:
-        return readonly(self._match)
+    particles = readonly_attr("_particles")
+    weights = readonly_attr("_weights")
+    likelihoods = readonly_attr("_likelihoods")
+    match = readonly_attr("_match")
 
     @property
     def best_match(self) -> float:
