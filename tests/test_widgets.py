@@ -224,3 +224,24 @@ def test_the_viewer_takes_its_colours_from_python():
     assert pg.config["colors"] == style.VIEWER
     assert pg.static_payload()["config"]["colors"] == style.VIEWER
     assert style.bgr(style.GT_COLOR) == (0x73, 0x9E, 0x00)   # "#009E73" read back to front
+
+
+def test_every_knob_sample_of_every_tracker_is_a_value_the_tracker_takes():
+    """The HTML book precomputes these samples: each must pass the params parser (1e-8 once
+    became 0.0 by rounding to six decimals, below lambda's minimum), and a range over decades
+    is sampled in log."""
+    import dataclasses
+
+    from trackbook import trackers
+
+    for name in trackers.available():
+        cls = trackers.get(name)
+        for f in dataclasses.fields(cls.Params):
+            spec = knob_spec(cls, f.name)
+            if spec is None:
+                continue          # not a knob: nothing is precomputed for it
+            for v in sample_values(spec):
+                trackers.create(name, **{f.name: v})     # raises on a refused value
+    lam = sample_values(knob_spec(trackers.get("kcf"), "lam"))
+    assert min(lam) == 1e-8 and 1e-4 in lam and max(lam) == 1.0
+    assert sorted(lam)[1] < 1e-4           # log spacing: a value between 1e-8 and the default

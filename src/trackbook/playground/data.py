@@ -202,13 +202,18 @@ def sample_values(spec: dict, k: int = 5) -> list:
         lo, hi = spec["lo"], spec["hi"]
         if spec["name"] in _SAMPLES:
             vals = [v for v in _SAMPLES[spec["name"]] if lo <= v <= hi]
+        elif kind == "float" and lo > 0 and hi / lo >= 1e3:
+            # a range over decades (a regulariser such as lambda): evenly spaced in log
+            vals = list(np.geomspace(lo, hi, k))
         else:
             vals = list(np.linspace(lo, hi, k))
             step = spec["step"]
             # on the step grid, but never past the field's range (0.01 + 200 * 0.5 = 100.01
             # would be refused by a q whose maximum is 100)
             vals = [min(hi, max(lo, lo + round((v - lo) / step) * step)) for v in vals]
-        vals = [int(round(v)) if kind == "int" else round(float(v), 6) for v in vals]
+        # six significant digits (not decimals: 1e-8 must not become 0), never past the range
+        vals = [int(round(v)) if kind == "int" else min(hi, max(lo, float(f"{v:.6g}")))
+                for v in vals]
     else:
         return [d]
     if d not in vals:
