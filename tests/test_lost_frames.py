@@ -121,9 +121,45 @@ def test_second_look_keeps_a_match_that_stands_out(name, around, lost, start, mo
     oks = [t.update(frames[1 + i % 3])[0] for i in range(7)]
     assert oks[:6] == [True] * 6
     assert oks[6] is (not lost)
-    assert len(calls) == 8 and calls[7] >= 2      # one extra call, on the probes only
+    assert calls[7] >= 2                           # one extra call, on the probes
+    # ... and hsi-color-pf, when the probes do not keep the frame, one on its best particle
+    # relit (the relit look, which reports ``around`` here too: still lost)
+    relit = name == "hsi-color-pf" and lost
+    assert len(calls) == 8 + relit and (not relit or calls[8] == 1)
 
 
 def test_distance_gate_is_off_in_the_paper_preset():
     for name in ["color-pf", "color-hog-pf", "color-hog-ipca", "hsi-color-pf", "hog-pf"]:
         assert trackers.create(name, preset="paper").params.lost_below == 0.0
+
+
+@pytest.mark.parametrize("gain", [0.4, 2.2])
+@pytest.mark.parametrize("present", [True, False], ids=["present", "covered"])
+def test_hsi_colour_relit_look_keeps_a_target_under_a_change_of_light(gain, present):
+    """hsi-color-pf's relit look: a light change multiplies every pixel by ``gain`` (the HSI
+    intensity bins move, hue and saturation do not), so the cube, still there, matches its
+    first-frame histogram poorly; scaled back to the last frame's mean intensity it matches
+    again (ok=True). With the cube covered by the gravel three box widths to its right, the
+    same change of light is lost (ok=False) -- relit or not, gravel is not a red cube."""
+    from trackbook.features.color import bhattacharyya_coefficient
+    from trackbook.features.hsi import hsi_histograms
+
+    c = clips.load("red-cube")
+    frames = [f for _, f in zip(range(11), c.frames)]
+    gt = c.groundtruth
+    frame = frames[10].copy()
+    if not present:
+        x, y, w, h = (int(round(v)) for v in gt[10])
+        frame[y - 8:y + h + 8, x - 8:x + w + 8] = \
+            frames[10][y - 8:y + h + 8, x - 8 + 3 * w:x + w + 8 + 3 * w]
+    changed = np.clip(np.rint(frame * float(gain)), 0, 255).astype(np.uint8)
+    # the premise, from the histograms alone: under the new light the cube's own box matches
+    # below the gate's 0.7 (the distance gate fires)
+    ref = hsi_histograms(frames[0], gt[0][None])
+    assert bhattacharyya_coefficient(hsi_histograms(changed, gt[10][None]), ref)[0] < 0.7
+    t = trackers.create("hsi-color-pf", seed=0)
+    t.init(frames[0], gt[0])
+    assert all(t.update(f)[0] for f in frames[1:10])
+    ok, box = t.update(changed)
+    assert ok is present
+    assert np.all(np.isfinite(box))

@@ -100,11 +100,7 @@ def _in_view(name):
 
 #: Cells of the matrix that fail today, each with what happens; strict, so a fix that makes one
 #: pass fails here until the mark goes.
-KNOWN_FAILING = {
-    "hsi-color-pf": "robot-corridor-night: the light drops at frame 58 and the HSI colour match "
-                    "falls to 0.49, 0.35, 0.18 while the box stays on the target (IoU > 0.5): "
-                    "3 of 54 frames reported lost",
-}
+KNOWN_FAILING: dict = {}
 
 
 @pytest.mark.slow

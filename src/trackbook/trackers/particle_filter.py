@@ -238,15 +238,25 @@ class ParticleFilterTracker(Tracker):
         hist = self._gate_d2
         if self._lost_in_a_row >= self.gate_patience:
             hist.clear()                    # the look changed for good: rebuild the range
-        if len(hist) >= 5 and 1.0 - d2 < below:
-            v = np.asarray(hist)
-            med = float(np.median(v))
-            spread = max(1.4826 * float(np.median(np.abs(v - med))), med / 2.0)
-            if d2 > med + float(getattr(self.params, "lost_k", 3.0)) * spread:
-                return True
+        if self._outside_range(1.0 - d2):
+            return True
         hist.append(d2)
         del hist[:-self.gate_window]
         return False
+
+    def _outside_range(self, match: float) -> bool:
+        """The distance gate's test of one match ``1 - D^2``, without recording it: below
+        ``lost_below`` and ``D^2`` above ``med + lost_k max(1.4826 MAD, med / 2)`` of the
+        recent range (never before five frames have passed)."""
+        below = float(getattr(self.params, "lost_below", 0.0))
+        hist = self._gate_d2
+        if below <= 0 or len(hist) < 5 or not match < below:
+            return False
+        d2 = 1.0 - float(match)
+        v = np.asarray(hist)
+        med = float(np.median(v))
+        spread = max(1.4826 * float(np.median(np.abs(v - med))), med / 2.0)
+        return d2 > med + float(getattr(self.params, "lost_k", 3.0)) * spread
 
     def _stands_out(self, frame, particles) -> bool:
         """The gate's second look (see "Lost rule"): whether the best particle's match is at
