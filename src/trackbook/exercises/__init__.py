@@ -146,7 +146,8 @@ def markdown(number, *, solution: bool = True, title_level: int | None = None) -
         an int: a Markdown heading of that level (not used by the book's pages).
     """
     e = number if isinstance(number, Exercise) else get(number)
-    head = f"Exercise {e.number} {e.stars} ({e.kind}). {e.title.rstrip('.')}."
+    title = e.title if e.title.endswith(("?", "!", ".")) else e.title + "."
+    head = f"Exercise {e.number} {e.stars} ({e.kind}). {title}"
     if title_level:
         parts = ["#" * title_level + " " + head, e.statement]
     else:
