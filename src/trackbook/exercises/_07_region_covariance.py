@@ -21,12 +21,17 @@ Stride 1: $(320 - 24 + 1)(240 - 24 + 1) = 297 \cdot 217 = 64\,449$. Stride 4:
 $(\lfloor 296/4 \rfloor + 1)(\lfloor 216/4 \rfloor + 1) = 75 \cdot 55 = 4125$.
 
 === 7.3 ★★ modify | Brightness and contrast
-Work on the grey image as floats (no clipping at 255). Show numerically that $d_F$
-between the cube's covariance and the same box after a uniform brightness shift
-$I \mapsto I + 40$ is 0. Is $d_F$ also 0 after a contrast change $I \mapsto 1.5\,I$? (Hint:
-which matrix $A$ turns $C$ into the contrast-changed covariance $A C A^T$? What does the
-congruence invariance of $d_F$ say, and what does it not say?) What happens with real uint8
+Convert frame 0 of `red-cube` to grey floats
+(`cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(float)`, no clipping at 255) and take the
+covariance of the ground-truth box (`covariance_of_box(g, box)`, features
+$x, y, I, |I_x|, |I_y|$). Give $d_F$ (`forstner_distance(..., eps=0)`) between it and the same
+box after a brightness shift $I \mapsto I + 40$, and after a contrast change
+$I \mapsto 1.5\,I$. Answer `(d_shift, d_contrast)`. Why is one of them 0 and the other not,
+although $d_F$ is invariant to any congruence $C \mapsto A C A^T$? What happens with real uint8
 frames, where bright pixels clip at 255?
+--- hint
+Which matrix $A$ turns $C$ into the contrast-changed covariance $A C A^T$? What does the
+congruence invariance of $d_F$ say, and what does it not say?
 --- solution
 The shift cancels in the covariance (eq. 4 subtracts the mean) and the gradients do not see
 it: $d_F = 0$. The contrast change multiplies $I, |I_x|, |I_y|$ by 1.5, i.e.
