@@ -24,10 +24,11 @@ def test_every_exercise_has_a_starter_and_a_hidden_solution():
     code = [c for c in nb.cells if c.cell_type == "code"]
     starters = [c for c in code if re.search(r"^answer_\d+_\d+ = None", c.source, re.M)]
     solutions = [c for c in code if "hide-cell" in _tags(c)]
-    assert len(starters) >= 18
+    assert len(starters) >= 40
     assert len(solutions) == len(starters)
     for cell in starters + solutions:
-        assert re.search(r"^check_\d+_\d+\(answer_\d+_\d+\)", cell.source, re.M), cell.source
+        assert re.search(r"""^(check_\d+_\d+\(|autocheck\("\d+\.\d+", )answer_\d+_\d+\)""",
+                         cell.source, re.M), cell.source
 
 
 @pytest.mark.slow

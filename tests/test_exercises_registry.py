@@ -284,3 +284,10 @@ def test_hand_values_of_the_checks_follow_from_the_equations():
 def test_fixed_random_stands_in_for_a_generator():
     rng = checks.FixedRandom([0.25, 0.5, 0.75])
     assert rng.random() == 0.25 and list(rng.random(2)) == [0.25, 0.5]
+
+
+def test_the_hand_out_recipe_hides_the_solutions():
+    """The teaching page's recipe rewrites exercises.show("N.M") to show no solution."""
+    source = 'exercises.show("6.8")'.replace('exercises.show(', 'exercises.show(solution=False, number=')
+    shown = eval(source, {"exercises": exercises})
+    assert "Derive the gain" in shown.data and "Solution" not in shown.data
