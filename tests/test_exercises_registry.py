@@ -291,3 +291,12 @@ def test_the_hand_out_recipe_hides_the_solutions():
     source = 'exercises.show("6.8")'.replace('exercises.show(', 'exercises.show(solution=False, number=')
     shown = eval(source, {"exercises": exercises})
     assert "Derive the gain" in shown.data and "Solution" not in shown.data
+
+
+def test_every_quote_in_the_texts_is_in_the_register():
+    from trackbook import quotes
+    keys = {q.key for paper in ("lee2012", "kim2016", "lee2015", "cho2005")
+            for q in quotes.for_paper(paper)}
+    cited = {k for e in exercises.all_exercises()
+             for k in re.findall(r"\{quote\}`([^`]+)`", e.statement + e.hint + e.solution)}
+    assert cited and cited <= keys, cited - keys

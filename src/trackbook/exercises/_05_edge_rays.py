@@ -18,7 +18,8 @@ pAvg = 6; Ratio = 6 / 5.5 ≈ 1.09, inside the window. $\sum_j |p_j - m_j| = 1 +
 On frame 0 of `patterned-object`, take the model $M$ as the rays of the ground-truth box's
 centre pixel (`maps = er.ray_distance_maps(er.edge_image(frame0))`, centre $c_0$ = box corner
 + half the size, `M = er.rays_at(maps, [np.floor(c0)])[0]`). Which fraction of all the frame's
-pixels has a Ratio (`er.ratio`) inside the paper's window [0.8, 1.2], and which inside
+pixels has a Ratio (`er.ratio`) inside the paper's window [0.8, 1.2]
+({quote}`kim2016.ratio_window`), and which inside
 [0.9, 1.1]? Answer `(fraction_08_12, fraction_09_11)`.
 --- solution
 The Ratio test alone rejects most of the pixels: only places whose median ray length matches

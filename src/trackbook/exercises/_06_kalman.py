@@ -35,9 +35,9 @@ not linearly ($R$ and the steady-state $P$ add lower powers, so the fitted expon
 1.5 as $t$ grows).
 
 === 6.4 ★★ modify | The wrong sensor noise
-On the simulated sensor above, keep $Q = I$ but tell the filter the wrong sensor noise:
-$R = I$ (too confident in the sensor) and $R = 100\,I$ (too sceptical). Which gives the
-larger mean error, and how many surprises does each report?
+On the chapter's simulated sensor (the bouncing ball), keep $Q = I$ but tell the filter the
+wrong sensor noise: $R = I$ (too confident in the sensor) and $R = 100\,I$ (too sceptical).
+Which gives the larger mean error, and how many surprises does each report?
 --- solution
 $R = I$ claims the sensor is far better than it is: $S$ is too small, so the honest 4 px noise
 lands outside 3σ of $S$ again and again (false surprises). Its mean error is nevertheless not
@@ -56,7 +56,7 @@ $\text{var}_q = 1$ the prediction is $N(5, 4)$, and $z = 11$ with variance 12 gi
 and variance 3.
 
 === 6.6 ★★ modify | A precise bearing or a good start
-In the range-bearing section, make the bearing ten times more precise
+In the chapter's range-bearing section, make the bearing ten times more precise
 (`sigma_theta=0.02` in both `nl.simulate` and `nl.compare`), then instead start the filters
 at the truth (`x0_error=(0, 0, 0, 0)`, `p0=(1, 1, 1, 1)`) with the vague bearing. In which
 case does the EKF catch up with the UKF, and why not in the other?
@@ -80,7 +80,7 @@ $\partial r / \partial p = (p - s)/r$ and $\partial\theta/\partial p = (-(p_y - 
 p_x - s_x)/r^2$; the measurement does not depend on the velocity.
 
 === 6.8 ★★ pen and paper | Derive the gain
-Derive the gain. Write the updated estimate as $\mu = \mu_1 + K(z - \mu_1)$
+Write the updated estimate as $\mu = \mu_1 + K(z - \mu_1)$
 for an unknown $K$. With independent prior error (variance $\sigma_1^2$) and sensor error
 (variance $\sigma_2^2$), show that the error variance of $\mu$ is
 $(1 - K)^2 \sigma_1^2 + K^2 \sigma_2^2$, find the $K$ that minimises it, and show that the

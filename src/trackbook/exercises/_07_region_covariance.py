@@ -55,7 +55,7 @@ frame 139 leaves it, $d_F$ jumps, and the manoeuvre window is searched. $q = 100
 window in every frame, $(2 \cdot 48 + 1)^2 = 9409$ candidates, never a second search.
 
 === 7.5 ★★ modify | The manoeuvre window
-The manoeuvre window: starting from the steady state (Q = R = I, a measurement every
+Starting from the steady state (Q = R = I, a measurement every
 frame), add σ_v² = 64 to the velocity block of $P^+$ and predict. What is the 3σ half-size
 of the window now, and what are the position and velocity gains of the update? On
 `yellow-ball`, at which frames does the tracker use the manoeuvre window
