@@ -24,10 +24,11 @@ def test_every_exercise_has_a_starter_and_a_hidden_solution():
     code = [c for c in nb.cells if c.cell_type == "code"]
     starters = [c for c in code if re.search(r"^answer_\d+_\d+ = None", c.source, re.M)]
     solutions = [c for c in code if "hide-cell" in _tags(c)]
-    assert len(starters) >= 18
+    assert len(starters) >= 40
     assert len(solutions) == len(starters)
     for cell in starters + solutions:
-        assert re.search(r"^check_\d+_\d+\(answer_\d+_\d+\)", cell.source, re.M), cell.source
+        assert re.search(r"""^(check_\d+_\d+\(|autocheck\("\d+\.\d+", )answer_\d+_\d+\)""",
+                         cell.source, re.M), cell.source
 
 
 @pytest.mark.slow
@@ -49,6 +50,11 @@ def test_appendix_executes_and_every_solution_passes():
     failed = {k: v for k, v in solution_verdicts.items() if v != "PASS"}
     assert not failed, f"solutions that do not pass their check: {failed}"
     assert set(starter_verdicts.values()) == {"not answered yet"}
+    # the rendered page: every exercise of the registry, in order, under its number, graded
+    from trackbook import exercises
+    shown = re.findall(r"^\*\*Exercise (\d+\.\d+) (★{1,3}) \(", "\n".join(
+        o.get("data", {}).get("text/markdown", "") for c in code for o in c.get("outputs", [])), re.M)
+    assert shown == [(e.number, e.stars) for e in exercises.all_exercises()]
 
 
 def test_check_helper_fails_wrong_answers(capsys):

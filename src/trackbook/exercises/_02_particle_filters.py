@@ -1,0 +1,95 @@
+"""The exercises of 02_particle_filters: their text, defined once (see :mod:`trackbook.exercises`)."""
+
+STEM = "02_particle_filters"
+
+TEXT = r"""
+=== 2.1 ★★ modify | Copies under multinomial resampling
+Multinomial resampling draws $N$ particles independently with probabilities $w_i$. How many
+copies of a particle of weight $w_i$ do you expect, and with what variance? Write
+`moments(w, N)` returning the expected number of copies of each particle and its variance (two
+arrays), and compare them with 2000 seeded resamplings of a 20-particle set with one heavy
+particle ($w = 0.4$).
+--- solution
+The copies of particle $i$ count successes in $N$ independent draws of probability $w_i$:
+they are Binomial$(N, w_i)$, with mean $N w_i$ and variance $N w_i (1 - w_i)$.
+
+=== 2.2 ★ use | How many particles?
+Run `color-pf` (seed 0) on `robot-corridor-day` with 20, 100 and 400 particles
+(`n_particles=`). Answer a dict `{20: auc, 100: auc, 400: auc}`. How does the AUC move, and what
+does `scores["ms_median"]` do at the same time? (Timings depend on the machine.)
+--- solution
+More particles cover the posterior better, with diminishing returns in the AUC; the cost grows
+about linearly in $N$, because every particle needs its own histogram.
+
+=== 2.3 ★★ modify | Which departure matters more?
+Which of the two departures matters more on the day clip? Run the paper
+preset, then the paper preset with only `sigma_color=0.2`, then with only `init="box"`.
+
+=== 2.4 ★★ modify | A look-alike close by
+In the 1-D corridor example, move the look-alike to 45 m (as strong as
+before, 0.6 of the target). How many peaks does the grid posterior have now, where, and how do
+its mean and spread compare with the look-alike at 60 m? How far from the target must the
+look-alike be (same prediction) before the posterior has a second peak?
+--- solution
+At 45 m the two likelihood bumps (width 3 m each, 5 m apart) overlap so much that their sum
+has a single peak: two Gaussians of equal width σ apart by less than 2σ add up to one hump.
+The prediction then multiplies one hump by another, and the posterior has **one** peak, just
+below 40 m (the cell prints it), not two. The look-alike is not vetoed but absorbed: it pulls
+the mean a little towards 45 m and widens the posterior compared with the look-alike at 60 m,
+whose bump the prediction suppresses (only a faint second maximum is left of it). A single
+Gaussian describes the 45 m posterior well; the belief a Gaussian cannot hold is the one with
+two separated peaks, which needs the look-alike farther away (the last line of the cell) —
+that is where particles, which keep every hump, pay off.
+
+=== 2.5 ★★★ implement | Stratified resampling from scratch
+Write `my_stratified(w, rng)`: stratified resampling with one pointer $(k + u_k)/N$ in each
+stratum $k = 0, \dots, N-1$, the $u_k$ drawn by **one** call `rng.random(N)`, and for each
+pointer the smallest $i$ with $c_i \ge$ pointer, $c$ the cumulative weights (set $c_N = 1$
+exactly, against round-off). By hand first: $w = (0.1, 0.2, 0.3, 0.4)$ has
+$c = (0.1, 0.3, 0.6, 1)$; with every $u_k = 0.5$ the pointers are 0.125, 0.375, 0.625 and
+0.875, and the indices $(1, 2, 3, 3)$. The check hands your function a stand-in for `rng`
+whose `random` returns chosen $u_k$, and compares with indices worked out by hand.
+--- solution
+Each stratum $[k/N, (k+1)/N)$ gets exactly one pointer, so a particle of weight $w_i$ gets
+$\lfloor N w_i \rfloor$ or $\lceil N w_i \rceil$ copies or one more, far less spread than
+multinomial resampling. With $u = (0.2, 0.9, 0.1, 0)$ the pointers are 0.05, 0.475, 0.525
+and 0.75: indices $(0, 2, 2, 3)$.
+
+=== 2.6 ★★ pen and paper | Importance weights under a proposal
+Factored sampling draws its samples from the prior $p(x)$. Suppose
+they come from another density, a *proposal* $g(x)$, instead. Show that the weights
+$\pi^{(i)} \propto p(z \mid s^{(i)})\, p(s^{(i)}) / g(s^{(i)})$ make the weighted set stand for
+the posterior, and that they reduce to factored sampling's weights when $g = p$. Then, by hand:
+prior $N(0, 1)$, proposal $N(1, 1)$, a likelihood that is the same everywhere, and the two
+samples $s^{(1)} = 0$, $s^{(2)} = 1$. What are their normalised weights?
+--- solution
+For any function $f$, $E_{p(x \mid z)}[f] = \int f(x)\, p(z \mid x) p(x)\, dx \,/\, p(z) =
+E_g\!\left[f(x)\, \tfrac{p(z \mid x) p(x)}{g(x)}\right] / p(z)$, so averaging $f$ over
+samples of $g$ with weights proportional to $p(z \mid x) p(x) / g(x)$, normalised to sum 1
+(which estimates $p(z)$ as well), estimates the posterior average. With $g = p$ the ratio
+$p/g$ is 1 and the weight is the likelihood alone, $\pi^{(i)} \propto p(z \mid s^{(i)})$. In the
+hand case the likelihood cancels in the normalisation and $p(x)/g(x) = e^{-x^2/2} /
+e^{-(x-1)^2/2} = e^{1/2 - x}$: $e^{1/2}$ for $s^{(1)}$, $e^{-1/2}$ for $s^{(2)}$, so the
+normalised weights are $1/(1 + e^{-1}) \approx 0.731$ and $e^{-1}/(1 + e^{-1}) \approx 0.269$.
+The sample the proposal over-produces ($x = 1$, its mean) is weighed down.
+
+=== 2.7 ★★ modify | Systematic resampling is tight
+Systematic resampling uses one random offset $u \sim U[0, 1/N)$ and the $N$ evenly spaced
+pointers $u + k/N$. Write `bounds(w, N)` returning, for each particle, the smallest and the
+largest number of copies it can get (two integer arrays), and verify on 300 random weight
+vectors that the copies of `systematic_resample` always lie within your bounds and that the
+bounds are at most 1 apart.
+--- solution
+Particle $i$ owns an interval of length $w_i$ of the cumulative weights; pointers $1/N$ apart
+hit it $\lfloor N w_i \rfloor$ or $\lceil N w_i \rceil$ times, whatever the offset.
+Multinomial resampling can give any number from 0 to $N$: systematic resampling adds far less
+noise. Where $N w_i$ is an integer up to rounding, the floating-point cumulative sum may hand
+the particle one copy fewer or more, so the solution widens the bounds by a tiny margin.
+
+=== 2.8 ★★★ implement | Systematic resampling from scratch
+Write `my_systematic(w, rng)`: draw one offset with a single call `u = rng.random() / N`, form
+the pointers $u + k/N$ for $k = 0, \dots, N-1$, and return for each pointer the smallest index
+$i$ with $c_i \ge$ pointer, $c$ the cumulative weights (set $c_N = 1$ exactly). By hand:
+$w = (0.7, 0.1, 0.1, 0.1)$, `rng.random()` = 0.5, so $u = 0.125$: pointers 0.125, 0.375, 0.625,
+0.875 against $c = (0.7, 0.8, 0.9, 1)$, indices $(0, 0, 0, 2)$. The check uses that case and three more worked by hand.
+"""

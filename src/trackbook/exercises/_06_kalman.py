@@ -1,0 +1,95 @@
+"""The exercises of 06_kalman: their text, defined once (see :mod:`trackbook.exercises`)."""
+
+STEM = "06_kalman"
+
+TEXT = r"""
+=== 6.1 ★ use | The product of two Gaussians
+The prior is $N(20, 4)$ (mean 20 px, variance 4), the measurement $z = 26$ px with noise
+variance 12. Compute by hand the Kalman gain $K$, the posterior mean and the posterior
+variance, and check them on a grid. Answer `(K, mean, variance)`.
+--- solution
+$K = 4 / (4 + 12) = 1/4$; mean $= 20 + K(26 - 20) = 21.5$; variance $= (1 - K) \cdot 4 = 3$.
+
+=== 6.2 ★ use | One step by hand
+The constant-velocity model of the chapter has state $(x, y, \dot x, \dot y)$, $F$ adding the
+velocity to the position, $H$ picking the position, $Q = I_4$, $R = I_2$, $P_0 = I_4$. Compute
+by hand the predicted position variance $(P_1^-)_{xx}$, the innovation variance $S_{xx}$ and
+the gains $K_{x,x}$ (position) and $K_{\dot x, x}$ (velocity) of the first update, then check
+with `constant_velocity().predict()` and `.update(...)`. Answer `(P_xx, S_xx, K_pos, K_vel)`.
+--- solution
+$P_1^- = F P_0 F^T + Q$: per axis $\begin{bmatrix}1 & 1\\ 0 & 1\end{bmatrix}
+\begin{bmatrix}1 & 1\\ 0 & 1\end{bmatrix}^T = \begin{bmatrix}2 & 1\\ 1 & 1\end{bmatrix}$, plus
+$I$: position variance 3, $\operatorname{cov}(x, \dot x) = 1$, velocity variance 2.
+$S = H P_1^- H^T + R = 3 + 1 = 4$ and $K = P_1^- H^T S^{-1} = (3/4, 1/4)$ per axis.
+
+=== 6.3 ★★ modify | Flying blind
+Run `constant_velocity()` (Q = R = I) for 50 frames with a measurement at (0, 0) every frame
+(`predict()` then `update((0.0, 0.0))`), so that it reaches its steady state. Then predict 5
+frames without any measurement. What is the 3σ half-size of the window in x,
+$3\sqrt{S_{xx}}$ (`innovation_covariance()`), after those 5 blind frames? How fast does the
+position's spread grow with the number $t$ of blind frames, and why not linearly?
+--- solution
+With no update the velocity is a random walk (its variance grows like $t$) and the position,
+its sum, has a variance growing like $t^3/3$: the half-size $3\sqrt S$ grows like $t^{1.5}$,
+not linearly ($R$ and the steady-state $P$ add lower powers, so the fitted exponent approaches
+1.5 as $t$ grows).
+
+=== 6.4 ★★ modify | The wrong sensor noise
+On the chapter's simulated sensor (the bouncing ball), keep $Q = I$ but tell the filter the
+wrong sensor noise: $R = I$ (too confident in the sensor) and $R = 100\,I$ (too sceptical).
+Which gives the larger mean error, and how many surprises does each report?
+--- solution
+$R = I$ claims the sensor is far better than it is: $S$ is too small, so the honest 4 px noise
+lands outside 3σ of $S$ again and again (false surprises). Its mean error is nevertheless not
+the worst: the ball is not a constant-velocity object (gravity, bounces), and trusting the
+measurements more hides that model error. $R = 100\,I$ smooths so hard that it lags behind
+every arc. A filter's $R$ is a statement about the sensor and a knob against model mismatch.
+
+=== 6.5 ★★★ implement | A 1-D Kalman filter from scratch
+Write `kf1d(zs, mu0, var0, u, var_q, var_r)` returning two arrays, the posterior means and
+variances after each measurement in `zs`: predict by adding the known motion `u` to the mean
+and `var_q` to the variance (the convolution of two Gaussians), update by the product of two
+Gaussians (gain $K = v / (v + \text{var}_r)$). Use plain NumPy, not `KalmanFilter`. The check
+uses exercise 6.1 (one measurement: mean 21.5, variance 3), a second measurement after it
+($K = 3/15$, variance 2.4) and a case with motion: from $N(0, 3)$ with $u = 5$ and
+$\text{var}_q = 1$ the prediction is $N(5, 4)$, and $z = 11$ with variance 12 gives mean 6.5
+and variance 3.
+
+=== 6.6 ★★ modify | A precise bearing or a good start
+In the chapter's range-bearing section, make the bearing ten times more precise
+(`sigma_theta=0.02` in both `nl.simulate` and `nl.compare`), then instead start the filters
+at the truth (`x0_error=(0, 0, 0, 0)`, `p0=(1, 1, 1, 1)`) with the vague bearing. In which
+case does the EKF catch up with the UKF, and why not in the other?
+--- solution
+Started at the truth, the EKF comes close to the UKF: $h$ is linearised at the right place
+from the first step. With a precise bearing it still trails the others: the measurement is now
+precise, but the first tangents are taken at the wrong guess, 28 units off, and a confident
+update at the wrong tangent takes many steps to undo. The converted-measurement KF linearises,
+in effect, at the measurement itself, which is now close to the truth: it does best.
+
+=== 6.7 ★★★ implement | The Jacobian of range and bearing
+A sensor at $s$ measures a target at $p = (p_x, p_y)$ by its range $r = \lVert p - s \rVert$
+and bearing $\theta = \operatorname{atan2}(p_y - s_y, p_x - s_x)$. Write `my_H_j(x, sensor)`
+returning the 2 × 4 Jacobian $\partial h / \partial x$ for the state
+$x = [p_x, p_y, v_x, v_y]$. By hand first: with the sensor at the origin and the target at
+$(3, 4)$, $r = 5$, $\partial r/\partial p = (3/5, 4/5)$,
+$\partial \theta / \partial p = (-4/25, 3/25)$ and the velocity columns are zero. The check
+uses that case and finite differences of $h$ at another point.
+--- solution
+$\partial r / \partial p = (p - s)/r$ and $\partial\theta/\partial p = (-(p_y - s_y),
+p_x - s_x)/r^2$; the measurement does not depend on the velocity.
+
+=== 6.8 ★★ pen and paper | Derive the gain
+Write the updated estimate as $\mu = \mu_1 + K(z - \mu_1)$
+for an unknown $K$. With independent prior error (variance $\sigma_1^2$) and sensor error
+(variance $\sigma_2^2$), show that the error variance of $\mu$ is
+$(1 - K)^2 \sigma_1^2 + K^2 \sigma_2^2$, find the $K$ that minimises it, and show that the
+minimum is $(1 - K)\sigma_1^2$ — the gain and the variance of the product of two Gaussians.
+--- solution
+The error is $\mu - x = (1 - K)(\mu_1 - x) + K(z - x)$, a sum of two independent errors, so its
+variance is $(1-K)^2\sigma_1^2 + K^2\sigma_2^2$. The derivative in $K$ is
+$-2(1-K)\sigma_1^2 + 2K\sigma_2^2$; it is zero at $K = \sigma_1^2/(\sigma_1^2 + \sigma_2^2)$.
+There $1 - K = \sigma_2^2/(\sigma_1^2 + \sigma_2^2)$, and the variance is
+$\frac{\sigma_2^4\sigma_1^2 + \sigma_1^4\sigma_2^2}{(\sigma_1^2 + \sigma_2^2)^2}
+= \frac{\sigma_1^2\sigma_2^2}{\sigma_1^2 + \sigma_2^2} = (1 - K)\sigma_1^2$.
+"""

@@ -1,0 +1,97 @@
+"""The exercises of 07_region_covariance: their text, defined once (see :mod:`trackbook.exercises`)."""
+
+STEM = "07_region_covariance"
+
+TEXT = r"""
+=== 7.1 ★ use | Förstner's distance by hand
+Compute $d_F(C_1, C_2) = \sqrt{\sum_i \ln^2 \lambda_i(C_1, C_2)}$ (eq. 5 of Lee 2015) for
+$C_1 = \mathrm{diag}(1, 4)$ and $C_2 = \mathrm{diag}(4, 1)$, where $\lambda_i$ are the
+generalised eigenvalues ($\det(\lambda C_1 - C_2) = 0$, eq. 6), then check it with
+`forstner_distance`. Answer the number.
+--- solution
+$C_1^{-1} C_2 = \mathrm{diag}(4, 1/4)$: $\lambda = 4$ and $1/4$, $\ln^2\lambda = (\ln 4)^2$
+twice, so $d_F = \sqrt 2 \ln 4 \approx 1.96$.
+
+=== 7.2 ★ use | Counting windows
+How many 24 × 24 windows does a 320 × 240 frame hold at stride 1, and at stride 4 (windows
+fully inside the frame, starting at the top-left corner)? Work it out by hand, then check with
+`trackbook.trackers.covariance.n_windows`. Answer `(n_stride1, n_stride4)`.
+--- solution
+Stride 1: $(320 - 24 + 1)(240 - 24 + 1) = 297 \cdot 217 = 64\,449$. Stride 4:
+$(\lfloor 296/4 \rfloor + 1)(\lfloor 216/4 \rfloor + 1) = 75 \cdot 55 = 4125$.
+
+=== 7.3 ★★ modify | Brightness and contrast
+Convert frame 0 of `red-cube` to grey floats
+(`cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(float)`, no clipping at 255) and take the
+covariance of the ground-truth box (`covariance_of_box(g, box)`, features
+$x, y, I, |I_x|, |I_y|$). Give $d_F$ (`forstner_distance(..., eps=0)`) between it and the same
+box after a brightness shift $I \mapsto I + 40$, and after a contrast change
+$I \mapsto 1.5\,I$. Answer `(d_shift, d_contrast)`. Why is one of them 0 and the other not,
+although $d_F$ is invariant to any congruence $C \mapsto A C A^T$? What happens with real uint8
+frames, where bright pixels clip at 255?
+--- hint
+Which matrix $A$ turns $C$ into the contrast-changed covariance $A C A^T$? What does the
+congruence invariance of $d_F$ say, and what does it not say?
+--- solution
+The shift cancels in the covariance (eq. 4 subtracts the mean) and the gradients do not see
+it: $d_F = 0$. The contrast change multiplies $I, |I_x|, |I_y|$ by 1.5, i.e.
+$C \mapsto ACA^T$ with $A = \mathrm{diag}(1, 1, 1.5, 1.5, 1.5)$. $d_F$ is invariant when both
+matrices get the same $A$ (two windows of the same changed frame keep their distance,
+exercise 7.8), but $d_F(C, ACA^T)$ is not 0: a model stored before the change does not match
+the changed target exactly, because the $x, y$ rows did not scale while the others did. With
+uint8 frames the clipped pixels break both invariances.
+
+=== 7.4 ★★ modify | Small q or large q?
+Run `kalman-covariance` on the first 146 frames of `red-cube`
+(`evaluate(..., seed=0, q=..., max_frames=146)`) with `q=0.01` and with `q=100`; the cube
+accelerates suddenly at frames 139–142. One of the two needs its second, larger search (the
+manoeuvre window, `tracker.manoeuvre`, readable in an `on_frame` callback), and why? The other
+never does, but pays in every frame: how many candidate windows does it evaluate per frame
+(`result.extras["candidates"]`; its window is ±48 px at stride 1, so you can also work it out
+by hand)? Answer `(q, first_frame, candidates)`.
+--- solution
+$q = 0.01$: a tiny window (±4 px, 81 candidates) and a confident velocity; the acceleration at
+frame 139 leaves it, $d_F$ jumps, and the manoeuvre window is searched. $q = 100$: a ±48 px
+window in every frame, $(2 \cdot 48 + 1)^2 = 9409$ candidates, never a second search.
+
+=== 7.5 ★★ modify | The manoeuvre window
+Starting from the steady state (Q = R = I, a measurement every
+frame), add σ_v² = 64 to the velocity block of $P^+$ and predict. What is the 3σ half-size
+of the window now, and what are the position and velocity gains of the update? On
+`yellow-ball`, at which frames does the tracker use the manoeuvre window
+(`tracker.manoeuvre`)? Compare with the frames where the true ball bounces.
+
+=== 7.6 ★★★ implement | Eq. 4 from integral images
+Write `cov_from_sums(F, box)`: for the rectangle `box = (x, y, w, h)` of a feature image `F`
+(H × W × d), take the sums $P = \sum f$ and $Q = \sum f f^T$ over the rectangle from
+summed-area tables (four look-ups each) and return $\frac{1}{MN}\big(Q - PP^T/MN\big)$, the
+population covariance of eq. 4. By hand first: one feature with values 1, 2, 3, 4 over a
+2 × 2 image has mean 2.5 and variance $(2.25 + 0.25 + 0.25 + 2.25)/4 = 1.25$. The check uses
+that case and a box of two features $f$ and $2f$, whose covariance is
+$\begin{bmatrix}v & 2v\\ 2v & 4v\end{bmatrix}$.
+--- solution
+Centre the features first (subtract the image's mean): $Q - PP^T/MN$ then does not lose
+precision to the subtraction of two large numbers.
+
+=== 7.7 ★★★ project | Add scale to the covariance tracker
+Neither covariance tracker changes the size of
+its window, which is why both lose David and MotorRolling. Around each frame's best window,
+evaluate the same centre at scales 0.9, 1.0 and 1.1 and keep the smallest $d_F$. Beware: the
+$x, y$ features are pixel coordinates, so a larger window has a larger $x$-variance even for
+the same object — divide the $x, y$ rows and columns of $C$ by the scale (a congruence
+$A C A^T$ with $A = \mathrm{diag}(1/s, 1/s, 1, 1, 1)$) before comparing. Measure the IoU with
+and without the scale step on `red-cube` and `yellow-ball`, and say where it helps.
+
+=== 7.8 ★★ pen and paper | Why d_F ignores a common change of coordinates
+Show that $d_F(AC_1A^T, AC_2A^T) = d_F(C_1, C_2)$ for every invertible $A$, from the
+definition of the generalised eigenvalues (eq. 6). Then say why it does not follow that
+$d_F(C, ACA^T) = 0$, and compute $d_F(C, ACA^T)$ by hand for $C = I_2$ and
+$A = \mathrm{diag}(1, 2)$.
+--- solution
+$\det(\lambda AC_1A^T - AC_2A^T) = \det(A)\det(\lambda C_1 - C_2)\det(A^T) =
+\det(A)^2\det(\lambda C_1 - C_2)$, and $\det(A) \ne 0$: both matrix pairs have the same
+generalised eigenvalues, hence the same $d_F$. The invariance needs the same $A$ on both
+sides; $d_F(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
+$ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_F = \sqrt{0 + \ln^2 4} = \ln 4 \approx
+1.39$.
+"""

@@ -1,0 +1,302 @@
+"""The exercises are defined once: every chapter shows its exercises with the numbers of the
+appendix, every exercise is graded, and every auto-check accepts a correct solution and
+rejects a wrong one.
+
+The correct solutions below are written from the equations (never by calling the library
+function the exercise re-implements); each wrong one makes a mistake a student makes.
+"""
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from trackbook import exercises
+from trackbook.exercises import checks
+from trackbook.quotes.attributions import unquoted
+
+ROOT = Path(__file__).resolve().parents[1]
+BOOK = ROOT / "book"
+SHOW = re.compile(r"""exercises\.show\(["'](\d+\.\d+)["']""")
+CORE = ("01_kernel_histograms", "02_particle_filters", "03_hog", "04_incremental_svd",
+        "05_edge_rays", "06_kalman", "07_region_covariance", "08_mean_shift")
+
+
+def _section(text: str, heading: str) -> str:
+    start = text.index(heading)
+    nxt = re.search(r"^## ", text[start + len(heading):], re.M)
+    return text[start:start + len(heading) + nxt.start()] if nxt else text[start:]
+
+
+def _appendix_sections():
+    text = (BOOK / "appendix_exercises.md").read_text(encoding="utf-8")
+    return {m.group(1): _section(text, m.group(0))
+            for m in re.finditer(r"^## \d+\. .*\{doc\}`[^<]*<(\w+)>`.*$", text, re.M)}
+
+
+# -- the registry -------------------------------------------------------------------------------
+
+def test_numbers_are_consecutive_and_match_the_chapter():
+    for stem in exercises.chapters():
+        numbers = [e.number for e in exercises.for_chapter(stem)]
+        assert numbers == [f"{int(stem[:2])}.{k}" for k in range(1, len(numbers) + 1)], stem
+
+
+def test_every_exercise_is_graded_with_a_title_and_a_statement():
+    for e in exercises.all_exercises():
+        assert e.stars in ("★", "★★", "★★★"), e.number
+        assert e.kind in exercises.KINDS and e.title and len(e.statement) > 40, e.number
+        assert e.kind != "implement" or e.stars == "★★★", e.number
+
+
+def test_pen_and_paper_exercises_have_worked_solutions_in_every_core_chapter():
+    for stem in CORE:
+        pen = [e for e in exercises.for_chapter(stem) if e.kind == "pen and paper"]
+        assert pen, f"{stem} has no pen-and-paper exercise"
+        assert all(len(e.solution) > 100 for e in pen), [e.number for e in pen]
+
+
+def test_every_auto_checked_exercise_exists_and_is_an_implementation():
+    for number in checks.CHECKS:
+        assert exercises.get(number).stars == "★★★", number
+
+
+def test_texts_cite_a_quote_wherever_they_speak_for_a_paper():
+    for e in exercises.all_exercises():
+        for part in (e.statement, e.hint, e.solution):
+            assert not unquoted(part), (e.number, unquoted(part))
+
+
+def test_markdown_renders_number_grade_and_a_folded_solution():
+    md = exercises.markdown("1.6")
+    assert md.startswith("**Exercise 1.6 ★ (pen and paper). ρ as a cosine.**")
+    assert "{admonition} Solution to 1.6\n:class: dropdown" in md
+    assert "Solution" not in exercises.markdown("1.6", solution=False)
+
+
+def test_bad_numbers_and_bad_text_are_refused():
+    with pytest.raises(ValueError, match="no exercise '1.99'"):
+        exercises.get("1.99")
+    with pytest.raises(ValueError, match="no exercises for 'zz'"):
+        exercises.for_chapter("zz")
+    with pytest.raises(ValueError, match="grade"):
+        exercises.parse("=== 1.1 ★★★★ use | x\ntext", "t")
+    with pytest.raises(ValueError, match="no auto-check"):
+        exercises.autocheck("1.1", 1.0)
+
+
+# -- the pages ----------------------------------------------------------------------------------
+
+def test_every_chapter_shows_its_exercises_in_order_and_the_appendix_the_same_numbers():
+    appendix = _appendix_sections()
+    for stem in exercises.chapters():
+        want = [e.number for e in exercises.for_chapter(stem)]
+        page = (BOOK / f"{stem}.md").read_text(encoding="utf-8")
+        assert SHOW.findall(_section(page, "## Exercises")) == want, stem
+        assert SHOW.findall(appendix[stem]) == want, f"appendix section of {stem}"
+
+
+def test_no_page_types_an_exercise_statement_of_its_own():
+    """The statements come from the registry only: no bold 'N.M ★' lead-in or numbered
+    '1. ★' item is typed into an exercise section."""
+    typed = re.compile(r"^(\*\*(Exercise )?\d+\.\d+ ★|\d+\. ★)", re.M)
+    for stem in exercises.chapters():
+        page = (BOOK / f"{stem}.md").read_text(encoding="utf-8")
+        assert not typed.search(_section(page, "## Exercises")), stem
+    for stem, sec in _appendix_sections().items():
+        assert not typed.search(sec), stem
+
+
+def test_auto_checked_exercises_have_a_starter_in_the_appendix():
+    appendix = "\n".join(_appendix_sections().values())
+    for number in checks.CHECKS:
+        assert re.search(rf"""autocheck\("{re.escape(number)}", answer_{number.replace('.', '_')}\)""",
+                         appendix), number
+
+
+# -- the auto-checks: a correct solution passes, a wrong one fails --------------------------------
+
+def _inter(a, b):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    w = np.clip(np.minimum(a[:, 0] + a[:, 2], b[:, 0] + b[:, 2]) - np.maximum(a[:, 0], b[:, 0]), 0, None)
+    h = np.clip(np.minimum(a[:, 1] + a[:, 3], b[:, 1] + b[:, 3]) - np.maximum(a[:, 1], b[:, 1]), 0, None)
+    return w * h, a[:, 2] * a[:, 3] + b[:, 2] * b[:, 3]
+
+
+def iou(a, b):
+    inter, areas = _inter(a, b)
+    return inter / (areas - inter)
+
+
+def iou_over_sum(a, b):                              # forgets to subtract the intersection
+    inter, areas = _inter(a, b)
+    return inter / areas
+
+
+def kernel(h, w):
+    r2 = np.add.outer((np.arange(h) + 0.5 - h / 2) ** 2, (np.arange(w) + 0.5 - w / 2) ** 2)
+    return 1 - r2 / r2.max()
+
+
+def stratified(w, rng):
+    c = np.cumsum(w)
+    c[-1] = 1.0
+    return np.searchsorted(c, (np.arange(len(w)) + rng.random(len(w))) / len(w))
+
+
+def systematic(w, rng):
+    c = np.cumsum(w)
+    c[-1] = 1.0
+    return np.searchsorted(c, rng.random() / len(w) + np.arange(len(w)) / len(w))
+
+
+def svd_update(U, S, b):
+    p = U.T @ b
+    r = b - U @ p
+    nr = np.linalg.norm(r)
+    q = r / nr if nr > 1e-12 else np.zeros_like(r)
+    R = np.block([[np.diag(S), p[:, None]], [np.zeros((1, len(S))), np.array([[nr]])]])
+    Ut, St, _ = np.linalg.svd(R)
+    return np.c_[U, q] @ Ut, St
+
+
+def mid(d):
+    return np.sort(d, axis=-1)[..., 3:5].mean(axis=-1)
+
+
+def edge_weight(p, m, low=0.8, high=1.2):
+    ratio = mid(p) / mid(m)
+    w = np.clip(1 - np.abs(p - m).sum(axis=-1) / np.sum(m), 0, None)
+    return np.where((ratio >= low) & (ratio <= high), w, 0.0)
+
+
+def kf1d(zs, m, v, u, q, r):
+    out = []
+    for z in zs:
+        m, v = m + u, v + q
+        k = v / (v + r)
+        m, v = m + k * (z - m), (1 - k) * v
+        out.append((m, v))
+    return np.array(out).T if out else (np.array([]), np.array([]))
+
+
+def jacobian(x, s):
+    dx, dy = x[0] - s[0], x[1] - s[1]
+    r2 = dx * dx + dy * dy
+    return np.array([[dx / r2 ** 0.5, dy / r2 ** 0.5, 0, 0], [-dy / r2, dx / r2, 0, 0]])
+
+
+def cov_box(F, box):
+    x, y, w, h = box
+    f = F[y:y + h, x:x + w].reshape(-1, F.shape[2])
+    return np.atleast_2d(np.cov(f.T, bias=True))
+
+
+def motion(I0, I1):
+    Iy, Ix = np.gradient((I0 + I1) / 2)
+    It = I1 - I0
+    A = np.array([[np.sum(Ix * Ix), np.sum(Ix * Iy)], [np.sum(Ix * Iy), np.sum(Iy * Iy)]])
+    return np.linalg.solve(A, -np.array([np.sum(Ix * It), np.sum(Iy * It)]))
+
+
+def switches(seq):
+    seen = [i for i in seq if i >= 0]
+    return sum(a != b for a, b in zip(seen, seen[1:]))
+
+
+def loso(scores):
+    seqs = sorted(set.intersection(*(set(v) for v in scores.values())))
+    return float(np.mean([scores[max(scores, key=lambda c: np.mean(
+        [scores[c][o] for o in seqs if o != s]))][s] for s in seqs]))
+
+
+def dual(x, y, sigma, lam):
+    xf = np.fft.fft(x)
+    k = np.exp(-np.maximum(2 * x @ x - 2 * np.fft.ifft(xf * np.conj(xf)).real, 0)
+               / (sigma ** 2 * len(x)))
+    return np.fft.ifft(np.fft.fft(y) / (np.fft.fft(k) + lam)).real
+
+
+RIGHT_AND_WRONG = {
+    "0.4": (iou, iou_over_sum),
+    "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
+            lambda i: np.mean([(np.asarray(i) >= t).mean() for t in np.linspace(0, 1, 21)])),
+    "1.5": (kernel, lambda h, w: 1 - np.sqrt(1 - kernel(h, w))),           # the cone 1 - r
+    "1.7": (lambda lab, k, n: np.bincount(lab.ravel(), k.ravel(), n) / k.sum(),
+            lambda lab, k, n: np.bincount(lab.ravel(), minlength=n) / lab.size),  # no kernel
+    "2.5": (stratified, lambda w, rng: np.searchsorted(np.cumsum(w), rng.random(len(w)))),
+    "2.8": (systematic, lambda w, rng: np.searchsorted(np.cumsum(w), rng.random()
+                                                       + np.arange(len(w)) / len(w)) % len(w)),
+    "3.5": (lambda rc, rh, a, s: (lambda p: p / p.sum())(
+                a * np.exp(-(1 - rc) / (2 * s * s)) + (1 - a) * np.exp(-(1 - rh) / (2 * s * s))),
+            lambda rc, rh, a, s: (lambda p: p / p.sum())(     # D^2 = (1 - rho)^2: squared twice
+                a * np.exp(-(1 - rc) ** 2 / (2 * s * s)) + (1 - a) * np.exp(-(1 - rh) ** 2 / (2 * s * s)))),
+    "3.6": (lambda P: np.pad(P, ((0, 0), (1, 1)), mode="edge")[:, 2:]
+            - np.pad(P, ((0, 0), (1, 1)), mode="edge")[:, :-2],
+            lambda P: np.diff(P, axis=1, append=P[:, -1:])),              # forward differences
+    "4.5": (svd_update, lambda U, S, b: (U, np.r_[S, np.linalg.norm(b)])),   # ignores U^T b
+    "5.5": (lambda p, m: mid(p) / mid(m), lambda p, m: np.sort(p)[2:4].mean() / np.sort(m)[2:4].mean()),  # 3rd, 4th
+    "5.8": (edge_weight, lambda p, m: np.clip(1 - np.abs(p - m).sum(-1) / np.sum(m), 0, None)),
+    "6.5": (kf1d, lambda zs, m, v, u, q, r: kf1d(zs, m, v, u, 0.0, r)),         # forgets Q
+    "6.7": (jacobian, lambda x, s: jacobian(x, (0.0, 0.0))),               # ignores the sensor
+    "7.6": (cov_box, lambda F, box: cov_box(F, box) * (box[2] * box[3])
+            / max(box[2] * box[3] - 1, 1)),                                # sample, not population
+    "8.5": (motion, lambda I0, I1: -motion(I0, I1)),                        # I_t the wrong way
+    "8.7": (switches, lambda seq: len(set(i for i in seq if i >= 0)) - 1 if seq else 0),
+    "9.5": (loso, lambda scores: max(np.mean(list(v.values())) for v in scores.values())),
+    "9.7": (lambda r, n: (r * n - 1) / (n - 1), lambda r, n: r),
+    "10.3": (dual, lambda x, y, s, lam: y / (1 + lam)),
+}
+
+
+def test_every_auto_check_has_a_right_and_a_wrong_solution_here():
+    assert set(RIGHT_AND_WRONG) == set(checks.CHECKS)
+
+
+@pytest.mark.parametrize("number", sorted(checks.CHECKS, key=lambda n: tuple(map(int, n.split(".")))))
+def test_auto_check_accepts_the_right_solution_and_rejects_the_wrong_one(number, capsys):
+    right, wrong = RIGHT_AND_WRONG[number]
+    assert exercises.autocheck(number, right) is True
+    assert exercises.autocheck(number, wrong) is False
+    assert exercises.autocheck(number, None) is None
+    out = capsys.readouterr().out
+    assert f"{number}: PASS" in out and f"{number}: FAIL" in out and "not answered yet" in out
+
+
+def test_hand_values_of_the_checks_follow_from_the_equations():
+    """A few expected values of the checks, recomputed here from the equations."""
+    # 2.8: pointers 0.125 + k/4 against c = cumsum(0.7, 0.1, 0.1, 0.1): smallest i, c_i >= pointer
+    c, ptr = np.array([0.7, 0.8, 0.9, 1.0]), 0.125 + np.arange(4) / 4
+    assert [int(np.argmax(c >= p)) for p in ptr] == [0, 0, 0, 2]
+    # 6.5: the product of N(20, 4) and N(26, 12)
+    assert (20 / 4 + 26 / 12) / (1 / 4 + 1 / 12) == pytest.approx(21.5)
+    assert 1 / (1 / 4 + 1 / 12) == pytest.approx(3.0)
+    # 9.5: the hand case
+    assert loso({"p": {"a": 0.5, "b": 0.5, "c": 0.5},
+                 "q": {"a": 0.4, "b": 0.4, "c": 0.9}}) == pytest.approx(1.3 / 3)
+    # 10.3: (J + I) alpha = (1, 1)
+    assert np.linalg.solve(np.ones((2, 2)) + np.eye(2), np.ones(2)) == pytest.approx([1 / 3] * 2)
+    # 8.8 (pen and paper): the weighted mean inside an Epanechnikov kernel of h = 2 at 1.5
+    x, w = np.array([0.0, 1, 2]), np.array([1.0, 2, 1])
+    assert np.all(np.abs(x - 1.5) / 2 < 1) and (x * w).sum() / w.sum() == 1.0
+
+
+def test_fixed_random_stands_in_for_a_generator():
+    rng = checks.FixedRandom([0.25, 0.5, 0.75])
+    assert rng.random() == 0.25 and list(rng.random(2)) == [0.25, 0.5]
+
+
+def test_the_hand_out_recipe_hides_the_solutions():
+    """The teaching page's recipe rewrites exercises.show("N.M") to show no solution."""
+    source = 'exercises.show("6.8")'.replace('exercises.show(', 'exercises.show(solution=False, number=')
+    shown = eval(source, {"exercises": exercises})
+    assert "Derive the gain" in shown.data and "Solution" not in shown.data
+
+
+def test_every_quote_in_the_texts_is_in_the_register():
+    from trackbook import quotes
+    keys = {q.key for paper in ("lee2012", "kim2016", "lee2015", "cho2005")
+            for q in quotes.for_paper(paper)}
+    cited = {k for e in exercises.all_exercises()
+             for k in re.findall(r"\{quote\}`([^`]+)`", e.statement + e.hint + e.solution)}
+    assert cited and cited <= keys, cited - keys
