@@ -34,8 +34,8 @@ import dataclasses
 import cv2
 import numpy as np
 
-from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift_with_scale,
-                                  region_around)
+from ..filters.mean_shift import (BANDWIDTHS, bin_image, ellipse_rho, mean_shift,
+                                  mean_shift_with_scale, region_around)
 from ..filters.optical_flow import motion_vector, pyramid
 from .particle_filter import ParticleFilterTracker, resampler_param
 from ..params import NOT_PRINTED, param
@@ -91,6 +91,16 @@ class EllipseColourParams:
                             why="the book's addition for speed on large targets; eq. 3 sums "
                                 "every pixel, which this setting matches on targets of 8 px "
                                 "half-axes")
+    # §3.1 after eq. 3 and §4.2 after eq. 10: a = sqrt(Hx^2 + Hy^2)
+    # [quote: cho2005.bandwidth_eq3] [quote: cho2005.bandwidth_eq10]
+    bandwidth: str = param("ellipse", doc="radius r of the kernel k(r) = 1 - r^2 of eq. 3 and "
+                           "10 on the ellipse's pixels: 'ellipse' = ||((x - y_x) / Hx, (y - y_y) / "
+                           "Hy)||, 'diagonal' = ||y - x_i|| / a with a = sqrt(Hx^2 + Hy^2) as "
+                           "printed", choices=BANDWIDTHS, paper="diagonal",
+                           why="Comaniciu et al. (2003)'s normalised ellipse: the weight falls to 0 "
+                               "at the ellipse's edge in every direction; with the printed a the "
+                               "edge pixels keep Hy^2/a^2 to Hx^2/a^2 (1/2 on a circle), a kernel "
+                               "cut off at the edge")
     min_rho: float = param(0.3, 0.0, 1.0, 0.05,
                            "best rho below this: the frame is reported lost (ok=False) and the "
                            "search widens to the whole frame",
@@ -199,7 +209,8 @@ class _EllipseColourModel:
         self._min_axes = np.maximum(0.25 * self._axes0, 2.0)
         # the model q_u is eq. 3 over every pixel of the initial ellipse (once, so no sampling)
         img = bin_image(frame, region_around(e[None, :2], e[None, 2:], 0.1), 1, self._bins())
-        _, p, _ = ellipse_rho(img, np.zeros(img.n_bins), e[None, :2], e[None, 2:])
+        _, p, _ = ellipse_rho(img, np.zeros(img.n_bins), e[None, :2], e[None, 2:],
+                              self.params.bandwidth)
         self.q = p[0]
 
     def _bin_image(self, frame, centres, axes, margin=1.0):
@@ -265,7 +276,8 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     def likelihood(self, frame, particles):
         """Step ③: pi_i = p(z_t | x_t = s_t^i), the colour likelihood of every candidate."""
         img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=0.1)
-        rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6])
+        rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6],
+                                     self.params.bandwidth)
         lik = self._weigh(rho)
         self._report.update(histograms=float(labels.shape[0]), pixels=float(labels.size))
         return lik
@@ -419,7 +431,7 @@ class CondensationMeanShift(Condensation):
         self._predicted = particles.copy()
         img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=1.0)
         res = mean_shift(img, self.q, particles[:, :2], particles[:, 4:6],
-                         max_iter=p.max_iter, eps=p.eps)
+                         max_iter=p.max_iter, eps=p.eps, bandwidth=p.bandwidth)
         self.mean_shift_result = res
         self._rho_before = res.rho_start
         moved = particles.copy()
@@ -480,11 +492,12 @@ class MeanShift(_EllipseColourModel, Tracker):
         img = self._bin_image(frame, self._centre[None, :], self._axes[None, :] * 1.1, margin=1.0)
         if p.scale_adapt:
             res, axes = mean_shift_with_scale(img, self.q, self._centre, self._axes,
-                                              gamma=p.gamma, max_iter=p.max_iter, eps=p.eps)
+                                              gamma=p.gamma, max_iter=p.max_iter, eps=p.eps,
+                                              bandwidth=p.bandwidth)
             self._axes = np.clip(axes, self._min_axes, self._max_axes)
         else:
             res = mean_shift(img, self.q, self._centre[None, :], self._axes[None, :],
-                             max_iter=p.max_iter, eps=p.eps)
+                             max_iter=p.max_iter, eps=p.eps, bandwidth=p.bandwidth)
         self._trajectory = res.trajectory[:, 0, :]
         H, W = self._shape[:2]
         self._centre = np.clip(res.centres[0], [0, 0], [W, H])
@@ -513,7 +526,8 @@ class MeanShift(_EllipseColourModel, Tracker):
         ys = np.arange(step[1] / 2, H, step[1])
         starts = np.stack(np.meshgrid(xs, ys), -1).reshape(-1, 2)
         img = self._bin_image(frame, starts, self._axes[None, :], margin=1.0)
-        res = mean_shift(img, self.q, starts, self._axes[None, :], max_iter=p.max_iter, eps=p.eps)
+        res = mean_shift(img, self.q, starts, self._axes[None, :], max_iter=p.max_iter, eps=p.eps,
+                         bandwidth=p.bandwidth)
         best = int(np.argmax(res.rho))
         self._report["search_starts"] = float(len(starts))
         if res.rho[best] >= max(p.min_rho, float(self._rho[0])):
