@@ -200,6 +200,10 @@ EXPERIMENTS = {e.name: e for e in (
     Experiment("claims", "the four papers' trackers, both presets, the real sequences, seeds "
                "0-2 (the paired comparisons of 09_trackers_compared)",
                seeds=(0, 1, 2), presets=("book", "paper"), trackers=_papers.TRACKERS),
+    Experiment("samples", "the four papers' trackers at the book's defaults on the sample "
+               "clips, seed 0, with OpenCV's MIL (the sample-clip ranking of "
+               "09_trackers_compared)", clips=("samples",), trackers=_papers.TRACKERS,
+               reference=True),
     Experiment("lee2012_real", "Table 3 of Lee et al. 2012 on the real sequences: the three "
                "trackers at their defaults, seeds 0-2, MIL with seed 0",
                _plain(*LEE2012_TRACKERS), seeds=(0, 1, 2), reference=True),
