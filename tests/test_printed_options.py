@@ -154,3 +154,12 @@ def test_departures_table_shows_the_window_as_a_reading_and_d_as_printed():
     cms = {line.split("|")[1].strip(): line.split("|")[2].strip()
            for line in viz.departures_table("condensation-mean-shift").splitlines()[2:]}
     assert cms["bandwidth"] == "diagonal"
+
+
+def test_departures_table_drops_the_quote_references_of_a_why():
+    from trackbook import trackers, viz
+    whys = {r["param"]: r["why"] for r in trackers.departures("color-hog-ipca")}
+    assert "[quote: lee2012.remove_old]" in whys["forgetting"]      # the source cites ...
+    table = viz.departures_table("color-hog-ipca")
+    assert "[quote:" not in table                                   # ... the table does not
+    assert "the paper removes old features, read as a 40-frame window" in table

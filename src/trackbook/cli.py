@@ -93,7 +93,7 @@ def _out_dir(path) -> Path:
 
 def cmd_trackers(args) -> int:
     """``trackbook trackers [NAME]``: the registered names (and the reference), or one
-    tracker's params with their doc, allowed range, book default and the paper's value."""
+    tracker's params with their doc, allowed range, book default and printed value."""
     from . import params as _params
     from . import trackers
     from .params import NOT_PRINTED
@@ -445,7 +445,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--max-frames", type=int)
     t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
     t.add_argument("--preset", default="book", help="'book' (the book's defaults) or 'paper' "
-                   "(the values the paper prints; see trackbook trackers NAME)")
+                   "(the printed values; see trackbook trackers NAME)")
     t.add_argument("--groundtruth", metavar="FILE", help="ground truth of your own video or "
                    "folder: one x,y,w,h line per frame (comma, tab or space separated)")
     t.add_argument("--import", dest="imports", action="append", metavar="MODULE_OR_FILE",
@@ -482,7 +482,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="a module or .py file that registers your own tracker(s); "
                         "repeatable; loaded in every worker")
     b.add_argument("--preset", choices=["book", "paper"], default="book",
-                   help="start every tracker from the book's defaults or the paper's values")
+                   help="start every tracker from the book's defaults or the printed values")
     b.add_argument("--max-runs", type=int, default=None, metavar="N",
                    help="the most runs one bench may do (default 5000)")
     b.set_defaults(fn=cmd_bench)

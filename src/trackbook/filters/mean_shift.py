@@ -134,7 +134,8 @@ class EllipseWindow:
 
 #: How the kernel's radius r of eq. 3 is measured: ``"ellipse"`` r^2 = (dx / Hx)^2 +
 #: (dy / Hy)^2 (Comaniciu et al. 2003's normalised ellipse, the book's default); ``"diagonal"``
-#: r = ||y - x_i|| / a with a = sqrt(Hx^2 + Hy^2), as eq. 3 and 10 of Cho & Kang 2005 print it.
+#: r = ||y - x_i|| / a with a = sqrt(Hx^2 + Hy^2), as eq. 3 and 10 of Cho & Kang 2005 print it
+#: [quote: cho2005.bandwidth_eq3].
 BANDWIDTHS = ("ellipse", "diagonal")
 
 
@@ -305,7 +306,8 @@ class MeanShiftResult:
     evaluations : int, batched histogram evaluations (one at the starts, one per iteration,
         one per round of step halving that needed one)
     histograms : int, colour histograms computed (candidates per evaluation, summed): the
-        book's count of the cost (the paper measures seconds per frame)
+        book's count of the cost (the paper measures seconds per frame
+        [quote: cho2005.table1_seconds])
     pixels : int, pixels read for them (histograms x pixels per ellipse)
     trajectory : (T, N, 2) the centres after every iteration, the starts first (for drawings)
     rho_trajectory : (T, N) rho along the trajectory

@@ -1,5 +1,5 @@
-"""``color-hog-ipca``: the tracker Lee et al. 2012 propose -- colour + HOG (eq. 14) for T
-frames, then reconstruction error against incrementally learned subspaces (eq. 6-7, 12-13)
+"""``color-hog-ipca``: the proposed tracker of Lee et al. 2012 -- colour + HOG (eq. 14) for T
+frames [quote: lee2012.ipca_after_t], then reconstruction error against incrementally learned subspaces (eq. 6-7, 12-13)
 (chapter ``04_incremental_svd``).
 
 It is :class:`~trackbook.trackers.color_hog_pf.ColorHogPF` with a learned model: frames
@@ -69,7 +69,8 @@ def subspace_exponent(D, exponent: str = "D2"):
         return D
     if exponent == "D2":
         return D * D
-    raise ValueError(f"exponent {exponent!r} is not 'D' (eq. 12-13 as printed) or 'D2'")
+    raise ValueError(f"exponent {exponent!r} is not 'D' (the exponent of eq. 12-13) or 'D2' "
+                     "(the form of eq. 10-11)")
 
 
 def window_subspace(columns, K: int, centre: bool = False) -> IncrementalSVD:
@@ -85,7 +86,7 @@ def window_subspace(columns, K: int, centre: bool = False) -> IncrementalSVD:
 
 @dataclasses.dataclass(frozen=True)
 class ColorHogIPCAParams(ColorHogPFParams):
-    """Knobs of ``color-hog-ipca`` (the tracker Lee et al. 2012 propose).
+    """Knobs of ``color-hog-ipca``, the proposed tracker of Lee et al. 2012.
 
     ``04_incremental_svd`` builds it. Lee et al. print T = 40 [quote: lee2012.t40] and the
     sigmas, a 40-frame learning window and D (not D^2) in the exponent of eq. 12-13 (both run
@@ -99,20 +100,23 @@ class ColorHogIPCAParams(ColorHogPFParams):
     # T = 40: end of section II ("T = 40"), n = 40 in section IV.
     T: int = param(40, 2, 200, 1, "frames collected before the first SVD (section II, V)",
                    paper=40)
-    # Not printed: the paper names no number of basis vectors.
+    # Not printed: no number of basis vectors (the 16 of the paper is the patch width
+    # [quote: lee2012.resize16x24]).
     K: int = param(2, 1, 64, 1, "basis vectors kept by the incremental SVD (eq. 6-7)",
                    paper=NOT_PRINTED, paper_value=2,
-                   why="Lee et al. give no K (their 16 is the patch width); 2 scored higher "
+                   why="no K is printed (16 is the patch width [quote: lee2012.resize16x24]); "
+                   "2 scored higher "
                    "than 4 with the anchor and than 16 without it, on the seven public "
                    "sequences we tuned on (lab notes)")
     # Not printed: eq. 6-7 follow Ross et al. 2008; the paper removes old features instead
-    # (the window below), so a forgetting factor is the book's.
+    # [quote: lee2012.remove_old] (the window below), so a forgetting factor is the book's.
     forgetting: float = param(0.95, 0.5, 1.0, 0.01,
                               "forgetting factor f (old singular values x f, Ross et al. 2008; "
                               "unused when window > 0)",
                               paper=NOT_PRINTED, paper_value=1.0,
-                              why="the paper removes old features by a 40-frame window, not a "
-                              "factor (paper preset: window 40, f unused); with the anchor 0.95 "
+                              why="the paper removes old features [quote: lee2012.remove_old], "
+                              "read as a 40-frame window, not a factor (paper preset: window "
+                              "40, f unused); with the anchor 0.95 "
                               "scored higher than 0.99 and 1.0 on the seven public sequences we "
                               "tuned on (lab notes; without the anchor 1.0 is better)")
     # Section IV: A = {I_1 ... I_n}, n = 40, m = 1, old features removed: a 40-frame window
@@ -133,7 +137,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           "(04_incremental_svd)")
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
-                                   "(0 = every frame, as the paper)", paper=0.0)
+                                   "(0 = every frame, the paper preset)", paper=0.0)
     anchor: float = param(0.7, 0.0, 1.0, 0.05,
                           "beta: after T the distance is beta D^2(h, h_ref) + (1 - beta) "
                           "D^2_subspace (0 = subspace only, the paper's eq. 12-13)",
@@ -143,7 +147,8 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           "on (04_incremental_svd, lab notes)")
     gate_k: float = param(0.0, 0.0, 10.0, 0.5,
                           "relative gate: learn a frame only if its energy -log(similarity) is "
-                          "<= median + k * MAD of the last accepted frames (0 = off, as the paper)",
+                          "<= median + k * MAD of the last accepted frames (0 = off, the paper "
+                          "preset)",
                           paper=0.0)
     gate_on: str = param("model", doc="what the relative gate measures: 'model' = the fused "
                          "similarity under the current likelihood, 'reference' = the fused "
@@ -159,7 +164,8 @@ class ColorHogIPCAParams(ColorHogPFParams):
                              paper=1)
     centre: bool = param(False, doc="learn mean-centred features (Ross et al.) instead of the "
                          "raw z of eq. 12-13 (the paper)", paper=False)
-    # The paper learns the histograms themselves (section IV, eq. 12-13 of section V).
+    # The paper learns the features themselves, read as the raw histograms (section IV
+    # [quote: lee2012.window40], eq. 12-13 of section V [quote: lee2012.likelihood_eq12]).
     feature_map: str = param("sqrt", doc="learned feature z: 'sqrt' = sqrt(histogram) "
                              "(unit norm), 'raw' = the histogram itself", choices=("sqrt", "raw"),
                              paper="raw",

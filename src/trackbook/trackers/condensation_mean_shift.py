@@ -23,7 +23,8 @@ the candidate's own half-axes so that one setting fits small and large targets::
 The velocity is drawn first and the position moves by the *new*, already-noised velocity
 ``x_dot_t`` (not by ``x_dot_{t-1}``), so the position's spread per frame is
 ``sqrt(noise_position^2 + noise_velocity^2)`` half-axes. The size is multiplied by ``a``, the
-one non-linear step; the paper leaves A unspecified.
+one non-linear step; the paper names A only as "the deterministic component"
+[quote: cho2005.candidates_eq9].
 The likelihood of a candidate is Nummiaro's ``exp(-(1 - rho) / (2 sigma^2))``.
 """
 
@@ -72,8 +73,8 @@ class EllipseColourParams:
                          "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro et al. "
                          "2003: 0.1)",
                          paper=NOT_PRINTED,
-                         why="Cho & Kang print no likelihood; the book takes Nummiaro et al. "
-                             "(2003)'s 0.1, the baseline they cite")
+                         why="no likelihood is printed; the book takes Nummiaro et al. "
+                             "(2003)'s 0.1")
     h_bins: int = param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)",
                         paper=NOT_PRINTED,
                         why="eq. 3 names bins u but no count; 8x8x4 HSV after Nummiaro et al. "
@@ -105,8 +106,10 @@ class EllipseColourParams:
                            "best rho below this: the frame is reported lost (ok=False) and the "
                            "search widens to the whole frame",
                            paper=NOT_PRINTED, paper_value=0.0,
-                           why="the paper never reports a lost target; the book flags frames "
-                               "whose best rho is below 0.3 (0 = off)")
+                           why="the paper's trackers have no lost state, though it reports "
+                               "mean-shift failing after targets overlap [quote: "
+                               "cho2005.multi_mean_shift_fails]; the book flags frames whose "
+                               "best rho is below 0.3 (0 = off)")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -307,7 +310,7 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     def frame_report(self) -> dict:
         """``mean_likelihood`` of this frame's candidates (Cho & Kang 2005 Fig. 5), ``mean_rho``,
         and the book's count of the cost: colour ``histograms`` computed and ``pixels`` read (the
-        paper measures seconds per frame)."""
+        paper measures seconds per frame [quote: cho2005.table1_seconds])."""
         return dict(self._report)
 
     rho = readonly_attr("_rho")
