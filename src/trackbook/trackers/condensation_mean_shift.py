@@ -154,7 +154,9 @@ class CondensationMeanShiftParams(CondensationParams):
     max_iter: int = param(10, 0, 100, 1, "mean-shift iterations per candidate at most "
                           "(eq. 12-13)",
                           paper=1,
-                          why="the book's reading: eq. 12-13 print one shift; the book repeats "
+                          why="eq. 12-13 print one shift per candidate, read as one iteration "
+                              "(the paper preset) [quote: cho2005.likelihood_rises_eq13]; the "
+                              "book repeats "
                               "steps ②-⑥ of §3.3 (halving, stop below eps) up to 10 times so "
                               "each candidate reaches its hill top (08_mean_shift; "
                               "preset='paper' runs one shift)")
@@ -163,13 +165,14 @@ class CondensationMeanShiftParams(CondensationParams):
                        why="step ⑥ of §3.3 names epsilon without a value; half a pixel")
     use_motion: bool = param(True, doc="seed the prediction with the motion vector (p, q) of "
                              "eq. 8", paper=True)  # §4, eq. 5-9
-    flow_levels: int = param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
-                             "single solve)",
+    flow_levels: int = param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = one "
+                             "solve, the paper preset's reading of eq. 8)",
                              paper=1,  # eq. 5-8: one least-squares solve on the frame pair
                              why="one solve cannot measure motions over ~1 px; a 3-level "
                                  "pyramid measures the sample clips' 2-6 px steps (lab notes)")
-    flow_iterations: int = param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's "
-                                 "single solve; more re-warp and solve for the remainder)",
+    flow_iterations: int = param(1, 1, 20, 1, "solves per pyramid level (1 = one solve, "
+                                 "the paper preset's reading of eq. 8; more re-warp and solve "
+                                 "for the remainder)",
                                  paper=1)  # eq. 8: one solve
 
 
