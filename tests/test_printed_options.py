@@ -163,3 +163,12 @@ def test_departures_table_drops_the_quote_references_of_a_why():
     table = viz.departures_table("color-hog-ipca")
     assert "[quote:" not in table                                   # ... the table does not
     assert "the paper removes old features, read as a 40-frame window" in table
+
+
+def test_cli_marks_readings_in_the_paper_column(capsys):
+    from trackbook import cli
+    assert cli.main(["trackers", "color-hog-ipca"]) == 0
+    lines = {line.split()[0]: line for line in capsys.readouterr().out.splitlines() if line.strip()}
+    assert "40 (a reading)" in lines["window"]
+    assert "'D'" in lines["exponent"] and "(a reading)" not in lines["exponent"]
+    assert "not printed" in lines["forgetting"]

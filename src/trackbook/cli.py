@@ -97,6 +97,7 @@ def cmd_trackers(args) -> int:
     from . import params as _params
     from . import trackers
     from .params import NOT_PRINTED
+    from .quotes import fields as quote_fields
 
     _load_imports(args.imports)
     if not args.name:
@@ -127,7 +128,9 @@ def cmd_trackers(args) -> int:
         if paper is NOT_PRINTED:
             paper_txt = "not printed"
         elif _params.has_paper(f):
-            paper_txt = repr(paper)
+            # a printed value, or the book's reading of an ambiguous passage
+            reading = quote_fields.state(args.name, f.name)[0] == "reading"
+            paper_txt = repr(paper) + (" (a reading)" if reading else "")
         else:
             paper_txt = "-"
         rows.append((f.name, rng, repr(f.default), paper_txt, " ".join(m.get("doc", "").split())))
