@@ -35,6 +35,22 @@ def test_the_grids_keep_their_sizes():
         experiments.get("nope")
 
 
+def test_the_sample_ranking_is_the_benchmark_the_chapter_ran():
+    """09_trackers_compared reads ``samples`` instead of running ``bench.run(PAPER_TRACKERS,
+    "samples", seed=0)`` (with MIL, the benchmark's default): the same grid, declared."""
+    from pathlib import Path
+
+    e = experiments.get("samples")
+    grid = e.grid()
+    assert sorted(c.tracker for c in grid[:-1]) == sorted(trackbook.papers.TRACKERS)
+    assert grid[-1].tracker == bench.REFERENCE
+    assert {c.preset for c in grid} == {"book"} and all(not c.params for c in grid)
+    assert e.seeds == (0,) and e.clips == ("samples",)
+    chapter = Path(__file__).resolve().parents[1] / "book" / "09_trackers_compared.md"
+    assert "bench.run(" not in chapter.read_text(encoding="utf-8")
+    assert 'results.load("samples")' in chapter.read_text(encoding="utf-8")
+
+
 def test_preset_is_part_of_the_saved_runs_key():
     ref = bench.resolve_clips(["red-cube"])[0]
     a = bench.Task("covariance", ref, 0, 5, (), "fp", 5)

@@ -21,7 +21,7 @@ PRINTED = {
     "init": "frame",           # pseudocode, t = 0: particles spread uniformly over the image
 }
 NOT_IN_PAPER = {"min_size",     # eq. 9 has no floor on w and h
-                "lost_below", "lost_k"}   # the paper reports no lost frames
+                "lost_below", "lost_k"}   # the trackers of the paper have no lost state
 
 
 def test_fields_are_the_printed_and_the_not_printed():

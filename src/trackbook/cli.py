@@ -93,10 +93,11 @@ def _out_dir(path) -> Path:
 
 def cmd_trackers(args) -> int:
     """``trackbook trackers [NAME]``: the registered names (and the reference), or one
-    tracker's params with their doc, allowed range, book default and the paper's value."""
+    tracker's params with their doc, allowed range, book default and printed value."""
     from . import params as _params
     from . import trackers
     from .params import NOT_PRINTED
+    from .quotes import fields as quote_fields
 
     _load_imports(args.imports)
     if not args.name:
@@ -127,7 +128,9 @@ def cmd_trackers(args) -> int:
         if paper is NOT_PRINTED:
             paper_txt = "not printed"
         elif _params.has_paper(f):
-            paper_txt = repr(paper)
+            # a printed value, or the book's reading of an ambiguous passage
+            reading = quote_fields.state(args.name, f.name)[0] == "reading"
+            paper_txt = repr(paper) + (" (a reading)" if reading else "")
         else:
             paper_txt = "-"
         rows.append((f.name, rng, repr(f.default), paper_txt, " ".join(m.get("doc", "").split())))
@@ -445,7 +448,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--max-frames", type=int)
     t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
     t.add_argument("--preset", default="book", help="'book' (the book's defaults) or 'paper' "
-                   "(the values the paper prints; see trackbook trackers NAME)")
+                   "(the printed values; see trackbook trackers NAME)")
     t.add_argument("--groundtruth", metavar="FILE", help="ground truth of your own video or "
                    "folder: one x,y,w,h line per frame (comma, tab or space separated)")
     t.add_argument("--import", dest="imports", action="append", metavar="MODULE_OR_FILE",
@@ -482,7 +485,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="a module or .py file that registers your own tracker(s); "
                         "repeatable; loaded in every worker")
     b.add_argument("--preset", choices=["book", "paper"], default="book",
-                   help="start every tracker from the book's defaults or the paper's values")
+                   help="start every tracker from the book's defaults or the printed values")
     b.add_argument("--max-runs", type=int, default=None, metavar="N",
                    help="the most runs one bench may do (default 5000)")
     b.set_defaults(fn=cmd_bench)

@@ -12,11 +12,12 @@ Fields of each entry
 label : short citation ("Lee et al. 2012")
 citation : the full reference (as in ``book/references.bib``)
 table : which table the headline figures come from
-trackers : the registered trackers standing for the paper's compared methods, in its order
+trackers : the registered trackers standing for the paper's methods (proposed and
+    baselines), in its order
 tracking_rate : printed tracking (detection) rate per tracker, as fractions
 ms : printed milliseconds per frame, single target
 hardware : the machine (and image size) the paper timed on
-claim : the paper's central claim, in words
+claim : the central claim of the paper, in words
 kind : how :func:`trackbook.evaluation.compare.check_claims` reads the claim
 
 and, where printed: ``search_rate`` and ``table1`` (Lee 2015's Table 1 on RedCube: misses,
@@ -60,7 +61,8 @@ PAPERS = {
         "trackers": ["covariance", "kalman-covariance"],
         "tracking_rate": {"covariance": 0.871, "kalman-covariance": 0.963},
         "search_rate": {"covariance": 0.00134, "kalman-covariance": 0.00043},
-        #: Table 1 as printed (RedCube, 164 frames).
+        #: Table 1 [quote: lee2015.table1] (RedCube; 164 frames in the table, 184 in the text
+        #: [quote: lee2015.frames184]).
         "table1": {
             "covariance": {"misses": 21, "frames": 164, "detection_rate": 0.871,
                            "search_rate": 0.00134},

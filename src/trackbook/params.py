@@ -6,8 +6,10 @@ frozen=True)``, subclassing another tracker's params to extend them) whose field
 The metadata (allowed range, slider range, step, one-line doc) is what the widgets turn into
 sliders, so a new knob shows up in the book's playground without touching the widget code.
 
-Each field also records what the paper printed (``paper=``) and, where the book's default is
-not that value, why (``why=``). From these :func:`paper_values` builds the printed method
+Each field also records the printed value (``paper=``) and, where the book's default is
+not that value, why (``why=``); the passage behind a printed value, and whether the value is
+printed or a reading of an ambiguous passage, is in :mod:`trackbook.quotes.fields` (a value
+with no passage is ``NOT_PRINTED``). From these :func:`paper_values` builds the printed method
 (``trackers.create(name, preset="paper")``) and :func:`departures` lists the book's departures
 (``trackers.departures(name)``): the chapters' departure tables are generated from them, so
 they cannot drift from the code.
@@ -27,7 +29,7 @@ from ._checks import check_finite_number
 
 
 class _NotPrinted:
-    """Marker for a value the paper does not print (the book had to choose one)."""
+    """Marker for a value with no printed source (the book had to choose one)."""
 
     def __repr__(self) -> str:
         return "not printed"
@@ -36,9 +38,9 @@ class _NotPrinted:
         return "NOT_PRINTED"
 
 
-#: ``paper=NOT_PRINTED``: the paper gives no value; ``why=`` says what the book chose and why.
+#: ``paper=NOT_PRINTED``: no value is printed; ``why=`` says what the book chose and why.
 NOT_PRINTED = _NotPrinted()
-#: A knob the paper's method does not have (an addition of the book) is also ``NOT_PRINTED``,
+#: A knob missing from the printed method (an addition of the book) is also ``NOT_PRINTED``,
 #: with ``paper_value=`` the setting that switches the addition off.
 _UNSET = object()
 
@@ -61,12 +63,12 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
     slider : ``(a, b)``, the range the widgets' sliders span when it is narrower than the
         allowed range (e.g. up to 1000 particles on a slider, any number by keyword);
         defaults to ``(lo, hi)``.
-    paper : the value the paper prints, or :data:`NOT_PRINTED` when it prints none.
-    why : required when ``default != paper`` or the paper prints nothing: one line on why the
+    paper : the printed value, or :data:`NOT_PRINTED` when none is printed.
+    why : required when ``default != paper`` or nothing is printed: one line on why the
         book's default is what it is, and where that was measured.
     paper_value : the setting ``preset="paper"`` uses when ``paper`` is not a usable value
-        (for :data:`NOT_PRINTED`, or a knob the paper's method does not have, e.g. ``0`` for
-        "off"); defaults to ``paper``, or to ``default`` when the paper prints nothing.
+        (for :data:`NOT_PRINTED`, or a knob missing from the printed method, e.g. ``0`` for
+        "off"); defaults to ``paper``, or to ``default`` when nothing is printed.
     """
     if slider is not None:
         if len(slider) != 2 or not slider[0] <= slider[1]:
@@ -265,8 +267,8 @@ def make_params(cls, values: dict):
 
 def describe(cls) -> list[dict]:
     """Rows ``{name, default, lo, hi, step, slider, doc, choices, paper, why, paper_value}`` for
-    tables and widgets: ``choices`` as they are now, and ``"not printed"`` where the paper
-    prints no value (or where no ``paper_value`` is stated: ``preset="paper"`` then uses the
+    tables and widgets: ``choices`` as they are now, and ``"not printed"`` where no value is
+    printed (or where no ``paper_value`` is stated: ``preset="paper"`` then uses the
     one :func:`paper_value` gives)."""
     rows = []
     for f in dataclasses.fields(cls):
@@ -280,7 +282,8 @@ def describe(cls) -> list[dict]:
 
 
 def has_paper(field: dataclasses.Field) -> bool:
-    """Whether the field records the paper's value (every field of every tracker must)."""
+    """Whether the field records its printed value or NOT_PRINTED (every field of every
+    tracker must)."""
     return field.metadata.get("paper", _UNSET) is not _UNSET
 
 
@@ -301,7 +304,7 @@ def paper_values(cls) -> dict:
 
 
 def is_departure(field: dataclasses.Field) -> bool:
-    """The book's default is not the printed value, or the paper prints none."""
+    """The book's default is not the printed value, or none is printed."""
     paper = field.metadata.get("paper", _UNSET)
     if paper is _UNSET:
         return False

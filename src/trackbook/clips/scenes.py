@@ -238,11 +238,12 @@ def _patterned_object(n: int) -> Rendering:
 
 @sample("red-cube", "lee2015", frames=184, fps=25.0, attributes=("FM",),
         description="""
-A small red cube (24 x 24 px) with a printed digit slides over a concrete floor (Lee et
-al. 2015's clip: 320 x 240, 184 frames at 25 fps). It moves slowly and smoothly (about 1.6 px per
+A small red cube (24 x 24 px) with a printed digit slides over a concrete floor (Lee
+2015's clip: 320 x 240, 184 frames at 25 fps). It moves slowly and smoothly (about 1.6 px per
 frame) along a gentle curve until, at frames 139-142 (the steps into frames 138 to 142,
 counting from 0), it suddenly accelerates to about 9 px per frame and turns by about 140
-degrees, as in the paper's clip; then it continues at about 2 px per frame in the new
+degrees, as in the paper's clip [quote: lee2015.covariance_loses_139]
+[quote: lee2015.miss_causes] (the angle is the book's); then it continues at about 2 px per frame in the new
 direction.""")
 def _red_cube(n: int) -> Rendering:
     rng = np.random.default_rng(1002)

@@ -103,8 +103,9 @@ LEE2012_SAMPLES = ("robot-corridor-day", "robot-corridor-night")
 
 #: Unchecked learning (every frame, subspace-only likelihood after T, as eq. 12-13) with the
 #: book's sigma = 0.2, z = sqrt(h), K = 2, f = 0.95 and init "box": NOT the paper's
-#: configuration (that is ``preset="paper"``: sigma 0.4, raw histograms, no forgetting, whole-
-#: frame start; the paper prints no K). Spelled out so that every row below means the same thing
+#: configuration (that is ``preset="paper"``: sigma 0.4 [quote: lee2012.sigma04], raw
+#: histograms, a 40-frame window [quote: lee2012.window40], D in the exponent of eq. 12-13
+#: [quote: lee2012.likelihood_eq12], whole-frame start; no K is printed). Spelled out so that every row below means the same thing
 #: whatever the current defaults are.
 UNCHECKED = {"anchor": 0.0, "gate_k": 0.0, "learn_threshold": 0.0, "learn_every": 1,
              "K": 2, "forgetting": 0.95, "centre": False}
@@ -200,6 +201,10 @@ EXPERIMENTS = {e.name: e for e in (
     Experiment("claims", "the four papers' trackers, both presets, the real sequences, seeds "
                "0-2 (the paired comparisons of 09_trackers_compared)",
                seeds=(0, 1, 2), presets=("book", "paper"), trackers=_papers.TRACKERS),
+    Experiment("samples", "the four papers' trackers at the book's defaults on the sample "
+               "clips, seed 0, with OpenCV's MIL (the sample-clip ranking of "
+               "09_trackers_compared)", clips=("samples",), trackers=_papers.TRACKERS,
+               reference=True),
     Experiment("lee2012_real", "Table 3 of Lee et al. 2012 on the real sequences: the three "
                "trackers at their defaults, seeds 0-2, MIL with seed 0",
                _plain(*LEE2012_TRACKERS), seeds=(0, 1, 2), reference=True),

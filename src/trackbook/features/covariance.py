@@ -22,7 +22,8 @@ import cv2
 import numpy as np
 
 #: The feature sets a tracker can use; the string spells the feature vector.
-#: ``"xyIIxIy"`` is eq. 2 as Lee (2015) prints it (signed Ix, Iy); the book's default
+#: ``"xyIIxIy"`` is eq. 2 of Lee (2015) with signed Ix, Iy: the printed f = [x y I Ix ...]
+#: stops at Ix [quote: lee2015.features_eq2], and Iy is the book's completion; the default
 #: ``"xyI|Ix||Iy|"`` takes their absolute values as Tuzel et al. (2006) do (``07_region_covariance``).
 FEATURE_SETS = ("xyI|Ix||Iy|", "rI|Ix||Iy|", "xyRGB|Ix||Iy|", "xyIIxIy")
 
@@ -31,7 +32,8 @@ def _check_feature_set(features: str) -> str:
     if features not in FEATURE_SETS:
         raise ValueError(
             f"unknown feature set {features!r}; choose one of {FEATURE_SETS} "
-            "(eq. 2 of Lee 2015 as printed is 'xyIIxIy', with absolute gradients 'xyI|Ix||Iy|'; "
+            "(eq. 2 of Lee 2015, completed with a signed Iy, is 'xyIIxIy', with absolute "
+            "gradients 'xyI|Ix||Iy|'; "
             "eq. 3 is 'rI|Ix||Iy|')."
         )
     return features
@@ -128,7 +130,8 @@ def feature_planes(frame: np.ndarray, features: str = "xyI|Ix||Iy|", out=None) -
         c += 1
     kx = np.array([[-1.0, 0.0, 1.0]])
     for kernel in (kx, kx.T):
-        # Same [-1 0 1] filter and borders as _abs_gradients; signed for eq. 2 as printed.
+        # Same [-1 0 1] filter and borders as _abs_gradients; signed, as eq. 2 writes I_x
+        # [quote: lee2015.features_eq2].
         g = cv2.filter2D(grey, cv2.CV_64F, kernel, borderType=cv2.BORDER_REPLICATE)
         if features == "xyIIxIy":
             out[c] = g

@@ -5,8 +5,8 @@ on each ray (eq. 1 for the target model M, eq. 4 for a particle's model p). Two 
 are compared through the mean of their two middle distances (eq. 5) and the relative sum of
 absolute differences (eq. 6).
 
-Conventions fixed by this module (the paper leaves them open)
--------------------------------------------------------------
+Conventions fixed by this module (none is printed)
+--------------------------------------------------
 - Ray order ``j = 0..7`` is E, NE, N, NW, W, SW, S, SE, i.e. theta_j = 45 * j degrees
   counter-clockwise as seen on the screen (image rows grow downwards, so N is "up").
   ``DIRECTIONS[j]`` is the pixel step ``(dx, dy)`` of ray j.
@@ -53,8 +53,8 @@ def edge_image(frame: np.ndarray, low: float = 50.0, high: float = 150.0,
                blur: int = 0) -> np.ndarray:
     """Canny (1986) edge map of a BGR (or grey) frame as an (H, W) bool array.
 
-    Kim et al. (2016) name no edge detector, thresholds or smoothing; Canny with 50/150 and no
-    blur are the book's choices (the ``canny_low``, ``canny_high``, ``blur`` params of
+    No edge detector, thresholds or smoothing is printed in Kim et al. (2016); Canny with
+    50/150 and no blur are the book's choices (the ``canny_low``, ``canny_high``, ``blur`` params of
     ``edge-ray-pf`` record them as not printed).
 
     Parameters

@@ -15,7 +15,7 @@ Chapter ``03_hog`` of the book. The recipe, on a grey patch resized to 16 wide x
 5. cut the patch into 6 x 4 non-overlapping cells of 4 x 4 px and let every pixel vote its
    magnitude into one of 8 orientation bins of 45 degrees (eq. 5); normalise.
 
-Decisions the paper leaves open (and the book states):
+Decisions not printed (the book states them):
 
 - **Order of operations.** The paper resizes the ROI to 16 x 24 *first* (Fig. 1): the BGR box
   is resampled, converted to grey, and the blur and the gradients are taken on that patch,

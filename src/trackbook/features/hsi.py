@@ -1,7 +1,7 @@
 """HSI colour and HSI histograms: the colour model of Kim, Kim & Choi 2016's baseline (1).
 
 The paper compares its edge model with "a particle filter based on the HSI colour model"
-(Nummiaro et al. 2003 use a colour histogram in a similar hue/saturation space). HSI is the
+[quote: kim2016.baselines] (Nummiaro et al. 2003 use a colour histogram in a similar hue/saturation space). HSI is the
 textbook (Gonzalez & Woods) conversion from RGB in [0, 1]:
 
     I = (R + G + B) / 3

@@ -74,7 +74,8 @@ def constant_velocity(x0=(0.0, 0.0), v0=(0.0, 0.0), q: float = 1.0, r: float = 1
     """The constant-velocity model printed in Lee 2015 (section 2.2).
 
     State [x, y, ẋ, ẏ]; F advances position by velocity per frame; H picks the position;
-    Q = q·I₄ and R = r·I₂ (the paper prints q = r = 1); P₀ = p0·I₄.
+    Q = q·I₄ and R = r·I₂ (the paper prints Q = I and R = I [quote: lee2015.q_identity]
+    [quote: lee2015.r_identity], q = r = 1); P₀ = p0·I₄.
     """
     kf = KalmanFilter(4, 2)
     kf.F = np.array([[1.0, 0, 1, 0], [0, 1, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]])

@@ -132,14 +132,41 @@ class EllipseWindow:
     k_total: np.ndarray
 
 
+#: How the kernel's radius r of eq. 3 is measured: ``"ellipse"`` r^2 = (dx / Hx)^2 +
+#: (dy / Hy)^2 (Comaniciu et al. 2003's normalised ellipse, the book's default); ``"diagonal"``
+#: r = ||y - x_i|| / a with a = sqrt(Hx^2 + Hy^2), as eq. 3 and 10 of Cho & Kang 2005 print it
+#: [quote: cho2005.bandwidth_eq3].
+BANDWIDTHS = ("ellipse", "diagonal")
+
+
+def kernel_weights(dx, dy, Hx: float, Hy: float, bandwidth: str = "ellipse") -> np.ndarray:
+    """k(r) = 1 - r^2 (eq. 2 of Cho & Kang 2005) of pixels at offsets ``(dx, dy)`` from the
+    centre of an ellipse with half-axes ``(Hx, Hy)``; 0 outside the ellipse.
+
+    ``bandwidth="ellipse"``: r^2 = (dx / Hx)^2 + (dy / Hy)^2. ``"diagonal"``: eq. 3 and 10 of
+    Cho & Kang 2005, k(||y - x_i|| / a) over the I pixels inside the ellipse, with the
+    bandwidth a = sqrt(Hx^2 + Hy^2) [quote: cho2005.bandwidth_eq3]. Since a exceeds both
+    half-axes, every pixel inside the ellipse then has a positive weight, and the weight falls
+    off alike in every direction.
+    """
+    dx, dy = np.asarray(dx, dtype=float), np.asarray(dy, dtype=float)
+    r2_ellipse = (dx / Hx) ** 2 + (dy / Hy) ** 2
+    if bandwidth == "ellipse":
+        return np.clip(1.0 - r2_ellipse, 0.0, None)
+    if bandwidth == "diagonal":
+        a2 = Hx * Hx + Hy * Hy                                       # a = sqrt(Hx^2 + Hy^2)
+        return np.where(r2_ellipse < 1.0, 1.0 - (dx * dx + dy * dy) / a2, 0.0)
+    raise ValueError(f"bandwidth {bandwidth!r} is not one of {', '.join(BANDWIDTHS)}")
+
+
 @functools.lru_cache(maxsize=32)
-def _window_kernel(stride: int, axes: tuple):
+def _window_kernel(stride: int, axes: tuple, bandwidth: str = "ellipse"):
     axes = np.array(axes, dtype=float).reshape(-1, 2)
     rx, ry = (np.floor(axes.max(axis=0) / stride).astype(int) + 1)
     dj, di = np.meshgrid(np.arange(-rx, rx + 1), np.arange(-ry, ry + 1))
     dj, di = dj.ravel(), di.ravel()
-    r2 = ((dj * stride)[None, :] / axes[:, :1]) ** 2 + ((di * stride)[None, :] / axes[:, 1:]) ** 2
-    k = np.clip(1.0 - r2, 0.0, None)
+    k = kernel_weights((dj * stride)[None, :], (di * stride)[None, :], axes[:, :1], axes[:, 1:],
+                       bandwidth)
     keep = (k > 0).any(axis=0)
     dj, di, k = dj[keep], di[keep], np.ascontiguousarray(k[:, keep])
     inside = None if (k > 0).all() else k > 0
@@ -151,16 +178,18 @@ def _window_kernel(stride: int, axes: tuple):
     return dj, di, k, inside, int(rx), int(ry), dxy1, k_total
 
 
-def ellipse_window(img: BinImage, axes) -> EllipseWindow:
+def ellipse_window(img: BinImage, axes, bandwidth: str = "ellipse") -> EllipseWindow:
     """Offsets and kernel weights of the lattice pixels of N ellipses with half-axes ``axes``.
 
     The window covers the largest ellipse; window pixels outside every ellipse are dropped, so
     for N ellipses of one size the window is exactly the ellipse's pixels. (The kernels are
     cached by size: a tracker whose ellipses keep their size computes them once.)
+    ``bandwidth`` is the kernel's radius (:func:`kernel_weights`).
     """
     axes = np.atleast_2d(np.asarray(axes, dtype=float))
     dj, di, k, inside, rx, ry, dxy1, k_total = _window_kernel(int(img.stride),
-                                                              tuple(axes.ravel().tolist()))
+                                                              tuple(axes.ravel().tolist()),
+                                                              bandwidth)
     pad = 2 * max(rx, ry) + 2
     wp = img.labels.shape[1] + 2 * pad
     return EllipseWindow(dxy1[:, :2], di * wp + dj, k, inside, pad, np.array([rx + 1, ry + 1]),
@@ -214,14 +243,15 @@ def ellipse_histograms(labels, k, n_bins: int) -> np.ndarray:
     return _normalise(_histograms(labels, k, n_bins), n_bins)[:, :n_bins]
 
 
-def ellipse_rho(img: BinImage, q, centres, axes):
+def ellipse_rho(img: BinImage, q, centres, axes, bandwidth: str = "ellipse"):
     """``(rho, p, labels)``: the Bhattacharyya coefficient rho[p(y), q] of N ellipses, their
-    colour distributions (eq. 3, (N, m)) and their pixels' labels (:func:`ellipse_labels`)."""
+    colour distributions (eq. 3, (N, m)) and their pixels' labels (:func:`ellipse_labels`);
+    ``bandwidth`` is the kernel's radius (:func:`kernel_weights`)."""
     c = np.atleast_2d(np.asarray(centres, dtype=float))
     a = np.atleast_2d(np.asarray(axes, dtype=float))
     if a.shape[0] == 1 and c.shape[0] > 1:
         a = np.repeat(a, c.shape[0], axis=0)
-    win = ellipse_window(img, a)
+    win = ellipse_window(img, a, bandwidth)
     labels = ellipse_labels(img, lattice_pixel(img, c), win)
     p = ellipse_histograms(labels, win.k, img.n_bins)
     return np.sqrt(p * np.asarray(q, dtype=float)).sum(axis=1), p, labels
@@ -276,7 +306,8 @@ class MeanShiftResult:
     evaluations : int, batched histogram evaluations (one at the starts, one per iteration,
         one per round of step halving that needed one)
     histograms : int, colour histograms computed (candidates per evaluation, summed): the
-        book's count of the cost (the paper measures seconds per frame)
+        book's count of the cost (the paper measures seconds per frame
+        [quote: cho2005.table1_seconds])
     pixels : int, pixels read for them (histograms x pixels per ellipse)
     trajectory : (T, N, 2) the centres after every iteration, the starts first (for drawings)
     rho_trajectory : (T, N) rho along the trajectory
@@ -296,7 +327,7 @@ class MeanShiftResult:
 
 
 def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float = 0.5,
-               max_halvings: int = 3) -> MeanShiftResult:
+               max_halvings: int = 3, bandwidth: str = "ellipse") -> MeanShiftResult:
     """Comaniciu et al.'s mean-shift tracker, steps ①-⑥ of §3.3 of Cho & Kang 2005, for N starts.
 
     ① p(y0), rho0 at the start; ② weights w_i = sqrt(q_u / p_u(y0)); ③ y1 = weighted mean of
@@ -317,6 +348,8 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     img : the bin-index image of the region holding the ellipses (:func:`bin_image`)
     q : (m,) target model
     centres : (N, 2) starts y0 (image coordinates); axes : (N, 2) or (1, 2) half-axes, fixed
+    bandwidth : the kernel's radius of eq. 3 (:func:`kernel_weights`). Either way g = -k' is
+        constant on the ellipse's pixels, so step ③ is the same weighted mean.
     """
     m, m1 = img.n_bins, img.n_bins + 1
     y0 = np.array(np.atleast_2d(centres), dtype=float)
@@ -324,7 +357,7 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
     axes = np.atleast_2d(np.asarray(axes, dtype=float))
     if axes.shape[0] == 1 and n > 1:
         axes = np.repeat(axes, n, axis=0)
-    win = ellipse_window(img, axes)
+    win = ellipse_window(img, axes, bandwidth)
     # Prepared once. Each candidate's labels live in its own block of m + 1 bins (the last is
     # the sentinel "outside the frame", whose model value is 0). The state kept per candidate
     # is sqrt(counts), the square root of its unnormalised eq. 3 sums: step ②'s weights
@@ -436,7 +469,8 @@ def mean_shift(img: BinImage, q, centres, axes, max_iter: int = 20, eps: float =
 
 
 def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1),
-                          gamma: float = 0.1, max_iter: int = 20, eps: float = 0.5):
+                          gamma: float = 0.1, max_iter: int = 20, eps: float = 0.5,
+                          bandwidth: str = "ellipse"):
     """Comaniciu et al. 2003 §5.2 scale adaptation: run mean-shift with the half-axes scaled by
     each of ``factors`` (±10 %), keep the run with the best rho, and move the half-axes a
     fraction ``gamma`` of the way to its size (h_new = gamma h_opt + (1 - gamma) h_prev).
@@ -447,7 +481,8 @@ def mean_shift_with_scale(img: BinImage, q, centre, axes, factors=(0.9, 1.0, 1.1
     f = np.asarray(factors, dtype=float)
     trial_axes = f[:, None] * axes[None, :]
     starts = np.repeat(np.asarray(centre, dtype=float).reshape(1, 2), len(f), axis=0)
-    res = mean_shift(img, q, starts, trial_axes, max_iter=max_iter, eps=eps)
+    res = mean_shift(img, q, starts, trial_axes, max_iter=max_iter, eps=eps,
+                     bandwidth=bandwidth)
     best = int(np.argmax(res.rho))
     new_axes = gamma * trial_axes[best] + (1.0 - gamma) * axes
     pick = slice(best, best + 1)

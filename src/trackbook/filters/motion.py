@@ -91,7 +91,7 @@ def similarity(d2, sigma: float) -> np.ndarray:
 
     This is eq. 10-11 of Lee et al. 2012 *as corrected*: the paper prints
     exp(-(1 - D^2) / (2 sigma^2)), which grows with the distance and so rewards the particles
-    that look least like the target -- a sign typo (Perez et al. 2002, the paper's own [20],
+    that look least like the target [quote: lee2012.likelihood_eq10] -- a sign typo (Perez et al. 2002, the paper's own [20],
     use exp(-D^2 / (2 sigma^2)) = exp(-(1 - rho) / (2 sigma^2))).
     """
     d2 = np.clip(np.asarray(d2, dtype=float), 0.0, None)

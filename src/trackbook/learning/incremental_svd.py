@@ -7,7 +7,7 @@ and m new columns B, the SVD of [A B] follows from a small (k+m) x (k+m) problem
                     [   0    B~^T B  ] [  0   I ]
 
 where B~ is an orthonormal basis of the part of B orthogonal to U. (The paper prints B^T B
-in the lower-right block; it is B~^T B, the coordinates of B's residual in B~.) Calling the
+in the lower-right block [quote: lee2012.update_eq6]; it is B~^T B, the coordinates of B's residual in B~.) Calling the
 middle matrix R and taking its SVD R = U~ Sigma~ V~^T gives (eq. 7)
 
     U' = [U  B~] U~,    Sigma' = Sigma~,
@@ -50,7 +50,7 @@ class IncrementalSVD:
     Parameters
     ----------
     K : int
-        Number of singular vectors kept (``color-hog-ipca`` defaults to 2; Lee et al. 2012 print no K).
+        Number of singular vectors kept (``color-hog-ipca`` defaults to 2; no K is printed in Lee et al. 2012).
     forgetting : float in (0, 1]
         f of Ross et al.: old singular values are scaled by f at every ``partial_fit``.
     centre : bool
@@ -149,7 +149,8 @@ class IncrementalSVD:
     def reconstruction_error(self, Z) -> np.ndarray:
         """D = ||z - U U^T z||_2 of every column z of Z (eq. 12-13 of Lee et al. 2012, as corrected).
 
-        The paper prints D = sqrt(sum_i z_i - z_reconst,i) -- a sum of signed differences,
+        The paper prints D = sqrt(sum_i z_i - z_reconst,i) [quote: lee2012.likelihood_eq12] -- a
+        sum of signed differences,
         which can be negative; the intended quantity is the Euclidean norm of the residual.
         With ``centre=True`` the residual is of z - mean.
         """

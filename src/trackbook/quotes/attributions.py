@@ -5,6 +5,14 @@ A sentence that speaks for a paper ("the paper prints ...", "Kim et al. (2016) u
 the book's role ``{quote}`lee2012.t40``` or, in docstrings, comments and param docs, the plain
 form ``[quote: lee2012.t40]``. :func:`unquoted` lists the ones that carry none.
 
+The register holds the four papers only. A sentence that speaks for another work, by name
+("Bolme et al. build ...", "Henriques et al. 2015 use ...", "Comaniciu et al. (2003) stop
+..."), is backed by that work's bibliographic citation instead: it passes when its author is
+not Lee, Kim or Cho and its paragraph cites that author -- a ``{cite}`` role with a key of that
+author (``bolme2010``) or an author-year citation ("Bolme et al. 2010") -- see
+:func:`other_work_cited`. "The paper" and "the papers" always speak for the four (a chapter
+that means another work names it).
+
 Paragraphs are: in Markdown, runs of non-blank lines; in Python, each docstring paragraph and
 each run of comments and string literals on consecutive lines (a param's doc split over
 several literals is one paragraph).
@@ -87,6 +95,44 @@ def _cited(text: str) -> bool:
     return bool(ROLE.search(text) or TEXT_REFERENCE.search(text) or KEY_LITERAL.search(text))
 
 
+#: The book's bibliographic roles: ``{cite}`key```, ``{cite:t}`a,b```, ``{cite:p}`key```.
+CITE_ROLE = re.compile(r"\{cite(?::[a-z]+)?\}`([^`]*)`")
+#: An author-year citation: "Henriques et al. 2015", "Nummiaro et al. (2003)", "Cho & Kang
+#: 2005", "Canny (1986)", "Tuzel et al.'s (2006)"; group 1 is the first author.
+AUTHOR_YEAR = re.compile(r"\b([A-Z][A-Za-z\u00c0-\u017f\-]+)(?:\s+et\s+al\.?(?:'s)?|\s+(?:and|&)\s+"
+                         r"[A-Z][A-Za-z\u00c0-\u017f\-]+(?:'s)?|'s)?,?\s+\(?(?:19|20)\d\d[a-z]?\)?")
+#: The first authors of the four papers.
+_FOUR_AUTHORS = ("Lee", "Kim", "Cho")
+
+
+def other_work_cited(paragraph: str, start: int) -> bool:
+    """Whether the attribution matched at ``paragraph[start:]`` speaks for a work outside the
+    register, named and cited.
+
+    True when the attribution's subject is an author (the name before "et al." or before the
+    year) who is not Lee, Kim or Cho, and ``paragraph`` cites that author: a ``{cite}`` key
+    beginning with the surname (``henriques2015``) or an author-year citation of them. Such a
+    work has no quote register; its citation is the evidence.
+    """
+    head = re.match(r"([A-Z][A-Za-z\u00c0-\u017f\-]+)\b", paragraph[start:])
+    before = re.search(r"([A-Z][A-Za-z\u00c0-\u017f\-]+)\s+$", paragraph[:start])
+    author = (before.group(1) if paragraph[start:start + 2].lower() == "et" and before
+              else head.group(1) if head else None)
+    if author is None or author in _FOUR_AUTHORS or author.lower() in ("the", "as"):
+        return False
+    keys = [k.strip() for m in CITE_ROLE.finditer(paragraph) for k in m.group(1).split(",")]
+    if any(k.startswith(_fold(author)) for k in keys):
+        return True
+    return any(m.group(1) == author for m in AUTHOR_YEAR.finditer(paragraph))
+
+
+def _fold(name: str) -> str:
+    """A surname as a bibliography key starts: lower case, accents dropped (Pérez -> perez)."""
+    import unicodedata
+    return "".join(c for c in unicodedata.normalize("NFKD", name.lower())
+                   if not unicodedata.combining(c))
+
+
 #: The end of a sentence: a stop and a space, not after an abbreviation (eq., et al., Fig.).
 _STOP = re.compile(r"(?<!\beq)(?<!\bEq)(?<!\bal)(?<!\bFig)(?<!\bfig)(?<!\be\.g)(?<!\bi\.e)"
                    r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bno)[.?!](?=\s)|\n\s*\n")
@@ -110,6 +156,8 @@ def _check_paragraph(text: str, first_line: int, offsets: list[int] | None = Non
     out = []
     for rx in PATTERNS:
         for m in rx.finditer(text):
+            if other_work_cited(text, m.start()):   # another work, named and cited
+                continue
             line = first_line + text.count("\n", 0, m.start())
             if offsets is not None:
                 line = offsets[min(text.count("\n", 0, m.start()), len(offsets) - 1)]

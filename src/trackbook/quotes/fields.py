@@ -1,9 +1,12 @@
 """Which passage backs each value a tracker's ``paper=`` records, and whether it is printed.
 
+A value of the paper preset is in one of three states (:data:`STATES`, :func:`state`):
+``"printed"`` (the passage states it, quoted), ``"reading"`` (the passage is ambiguous or
+elided and the value is the book's reading of it, quoted) or ``"not printed"`` (no passage: the
+field records ``paper=NOT_PRINTED`` and the preset uses the book's stated setting).
+
 ``FIELDS[tracker][field] = (key, state)``: ``key`` names the quote of the register,
-``state`` is ``"printed"`` (the passage states the value) or ``"reading"`` (the passage is
-ambiguous or elided, and the value is the book's reading of it). A field with
-``paper=NOT_PRINTED`` has no entry. ``UNSUPPORTED`` lists the ``paper=`` values that no passage
+``state`` is ``"printed"`` or ``"reading"``. A field with ``paper=NOT_PRINTED`` has no entry. ``UNSUPPORTED`` lists the ``paper=`` values that no passage
 backs, with the reason; the params that record them are to be corrected.
 """
 
@@ -31,6 +34,11 @@ _LEE2012_IPCA = {
     "learn_every": ("lee2012.accumulate_every_frame", "printed"),
     # eq. 12-13 reconstruct z with U U^T alone: no anchor to the first frame, no mean
     # subtracted, the histogram itself as z; the garbled print makes each a reading
+    # eq. 12-13 print D, not D^2, in the exponent
+    "exponent": ("lee2012.likelihood_eq12", "printed"),
+    # A = {I_1 ... I_n}, n = 40, m = 1, old features removed: a window of the last 40 is a
+    # reading (which feature leaves is not printed)
+    "window": ("lee2012.window40", "reading"),
     "anchor": ("lee2012.likelihood_eq12", "reading"),
     "centre": ("lee2012.likelihood_eq12", "reading"),
     "feature_map": ("lee2012.likelihood_eq12", "reading"),
@@ -61,11 +69,16 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
         # the 24 x 24 region is printed for the search-rate measurement, not for a model window
         "init_size": ("lee2015.window24", "reading"),
     },
+    "mean-shift": {
+        "bandwidth": ("cho2005.bandwidth_eq3", "printed"),
+    },
     "condensation": {
+        "bandwidth": ("cho2005.bandwidth_eq3", "printed"),
         "n_particles": ("cho2005.condensation_n100", "printed"),
         "resampler": ("cho2005.condensation_sampling", "reading"),
     },
     "condensation-mean-shift": {
+        "bandwidth": ("cho2005.bandwidth_eq3", "printed"),
         "n_particles": ("cho2005.proposed_n5", "printed"),
         "resampler": ("cho2005.condensation_sampling", "reading"),
         # eq. 12-13 move each candidate once (y1 = y0 + y^n); no iteration count is printed
@@ -84,3 +97,14 @@ UNSUPPORTED: dict[tuple[str, str], str] = {}
 def backing(tracker: str, field: str) -> tuple[str, str] | None:
     """``(quote key, "printed" | "reading")`` behind ``tracker``'s ``field``, or None."""
     return FIELDS.get(tracker, {}).get(field)
+
+
+#: The three honest states of a value of the paper preset.
+STATES = ("printed", "reading", "not printed")
+
+
+def state(tracker: str, field: str) -> tuple[str, str | None]:
+    """``(state, quote key)`` of ``tracker``'s ``field`` in the paper preset: ``("printed",
+    key)``, ``("reading", key)`` or ``("not printed", None)`` (see :data:`STATES`)."""
+    found = backing(tracker, field)
+    return found[::-1] if found else ("not printed", None)

@@ -91,8 +91,8 @@ class Tracker:
         the same boxes.
     **params
         Values for the fields of the tracker's ``Params`` dataclass; the rest keep the
-        book's defaults (``trackers.create(name, preset="paper")`` starts from the values
-        the paper prints instead).
+        book's defaults (``trackers.create(name, preset="paper")`` starts from the printed
+        values instead).
 
     Attributes
     ----------

@@ -31,7 +31,8 @@ class CentrePFParams:
     sigma: float = param(
         4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction (and of the Gaussian start "
         "spread around the box centre), pixels", paper=NOT_PRINTED,
-        why="the paper prints no spread (Table 2: 'random particles'); 4 px is the book's choice, "
+        why="no spread is printed (only 'N random particles with equal weights' "
+        "[quote: kim2016.init_equal_weights]); 4 px is the book's choice, "
         "tuned on the seven public sequences")
     velocity_gain: float = param(
         1.0, 0.0, 1.0, 0.05, "fraction g of the last motion of the estimate added in the "

@@ -1,6 +1,6 @@
 """``color-hog-pf``: colour + HOG fused by eq. 14 of Lee et al. 2012, fixed first-frame
-references, no learning (chapter ``03_hog``; Lee et al. compare it as a baseline, after Jin et
-al. 2010).
+references, no learning (chapter ``03_hog``; Lee et al. compare it as a baseline
+[quote: lee2012.baselines], after Jin et al. 2010).
 
 Everything but the measurement is :class:`~trackbook.trackers.color_pf.ColorPF`'s: the state
 and motion of eq. 8-9, the initial particles, the resampling and the lost rules.
@@ -22,10 +22,12 @@ from .registry import register
 @dataclasses.dataclass(frozen=True)
 class ColorHogPFParams(ColorPFParams):
     """Knobs of ``color-hog-pf``: colour + HOG fused by eq. 14 against fixed first-frame
-    references (Lee et al. 2012 compare it as a baseline, after Jin et al. 2010).
+    references (Lee et al. 2012 compare it as a baseline [quote: lee2012.baselines], after Jin
+    et al. 2010).
 
-    ``03_hog`` builds it. ``paper=`` is the value Lee et al. print (section V; the
-    comment names the passage); ``trackers.departures("color-hog-pf")`` lists the book's choices.
+    ``03_hog`` builds it. ``paper=`` is the printed value (section V; its passage is in
+    ``trackbook.quotes.fields``); ``trackers.departures("color-hog-pf")`` lists the book's
+    choices.
     """
 
     # alpha = 0.1: section V, the sentence after eq. 14 ("alpha = 0.1").

@@ -1,16 +1,16 @@
 """``color-pf``: the colour-only particle filter of Lee et al. 2012's comparison (chapter
 ``02_particle_filters``).
 
-The baseline Lee et al. compare against (Pérez et al. 2002): an HSV 8x8x4 kernel histogram
+The baseline Lee et al. compare against [quote: lee2012.baselines] (Pérez et al. 2002): an HSV 8x8x4 kernel histogram
 (eq. 1) of every particle's box, compared with the first frame's by the Bhattacharyya
-coefficient (eq. 10). The two other trackers of the paper build on this class:
+coefficient (eq. 10). This class is the base of the paper's two other trackers:
 :class:`~trackbook.trackers.color_hog_pf.ColorHogPF` adds the HOG (chapter ``03_hog``) and
 :class:`~trackbook.trackers.color_hog_ipca.ColorHogIPCA` the learned subspaces (chapter
 ``04_incremental_svd``).
 
 From the paper: state and motion of eq. 8-9, N = 100 particles, SIR selection by cumulative
 weights (multinomial), estimate = weighted mean of the states. The paper spreads the t = 0
-particles over the whole frame; the book starts them around the given box (``init``; the paper
+particles over the whole frame [quote: lee2012.init_whole_frame]; the book starts them around the given box (``init``; the paper
 preset uses ``"frame"``). ``trackers.departures(name)`` lists every departure with its why.
 
 Decisions where the paper is silent or wrong:
@@ -49,11 +49,12 @@ N_COLOR = int(np.prod(HSV_BINS))
 @dataclasses.dataclass(frozen=True)
 class ColorPFParams:
     """Knobs of ``color-pf``: the colour-only particle filter that Lee et al. (2012) compare
-    against (Pérez et al. 2002), with the state, motion and likelihood of their section V.
+    against [quote: lee2012.baselines] (Pérez et al. 2002), with the state, motion and
+    likelihood of their section V.
 
-    ``02_particle_filters`` builds it step by step. ``paper=`` is the value Lee et al. print
-    (section V; the comment names the passage); ``trackers.departures("color-pf")`` lists
-    the fields whose default is the book's choice, with ``why``.
+    ``02_particle_filters`` builds it step by step. ``paper=`` is the printed value (section
+    V; its passage is in ``trackbook.quotes.fields``); ``trackers.departures("color-pf")``
+    lists the fields whose default is the book's choice, with ``why``.
     """
 
     # N = 100: section V, the sentence after the pseudocode.
@@ -91,7 +92,8 @@ class ColorPFParams:
                             paper=NOT_PRINTED,
                             why="eq. 9 has no floor, but a box must cover pixels to have a "
                             "histogram: every side stays >= 4 px (in the paper preset too)")
-    # Not in the paper, which reports no lost target: the book's distance gate (02_particle_filters).
+    # The book's distance gate (02_particle_filters): the paper's trackers have no lost state,
+    # though their tracking "failed for a while" [quote: lee2012.failed_for_a_while].
     lost_below: float = lost_below_param()
     lost_k: float = lost_k_param()
 
@@ -100,7 +102,7 @@ class ColorPFParams:
 @register
 class ColorPF(ParticleFilterTracker):
     """``color-pf``: the colour-only particle filter Lee et al. 2012 compare against
-    (Pérez et al. 2002), with their state (eq. 8), motion (eq. 9), colour likelihood (eq. 10,
+    [quote: lee2012.baselines] (Pérez et al. 2002), with their state (eq. 8), motion (eq. 9), colour likelihood (eq. 10,
     sign corrected) and N = 100. The first whole tracker of the book (``02_particle_filters``).
 
     Besides the hooks of :class:`ParticleFilterTracker`, the family of Lee et al. 2012 has

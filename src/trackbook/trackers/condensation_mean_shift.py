@@ -23,7 +23,8 @@ the candidate's own half-axes so that one setting fits small and large targets::
 The velocity is drawn first and the position moves by the *new*, already-noised velocity
 ``x_dot_t`` (not by ``x_dot_{t-1}``), so the position's spread per frame is
 ``sqrt(noise_position^2 + noise_velocity^2)`` half-axes. The size is multiplied by ``a``, the
-one non-linear step; the paper leaves A unspecified.
+one non-linear step; the paper names A only as "the deterministic component"
+[quote: cho2005.candidates_eq9].
 The likelihood of a candidate is Nummiaro's ``exp(-(1 - rho) / (2 sigma^2))``.
 """
 
@@ -34,8 +35,8 @@ import dataclasses
 import cv2
 import numpy as np
 
-from ..filters.mean_shift import (bin_image, ellipse_rho, mean_shift, mean_shift_with_scale,
-                                  region_around)
+from ..filters.mean_shift import (BANDWIDTHS, bin_image, ellipse_rho, mean_shift,
+                                  mean_shift_with_scale, region_around)
 from ..filters.optical_flow import motion_vector, pyramid
 from .particle_filter import ParticleFilterTracker, resampler_param
 from ..params import NOT_PRINTED, param
@@ -72,8 +73,8 @@ class EllipseColourParams:
                          "sigma of the likelihood exp(-(1 - rho) / 2 sigma^2) (Nummiaro et al. "
                          "2003: 0.1)",
                          paper=NOT_PRINTED,
-                         why="Cho & Kang print no likelihood; the book takes Nummiaro et al. "
-                             "(2003)'s 0.1, the baseline they cite")
+                         why="no likelihood is printed; the book takes Nummiaro et al. "
+                             "(2003)'s 0.1")
     h_bins: int = param(8, 1, 32, 1, "hue bins of the colour distribution (eq. 3)",
                         paper=NOT_PRINTED,
                         why="eq. 3 names bins u but no count; 8x8x4 HSV after Nummiaro et al. "
@@ -91,12 +92,24 @@ class EllipseColourParams:
                             why="the book's addition for speed on large targets; eq. 3 sums "
                                 "every pixel, which this setting matches on targets of 8 px "
                                 "half-axes")
+    # §3.1 after eq. 3 and §4.2 after eq. 10: a = sqrt(Hx^2 + Hy^2)
+    # [quote: cho2005.bandwidth_eq3] [quote: cho2005.bandwidth_eq10]
+    bandwidth: str = param("ellipse", doc="radius r of the kernel k(r) = 1 - r^2 of eq. 3 and "
+                           "10 on the ellipse's pixels: 'ellipse' = ||((x - y_x) / Hx, (y - y_y) / "
+                           "Hy)||, 'diagonal' = ||y - x_i|| / a with a = sqrt(Hx^2 + Hy^2) as "
+                           "printed", choices=BANDWIDTHS, paper="diagonal",
+                           why="Comaniciu et al. (2003)'s normalised ellipse: the weight falls to 0 "
+                               "at the ellipse's edge in every direction; with the printed a the "
+                               "edge pixels keep Hy^2/a^2 to Hx^2/a^2 (1/2 on a circle), a kernel "
+                               "cut off at the edge")
     min_rho: float = param(0.3, 0.0, 1.0, 0.05,
                            "best rho below this: the frame is reported lost (ok=False) and the "
                            "search widens to the whole frame",
                            paper=NOT_PRINTED, paper_value=0.0,
-                           why="the paper never reports a lost target; the book flags frames "
-                               "whose best rho is below 0.3 (0 = off)")
+                           why="the paper's trackers have no lost state, though it reports "
+                               "mean-shift failing after targets overlap [quote: "
+                               "cho2005.multi_mean_shift_fails]; the book flags frames whose "
+                               "best rho is below 0.3 (0 = off)")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -141,7 +154,9 @@ class CondensationMeanShiftParams(CondensationParams):
     max_iter: int = param(10, 0, 100, 1, "mean-shift iterations per candidate at most "
                           "(eq. 12-13)",
                           paper=1,
-                          why="the book's reading: eq. 12-13 print one shift; the book repeats "
+                          why="eq. 12-13 print one shift per candidate, read as one iteration "
+                              "(the paper preset) [quote: cho2005.likelihood_rises_eq13]; the "
+                              "book repeats "
                               "steps ②-⑥ of §3.3 (halving, stop below eps) up to 10 times so "
                               "each candidate reaches its hill top (08_mean_shift; "
                               "preset='paper' runs one shift)")
@@ -150,13 +165,14 @@ class CondensationMeanShiftParams(CondensationParams):
                        why="step ⑥ of §3.3 names epsilon without a value; half a pixel")
     use_motion: bool = param(True, doc="seed the prediction with the motion vector (p, q) of "
                              "eq. 8", paper=True)  # §4, eq. 5-9
-    flow_levels: int = param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = the paper's "
-                             "single solve)",
+    flow_levels: int = param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = one "
+                             "solve, the paper preset's reading of eq. 8)",
                              paper=1,  # eq. 5-8: one least-squares solve on the frame pair
                              why="one solve cannot measure motions over ~1 px; a 3-level "
                                  "pyramid measures the sample clips' 2-6 px steps (lab notes)")
-    flow_iterations: int = param(1, 1, 20, 1, "solves per pyramid level (1 = the paper's "
-                                 "single solve; more re-warp and solve for the remainder)",
+    flow_iterations: int = param(1, 1, 20, 1, "solves per pyramid level (1 = one solve, "
+                                 "the paper preset's reading of eq. 8; more re-warp and solve "
+                                 "for the remainder)",
                                  paper=1)  # eq. 8: one solve
 
 
@@ -199,7 +215,8 @@ class _EllipseColourModel:
         self._min_axes = np.maximum(0.25 * self._axes0, 2.0)
         # the model q_u is eq. 3 over every pixel of the initial ellipse (once, so no sampling)
         img = bin_image(frame, region_around(e[None, :2], e[None, 2:], 0.1), 1, self._bins())
-        _, p, _ = ellipse_rho(img, np.zeros(img.n_bins), e[None, :2], e[None, 2:])
+        _, p, _ = ellipse_rho(img, np.zeros(img.n_bins), e[None, :2], e[None, 2:],
+                              self.params.bandwidth)
         self.q = p[0]
 
     def _bin_image(self, frame, centres, axes, margin=1.0):
@@ -265,7 +282,8 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     def likelihood(self, frame, particles):
         """Step ③: pi_i = p(z_t | x_t = s_t^i), the colour likelihood of every candidate."""
         img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=0.1)
-        rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6])
+        rho, _, labels = ellipse_rho(img, self.q, particles[:, :2], particles[:, 4:6],
+                                     self.params.bandwidth)
         lik = self._weigh(rho)
         self._report.update(histograms=float(labels.shape[0]), pixels=float(labels.size))
         return lik
@@ -295,7 +313,7 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     def frame_report(self) -> dict:
         """``mean_likelihood`` of this frame's candidates (Cho & Kang 2005 Fig. 5), ``mean_rho``,
         and the book's count of the cost: colour ``histograms`` computed and ``pixels`` read (the
-        paper measures seconds per frame)."""
+        paper measures seconds per frame [quote: cho2005.table1_seconds])."""
         return dict(self._report)
 
     rho = readonly_attr("_rho")
@@ -419,7 +437,7 @@ class CondensationMeanShift(Condensation):
         self._predicted = particles.copy()
         img = self._bin_image(frame, particles[:, :2], particles[:, 4:6], margin=1.0)
         res = mean_shift(img, self.q, particles[:, :2], particles[:, 4:6],
-                         max_iter=p.max_iter, eps=p.eps)
+                         max_iter=p.max_iter, eps=p.eps, bandwidth=p.bandwidth)
         self.mean_shift_result = res
         self._rho_before = res.rho_start
         moved = particles.copy()
@@ -480,11 +498,12 @@ class MeanShift(_EllipseColourModel, Tracker):
         img = self._bin_image(frame, self._centre[None, :], self._axes[None, :] * 1.1, margin=1.0)
         if p.scale_adapt:
             res, axes = mean_shift_with_scale(img, self.q, self._centre, self._axes,
-                                              gamma=p.gamma, max_iter=p.max_iter, eps=p.eps)
+                                              gamma=p.gamma, max_iter=p.max_iter, eps=p.eps,
+                                              bandwidth=p.bandwidth)
             self._axes = np.clip(axes, self._min_axes, self._max_axes)
         else:
             res = mean_shift(img, self.q, self._centre[None, :], self._axes[None, :],
-                             max_iter=p.max_iter, eps=p.eps)
+                             max_iter=p.max_iter, eps=p.eps, bandwidth=p.bandwidth)
         self._trajectory = res.trajectory[:, 0, :]
         H, W = self._shape[:2]
         self._centre = np.clip(res.centres[0], [0, 0], [W, H])
@@ -513,7 +532,8 @@ class MeanShift(_EllipseColourModel, Tracker):
         ys = np.arange(step[1] / 2, H, step[1])
         starts = np.stack(np.meshgrid(xs, ys), -1).reshape(-1, 2)
         img = self._bin_image(frame, starts, self._axes[None, :], margin=1.0)
-        res = mean_shift(img, self.q, starts, self._axes[None, :], max_iter=p.max_iter, eps=p.eps)
+        res = mean_shift(img, self.q, starts, self._axes[None, :], max_iter=p.max_iter, eps=p.eps,
+                         bandwidth=p.bandwidth)
         best = int(np.argmax(res.rho))
         self._report["search_starts"] = float(len(starts))
         if res.rho[best] >= max(p.min_rho, float(self._rho[0])):

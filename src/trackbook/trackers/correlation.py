@@ -41,8 +41,9 @@ In order, on every frame:
 
 The gate has no absolute floor: under a sudden change of light every colour match drops,
 and the target is told from a drift by its range and by standing out. The paper preset runs
-the papers' rule only (MOSSE: PSR below 7 is lost; KCF: never lost): ``min_visible = 0``,
-no colour check, no re-detection.
+only the rule Bolme et al. 2010 give for MOSSE (PSR below 7 is lost) and, for KCF
+(Henriques et al. 2015, no lost rule), never reports a loss: ``min_visible = 0``, no colour
+check, no re-detection.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                              # doctest: +SKIP

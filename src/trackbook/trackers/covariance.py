@@ -1,16 +1,17 @@
 """Lee (2015): region-covariance tracking, with and without a Kalman search window.
 
-``covariance`` (the paper's baseline, Fig. 3)
+``covariance`` (the paper's baseline, Fig. 3 [quote: lee2015.frames184])
     compares the target's covariance (eq. 4) with every candidate window of the target's size
     around the last position (Förstner distance d_F = ρ, eq. 5–6); the smallest ρ wins. When
     even the best ρ is above ``threshold`` the target is lost and the whole frame is searched
-    (the paper describes this whole-frame search for covariance alone, Fig. 3, frame 160).
+    (the paper describes this whole-frame search for covariance alone, Fig. 3, frame 160
+    [quote: lee2015.whole_frame_search]).
 ``kalman-covariance`` (proposed, Fig. 1)
     predicts the target's centre with a constant-velocity Kalman filter (eq. 7–13), searches
     only inside the predicted search window, takes the best candidate's centre as the
-    measurement and updates the filter. The paper says that when the match is poor it
-    searches *again inside the Kalman window* (``fallback="window"``, the paper preset); it
-    never sizes the window from S. Both are the book's: the window's half-size of ``gate`` σ
+    measurement and updates the filter. When the match is poor the paper searches again, in
+    our reading *inside the Kalman window* [quote: lee2015.research_in_window]
+    (``fallback="window"``, the paper preset); no size of the window from S is printed. Both are the book's: the window's half-size of ``gate`` σ
     of the innovation covariance S = H P⁻ Hᵀ + R, the ``threshold``, and the whole-frame
     fallback of the book default (``fallback="frame"``).
     Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
@@ -90,7 +91,7 @@ class CovarianceParams:
     model_update: float = param(
         0.0, 0.0, 1.0, 0.05, doc="α of C_model ← (1−α)C_model + αC_best (0: fixed model)",
         paper=NOT_PRINTED, paper_value=0.0,   # sec. 2.3: the target's covariance is computed once
-        why="the paper describes no model update; 0 keeps the model fixed, as the paper does")
+        why="no model update is printed; 0 keeps the model fixed")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -112,7 +113,7 @@ class KalmanCovarianceParams(CovarianceParams):
         why="P₀ = I, the same scale as Q and R; the window settles within a few frames")
     gate: float = param(
         3.0, 0.5, 10.0, 0.5, doc="search-window half-size in σ of S = HP⁻Hᵀ + R",
-        paper=NOT_PRINTED,   # Fig. 2 draws the window; the paper never sizes it from S
+        paper=NOT_PRINTED,   # Fig. 2 draws the window; no size from S is printed
         why="the book sizes the window from S: 3σ holds the measurement 99 % of the time if "
             "the model is right")
     min_radius: int = param(
@@ -174,7 +175,8 @@ def grid_boxes(frame_shape, size, center, radius, stride: int) -> np.ndarray:
 
 
 class _CovarianceSearch(Tracker):
-    """What both trackers of Lee (2015) share: the model, candidate scoring, whole-frame search.
+    """The part common to both trackers of Lee (2015): the model, candidate scoring, whole-frame
+    search.
 
     Attributes (read-only, for drawing)
     -----------------------------------

@@ -39,28 +39,32 @@ class EdgeRayParams(CentrePFParams):
                               paper=1.2)
     canny_low: float = param(
         50.0, 0.0, 500.0, 5.0, "Canny low hysteresis threshold", paper=NOT_PRINTED,
-        why="the paper names no edge detector or threshold; the book uses Canny (1986) "
+        why="no edge detector or threshold is printed; the book uses Canny (1986) "
         "with the common 50/150 pair")
     canny_high: float = param(
         150.0, 0.0, 1000.0, 5.0, "Canny high hysteresis threshold", paper=NOT_PRINTED,
-        why="the paper names no edge detector or threshold; the book uses Canny (1986) "
+        why="no edge detector or threshold is printed; the book uses Canny (1986) "
         "with the common 50/150 pair")
     blur: int = param(
         0, 0, 15, 2, "Gaussian blur kernel before Canny (0 = none)", paper=NOT_PRINTED,
-        paper_value=0, why="the paper says nothing about smoothing; the book's default is none, "
+        paper_value=0, why="no smoothing is printed; the book's default is none, "
         "an option for noisy video")
     max_ray: float = param(
         0.0, 0.0, 1000.0, 5.0, "cap on every ray in pixels (0 = up to the frame border)",
         paper=NOT_PRINTED, paper_value=0.0,
         why="eq. 1 and 4 give no cap; the book's option, off by default")
     adapt_scale: bool = param(
-        False, doc="box size follows the weighted mean Ratio sum_i w_i Ratio_i (not in the paper)",
+        False, doc="box size follows the weighted mean Ratio sum_i w_i Ratio_i (the book's "
+        "addition)",
         paper=NOT_PRINTED, paper_value=False,
-        why="the paper tracks the position only (eq. 3); the book's option, off by default")
+        why="the paper tracks the position only (eq. 3 [quote: kim2016.state_eq3]); the "
+        "book's option, off by default")
     model_rate: float = param(
         0.0, 0.0, 0.5, 0.01, "rate of blending M towards the estimate's rays (0 = off)",
         paper=NOT_PRINTED, paper_value=0.0,
-        why="the paper keeps M from the first frame; the book's option, off by default")
+        why="the paper builds M in the first frame [quote: kim2016.edge_model_eight_rays] "
+        "and leaves its update to further research [quote: kim2016.model_not_updated]; the "
+        "book's option, off by default")
     lost_check: bool = param(
         True, doc="the book's lost rule: the estimate must be in view and match the first "
         "frame's colours; while lost, a whole-frame colour search restarts the filter",
@@ -88,9 +92,9 @@ class EdgeRayPF(CentreParticleFilter):
     Edge rays cannot say that the target is gone: a textured background has edges everywhere
     and many particles fall inside the Ratio window. So besides the rules of
     ``ParticleFilterTracker`` (every weight zero, a constant frame), a frame is lost when less
-    than ``min_visible`` of the estimate's box is inside the frame, or when the estimate's
-    kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012) matches the first
-    frame's poorly: rho below 0.5, or below 0.7 and far outside its recent range
+    than ``min_visible`` of the estimate's box is inside the frame, or when the first frame's
+    colours match the estimate's poorly (the kernel colour histogram, HSV 8 x 8 x 4, of eq. 1
+    of Lee et al. 2012): rho below 0.5, or below 0.7 and far outside its recent range
     (:class:`~trackbook.trackers.lost.MatchGate`) unless it stands out from the boxes around
     it (the second look of ``ParticleFilterTracker``: a sudden change of light). The edge rays alone still place the box;
     the colour only vetoes it. While lost, the spread widens (``lost_growth``) and the whole
@@ -110,7 +114,7 @@ class EdgeRayPF(CentreParticleFilter):
         if p.ratio_low > p.ratio_high:
             raise ValueError(
                 f"ratio_low={p.ratio_low} is above ratio_high={p.ratio_high}; the Ratio window "
-                "needs low <= high (the paper uses 0.8 and 1.2).")
+                "needs low <= high (the paper preset: 0.8 and 1.2).")
         super().model(frame, box)
         c = self.box_to_state(box)
         self.edges = er.edge_image(frame, p.canny_low, p.canny_high, p.blur)

@@ -49,7 +49,7 @@ def create(name: str, seed: int | None = 0, preset: str = "book", **params) -> T
     """Create the tracker called ``name`` with a seed and keyword params (its ``Params`` fields).
 
     ``preset="book"`` (the default) starts from the book's defaults; ``preset="paper"`` starts
-    from the values the paper prints (see :func:`departures` for where the two differ). Keyword
+    from the printed values (see :func:`departures` for where the two differ). Keyword
     params override either preset.
     """
     if preset not in PRESETS:
@@ -63,7 +63,7 @@ def create(name: str, seed: int | None = 0, preset: str = "book", **params) -> T
 def departures(name: str) -> list[dict]:
     """Where the book's defaults for ``name`` are not the printed method.
 
-    Rows ``{param, paper, book, why}``: the paper's value (or ``"not printed"``), the book's
+    Rows ``{param, paper, book, why}``: the printed value (or ``"not printed"``), the book's
     default and one line on why. Each chapter's departures table is generated from this.
     """
     return _params.departures(get(name).Params)

@@ -1,7 +1,7 @@
 """The two baselines of Kim, Kim & Choi 2016: ``hsi-color-pf`` (method 1) and ``hog-pf`` (2).
 
 The paper names them only ("HSI colour model based particle filter", "particle filter using
-HOG"). To compare observation models and nothing else, both share everything with
+HOG") [quote: kim2016.baselines]. To compare observation models and nothing else, both share everything with
 ``edge-ray-pf`` (state (x, y), fixed box, random walk plus the estimated motion, eq. 7
 estimate, resampling, lost handling: :class:`CentreParticleFilter`) and weigh a particle by
 
@@ -40,7 +40,7 @@ class AppearanceParams(CentrePFParams):
         0.2, 0.01, 1.0, 0.01, "sigma of the likelihood exp(-D^2 / 2 sigma^2)",
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
-        "their settings; 0.2 is the book's choice (02_particle_filters, 03_hog)")
+        "their settings [quote: kim2016.baselines]; 0.2 is the book's choice (02_particle_filters, 03_hog)")
     # The book's distance gate (02_particle_filters): the paper's trackers have no lost state.
     lost_below: float = lost_below_param()
     lost_k: float = lost_k_param()

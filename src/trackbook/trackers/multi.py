@@ -7,8 +7,9 @@
 >>> mt.init(clip.frames[0], [clip.targets["face1"][0], clip.targets["face2"][0]])  # doctest: +SKIP
 >>> oks, boxes = mt.update(clip.frames[1])                               # doctest: +SKIP
 
-The paper tracks the two crossing faces with independent trackers (one colour model each, no
-joint reasoning about occlusion), which is what :class:`MultiTracker` does: target ``k`` gets a
+The paper tracks several targets [quote: cho2005.multi_tracking] but does not say how it ran
+its trackers on them. :class:`MultiTracker` runs independent trackers (one colour model each,
+no joint reasoning about occlusion), the book's choice: target ``k`` gets a
 tracker of the same name and params, seeded with a seed derived deterministically from
 ``(seed, k)`` so that two targets never share a random stream and a re-run repeats exactly.
 To run it over a clip and score every target, use

@@ -21,7 +21,9 @@ def lost_below_param():
     :class:`ParticleFilterTracker`); a function so every params class gets its own field."""
     return param(0.7, 0.0, 1.0, 0.05, "a frame can be lost only if its best match 1 - D^2 is "
                  "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
-                 why="the paper reports no lost frames; the book's gate, chosen so "
+                 why="the papers' trackers have no lost state (Lee et al. 2012's tracking "
+                 "'failed for a while' [quote: lee2012.failed_for_a_while] and went on); the "
+                 "book's gate, chosen so "
                  "that on the seven public sequences it fires where the box has left the target")
 
 
@@ -36,7 +38,8 @@ def lost_k_param():
     """The ``lost_k`` field: how far above the recent range a lost frame's D^2 lies."""
     return param(3.0, 0.5, 20.0, 0.5, "... and its D^2 above median + k max(1.4826 MAD, "
                  "median / 2) of recent frames", paper=NOT_PRINTED,
-                 why="the paper reports no lost frames; 3 robust standard deviations, the "
+                 why="the papers' trackers have no lost state [quote: "
+                 "lee2012.failed_for_a_while]; 3 robust standard deviations, the "
                  "book's choice (only used when lost_below > 0)")
 
 
