@@ -23,8 +23,9 @@ def lost_below_param():
                  "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
                  why="the papers' trackers have no lost state (Lee et al. 2012's tracking "
                  "'failed for a while' [quote: lee2012.failed_for_a_while] and went on); the "
-                 "book's gate, chosen so "
-                 "that on the seven public sequences it fires where the box has left the target")
+                 "book's gate: a frame is lost only when its match is poor and also far "
+                 "outside the recent frames' range (lost_k), so a slow drift of the look is "
+                 "not a loss")
 
 
 def resampler_param(doc: str, paper="multinomial", default: str = "multinomial", **kw):
