@@ -36,7 +36,7 @@ PAPERS = {
         "trackers": ["color-pf", "color-hog-pf", "color-hog-ipca"],
         "tracking_rate": {"color-pf": 0.711, "color-hog-pf": 0.903, "color-hog-ipca": 0.924},
         "ms": {"color-pf": 7.0, "color-hog-pf": 13.0, "color-hog-ipca": 55.0},
-        "hardware": "Intel Core 2 Quad Q6600, C++, 640x480",
+        "hardware": "Intel Core 2 Quad Q6600 2.4 GHz, Visual Studio 2008 / OpenCV 2.1, 640x480",
         "claim": "tracking rate: Color < Color+HOG < Proposed",
         "kind": "rate_order",
     },

@@ -180,7 +180,7 @@ def _robot(night: bool, n: int) -> Rendering:
 
 
 _ROBOT = """Side view from a camera on a mobile robot that follows a person down a corridor
-(the scenario of Lee et al. 2012). The robot lags behind the person, so the wall and its doors and photographs
+(the book's scene for the trackers of Lee et al. 2012, whose own videos are not public). The robot lags behind the person, so the wall and its doors and photographs
 scroll sideways (camera motion) while the person, wearing the astronaut's orange suit, walks
 with changing speed, slows to a halt around frame 62 and turns back, pauses again around
 frames 104-112 and then hurries away. {light} Three passers-by dressed in similar

@@ -27,7 +27,9 @@ Decisions not printed (the book states them):
   window is the binomial [1, 4, 6, 4, 1] / 16 (sigma ~ 1.1), applied separably.
 - **Axes.** x runs along columns, y down the rows (image coordinates), so an angle of pi/2 is a
   gradient pointing *down* the image. atan2 gives the quadrant eq. 3's atan cannot.
-- **Normalisation.** eq. 5's 1/f is taken over all 192 values so that the descriptor sums to 1
+- **Normalisation.** A reading: eq. 5 normalises per cell, and the text then says "all the
+  6x4 descriptors are normalised" [quote: lee2012.hog_cells_normalise], which may mean each
+  cell or the whole; the book takes 1/f over all 192 values so that the descriptor sums to 1
   and two descriptors compare with the Bhattacharyya coefficient (eq. 11). A flat patch (no
   gradient anywhere) gets the uniform descriptor 1/192, never NaN.
 - **Layout.** Values are ordered (cell row, cell column, orientation bin): index
