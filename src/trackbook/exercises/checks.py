@@ -68,7 +68,8 @@ def kernel_ok(f):
 
 
 def histogram_ok(f):
-    """1.7: the kernel-weighted histogram (eq. 1 of Lee et al. 2012), normalised to sum 1."""
+    """1.7: the kernel-weighted histogram (eq. 1 of Lee et al. 2012 [quote: lee2012.kernel_eq1]),
+    normalised to sum 1."""
     # labels 0 1 / 1 2 weighted 1 2 / 3 4: bin 0 gets 1, bin 1 gets 2 + 3, bin 2 gets 4; / 10
     labels, kernel = np.array([[0, 1], [1, 2]]), np.array([[1.0, 2.0], [3.0, 4.0]])
     if not _close(f(labels, kernel, 4), [0.1, 0.5, 0.4, 0.0]):
