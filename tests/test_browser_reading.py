@@ -125,7 +125,8 @@ MEASURE = r"""(maxLines) => {
       found.set(key, {kind: kind, section: where(b), selector: name(b.parentElement) + ' > ' + name(b),
                       width: Math.round(width), column: Math.round(right - left), how: how,
                       owner: owner(b),
-                      text: (b.textContent || b.getAttribute('alt') || '').trim().slice(0, 60).replace(/\s+/g, ' ')});
+                      text: ((b.innerText || '').trim() || (b.textContent || b.getAttribute('alt') || '').trim())
+                        .slice(0, 60).replace(/\s+/g, ' ')});
   };
   // MathJax's assistive MathML is clipped to 1 px for screen readers: never seen
   const unseen = '.cell_input, aside.margin, aside.sidebar, .MJX_Assistive_MathML, .MathJax_Preview';
@@ -137,6 +138,16 @@ MEASURE = r"""(maxLines) => {
     const ox = getComputedStyle(e).overflowX;            // a scroller hides what is past its edge
     if ((ox === 'auto' || ox === 'scroll') && e.scrollWidth > e.clientWidth + 1)
       offend(e, e.scrollWidth, 'scrolls sideways');
+  }
+  // text runs past its box without moving the box's edge (MathJax clips a wide equation at
+  // the column): measure the text itself
+  const range = document.createRange();
+  const texts = document.createTreeWalker(art, NodeFilter.SHOW_TEXT);
+  for (let t = texts.nextNode(); t; t = texts.nextNode()) {
+    if (!t.parentElement || t.parentElement.closest(unseen) || !t.textContent.trim()) continue;
+    range.selectNodeContents(t);
+    const r = range.getBoundingClientRect();
+    if (r.width > 0 && r.right > right + 1) offend(t.parentElement, r.right - left, 'text past the column');
   }
   const long = [];
   for (const o of art.querySelectorAll('.cell_output .output pre')) {
@@ -188,10 +199,18 @@ def _offences(r, owners=("",)):
 
 
 def _typeset(page):
-    """Wait until MathJax (2.7, shipped offline) has typeset the page, where it is loaded."""
-    page.wait_for_function("""() => !window.MathJax || (MathJax.Hub && MathJax.Hub.queue
-        && MathJax.Hub.queue.pending === 0 && MathJax.Hub.queue.running === 0
-        && !document.querySelector('.MathJax_Processing'))""", timeout=60_000)
+    """Wait until MathJax (2.7, shipped offline) has typeset the page, where it is loaded.
+
+    An empty queue right after the load event proves nothing (MathJax has not queued its
+    typesetting yet): wait for its startup's "End" signal, sent after the first typesetting
+    ("End Typeset") and delivered at once if already sent.
+    """
+    done = page.evaluate("""() => new Promise(resolve => {
+        if (!(window.MathJax && MathJax.Hub)) return resolve('no MathJax');
+        setTimeout(() => resolve('timed out'), 60000);
+        MathJax.Hub.Register.StartupHook('End', () => resolve('done'));
+    })""")
+    assert done in ("done", "no MathJax"), f"MathJax did not finish typesetting: {done}"
 
 
 @pytest.fixture(scope="module")
@@ -259,6 +278,8 @@ SPECIMEN = """<!doctype html><html><head><meta charset="utf-8"><style>
   <figure><img alt="a plot" style="width: 900px; height: 20px"
     src="data:image/gif;base64,R0lGODlhAQABAIAAAAAAAP///yH5BAEAAAAALAAAAAABAAEAAAIBRAA7"></figure>
   <div class="math"><span style="display: inline-block; width: 800px">eq</span></div>
+  <div class="math"><span style="display: inline-block; width: 100%; overflow: hidden;
+    white-space: nowrap">CLIPPED</span></div>
   <p>The motion model \\begin{split} x_t = x_{t-1} \\end{split} printed raw.</p>
   <span class="merror">Missing close brace</span>
   <div class="cell_output"><div class="output stream"><div class="highlight"><pre>LONG</pre>
@@ -274,16 +295,18 @@ def test_measure_names_each_offender_and_nothing_else(page):
     wide = "AUC " + " ".join(f"{k / 100:.2f}" for k in range(60))
     html = (SPECIMEN.replace("SOURCE", "x = " + "1 + " * 80).replace("LITERAL", "pip " * 60)
             .replace("WIDE", wide).replace("TABLE", "0.123 " * 40)
+            .replace("CLIPPED", "x + " * 200)
             .replace("LONG", "\n".join(f"row {i}" for i in range(MAX_LINES + 5))))
+    page.goto("about:blank")        # not a book page (the exercises appendix is told by its path)
     page.set_content(html)
     r = page.evaluate(MEASURE, MAX_LINES)
     mine = [(o["kind"], o["section"]) for o in r["wide"] if o["owner"] == ""]
-    assert sorted(mine) == sorted([("output", "broken"), ("table", "broken"),
-                                   ("figure", "broken"), ("equation", "broken")]), r["wide"]
+    assert sorted(mine) == sorted([("output", "broken"), ("table", "broken"), ("figure", "broken"),
+                                   ("equation", "broken"), ("equation", "broken")]), r["wide"]
     assert all(o["width"] > o["column"] == 600 for o in r["wide"]), r["wide"]
     assert sorted(o["owner"] for o in r["wide"] if o["owner"]) == ["exercises", "playground"]
     assert [(o["section"], o["lines"]) for o in r["long"]] == [("broken", MAX_LINES + 5)]
     assert [o["tex"] for o in r["raw"]] == ["\\begin{"], r["raw"]
     assert [o["text"] for o in r["errors"]] == ["Missing close brace"]
     lines = _offences(r)
-    assert len(lines) == 7 and all("#broken" in line for line in lines), lines
+    assert len(lines) == 8 and all("#broken" in line for line in lines), lines
