@@ -172,6 +172,11 @@ MEASURE = r"""(maxLines) => {
   const errors = [...art.querySelectorAll('.merror, .noError, .MathJax_Error, [data-mjx-error], mjx-merror')]
     .map(e => ({section: where(e), selector: name(e), owner: owner(e),
                 text: (e.textContent || '').trim().slice(0, 80)}));
+  // the offline MathJax ships the STIX-Web fonts without a script alphabet
+  for (const e of art.querySelectorAll('script[type^="math/tex"]'))
+    if (/\\mathcal\b/.test(e.textContent))
+      errors.push({section: where(e), selector: name(e), owner: owner(e),
+                   text: 'no offline font for \\mathcal: ' + e.textContent.trim().slice(0, 60)});
   for (const e of art.querySelectorAll('*'))
     if (!e.children.length && /Math (input|Processing) error/i.test(e.textContent))
       errors.push({section: where(e), selector: name(e), owner: owner(e),
@@ -281,6 +286,7 @@ SPECIMEN = """<!doctype html><html><head><meta charset="utf-8"><style>
     white-space: nowrap">CLIPPED</span></div>
   <p>The motion model \\begin{split} x_t = x_{t-1} \\end{split} printed raw.</p>
   <span class="merror">Missing close brace</span>
+  <script type="math/tex">\\mathcal{N}(0, 1)</script>
   <div class="cell_output"><div class="output stream"><div class="highlight"><pre>LONG</pre>
   </div></div></div>
 </section>
@@ -306,7 +312,8 @@ def test_measure_names_each_offender_and_nothing_else(page):
     assert [o["owner"] for o in r["wide"] if o["owner"]] == ["playground"]
     assert [(o["section"], o["lines"]) for o in r["long"]] == [("broken", MAX_LINES + 5)]
     assert [o["tex"] for o in r["raw"]] == ["\\begin{"], r["raw"]
-    assert [o["text"] for o in r["errors"]] == ["Missing close brace"]
+    assert sorted(o["text"] for o in r["errors"]) == [
+        "Missing close brace", "no offline font for \\mathcal: \\mathcal{N}(0, 1)"], r["errors"]
     lines = _offences(r)
-    assert len(lines) == 9 and all("#broken" in line or "#exercises" in line
+    assert len(lines) == 10 and all("#broken" in line or "#exercises" in line
                                    for line in lines), lines
