@@ -26,7 +26,10 @@ def _configure(app, config):
     config.mathjax_path = MATHJAX_PATH
     # MathJax 2 reads its configuration from this block; process what Sphinx marks as maths.
     config.mathjax2_config = {
-        "tex2jax": {"inlineMath": [["\\(", "\\)"]], "displayMath": [["\\[", "\\]"]],
+        # Sphinx writes \( \) and \[ \]; the quoted passages of the papers ({quote} role) keep
+        # the seeds' $ $ and $$ $$ verbatim, typeset where they are marked mathjax_process
+        "tex2jax": {"inlineMath": [["\\(", "\\)"], ["$", "$"]],
+                    "displayMath": [["\\[", "\\]"], ["$$", "$$"]],
                     "processEscapes": True, "processEnvironments": True,
                     "processClass": "tex2jax_process|mathjax_process|math|output_area",
                     "ignoreClass": "tex2jax_ignore|mathjax_ignore|document"},

@@ -19,6 +19,7 @@ paragraph (:mod:`trackbook.quotes.attributions`). Enabled in ``_config.yml``
 from __future__ import annotations
 
 import html
+import re
 from pathlib import Path
 
 from docutils import nodes
@@ -97,11 +98,39 @@ def quote_role(name, rawtext, text, lineno, inliner, options=None, content=None)
     return [node], []
 
 
+def _balanced(tex: str) -> bool:
+    depth = 0
+    for ch in re.sub(r"\\[{}]", "", tex):
+        depth += {"{": 1, "}": -1}.get(ch, 0)
+        if depth < 0:
+            return False
+    return depth == 0
+
+
+def _typeset(text: str):
+    """The passage ready for MathJax (``$ $``/``$$ $$``, typeset on the page), or None.
+
+    A passage cut inside a display equation lacks one ``$$``: it is added on the cut side. A
+    passage whose TeX MathJax cannot typeset as it stands (a fragment with unbalanced braces,
+    commands outside any ``$``) gives None and is shown as source code instead of raw TeX.
+    """
+    if text.count("$$") % 2:
+        text = text + "$$" if text.lstrip().startswith("$$") else "$$" + text
+    pieces = re.split(r"(\$\$.*?\$\$|\$[^$]*\$)", text, flags=re.S)
+    if (all(_balanced(m) for m in pieces[1::2])
+            and not any("$" in t or re.search(r"\\[A-Za-z]", t) for t in pieces[0::2])):
+        return text
+    return None
+
+
 def _body(q: quotes.Quote, esc=html.escape) -> str:
     lang = "ko" if q.language == "ko" else "en"
-    return (f'<span class="tb-quote-src">{esc(label(q))}</span>'
-            f'<span class="tb-quote-orig" lang="{lang}">{esc(q.original)}</span>'
-            f'<span class="tb-quote-tr" lang="en">{esc(q.translation)}</span>'
+    tex = _typeset(q.original)
+    orig = (f'<span class="tb-quote-orig mathjax_process" lang="{lang}">{esc(tex)}</span>'
+            if tex is not None else
+            f'<span class="tb-quote-orig" lang="{lang}"><code>{esc(q.original)}</code></span>')
+    return (f'<span class="tb-quote-src">{esc(label(q))}</span>{orig}'
+            f'<span class="tb-quote-tr mathjax_process" lang="en">{esc(q.translation)}</span>'
             f'<span class="tb-quote-kind">{esc(_kind(q))}</span>')
 
 
