@@ -5,7 +5,8 @@ call, on the whole clip, in an asyncio event loop as the kernel runs one. A knob
 the comm's path (``set_state`` of ``values``, with the frame on screen) and the time is taken
 to the first ``run_data`` payload sent (serialised to JSON, as the comm does) and to the
 complete one (``n_done == n_total``): the knob moved one sample from its default with the
-reader on frame 0, then back with the reader on the clip's last frame. Target: the first answer within 300 ms (median over the pairs).
+reader on frame 0, then back with the reader on the clip's last frame. Target: the first
+answer within 300 ms (median over the pairs).
 
 The HTML book, when built (``book/_build/html`` or ``_build/html``): per chapter page, the
 bytes loaded at first (the page and the local files its tags load; run files fetched on
@@ -43,7 +44,8 @@ def _cell_code(text: str) -> str:
 
 
 def _assigned(stmt) -> set:
-    return {n.id for n in ast.walk(stmt) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
+    return {n.id for n in ast.walk(stmt)
+            if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
 
 
 def _loaded(node) -> set:
@@ -194,7 +196,8 @@ def latency_table(rows) -> str:
               "first at last frame (ms) | complete (ms) |", "|---|---|---|---|---|---|---|---|"]
     for chapter, clip, tracker, res in rows:
         if not isinstance(res, tuple):
-            lines.append(f"| {chapter} | {tracker} | {Path(str(clip)).name} | – | – | – | – | – |")
+            lines.append(f"| {chapter} | {tracker} | {Path(str(clip)).name} |"
+                         + " – |" * 5)
             continue
         (name, v), out = res
         f, last = out["first"], out["last"]

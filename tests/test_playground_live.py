@@ -150,3 +150,22 @@ def test_a_run_cut_short_is_closed_and_says_how_far_it_got():
     assert run.n_done == 4 and len(run.payload()["boxes"]) == 4
     with pytest.raises(ValueError, match="4 of 10"):
         run.result()
+
+
+def test_a_refusal_while_streaming_keeps_the_last_complete_run(one_frame_chunks, monkeypatch):
+    pg = Playground(clips=[CLIP], trackers=[TRACKER], n_frames=12)
+    before = pg.result
+    real = live.LiveRun.step
+
+    def step(self):                 # the tracker refuses this setting on frame 5
+        if self.n_done == 5 and self.values.get("n_particles") == 70:
+            raise ValueError("70 particles refused on frame 5")
+        real(self)
+    monkeypatch.setattr(live.LiveRun, "step", step)
+
+    async def move():
+        pg.set_state(_change(pg, n_particles=70))
+        await _settle(pg)
+    asyncio.run(move())
+    assert "refused on frame 5" in pg.error and not pg.busy and pg.result is before
+    assert pg.set(n_particles=71).params["n_particles"] == 71 and pg.error == ""
