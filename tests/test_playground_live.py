@@ -169,3 +169,29 @@ def test_a_refusal_while_streaming_keeps_the_last_complete_run(one_frame_chunks,
     asyncio.run(move())
     assert "refused on frame 5" in pg.error and not pg.busy and pg.result is before
     assert pg.set(n_particles=71).params["n_particles"] == 71 and pg.error == ""
+
+
+def test_set_while_a_run_streams_answers_whole_and_stops_the_stream(one_frame_chunks):
+    pg = Playground(clips=[CLIP], trackers=[TRACKER], n_frames=14)
+    got = _record(pg)
+
+    async def stream_then_set():
+        pg.set_state(_change(pg, n_particles=25))   # streams once the loop runs it
+        r = pg.set(n_particles=55)                   # a cell's call before that
+        for _ in range(20):
+            await asyncio.sleep(0)
+        return r
+    r = asyncio.run(stream_then_set())
+    np.testing.assert_array_equal(
+        r.boxes, evaluate(TRACKER, CLIP, max_frames=14, n_particles=55).boxes)
+    assert [p["values"]["n_particles"] for p in got] == [55] and got[0]["n_done"] == 14
+
+
+def test_set_to_the_values_a_run_streams_finishes_it_now(one_frame_chunks):
+    pg = Playground(clips=[CLIP], trackers=[TRACKER], n_frames=10)
+
+    async def stream_then_same():
+        pg.set_state(_change(pg, n_particles=30))
+        return pg.set(n_particles=30)
+    r = asyncio.run(stream_then_same())
+    assert r.params["n_particles"] == 30 and pg.run_data["n_done"] == 10 and pg._task is None

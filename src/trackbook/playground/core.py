@@ -4,8 +4,9 @@ One JavaScript module (``viewer.js``, shipped in this package) draws everything 
 the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve and the scores.
 
 * In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob change
-  re-runs the tracker in the kernel and sends only boxes and state; the frames travel once as
-  JPEG, so a frame step costs no Python.
+  re-runs the tracker in the kernel and sends only boxes and state, first up to the frame on
+  screen, then the rest of the clip in chunks that leave the kernel free (``live.py``); the
+  frames travel once as JPEG, so a frame step costs no Python.
 * In the HTML book (built with ``TRACKBOOK_BOOK_BUILD=1``, which ``trackbook.sphinx_playground``
   sets) the same module runs from the page: the runs for a few values of each knob, one knob
   at a time around the default, and for every clip and tracker at defaults, are computed at
