@@ -201,7 +201,8 @@ def latency_table(rows) -> str:
             continue
         (name, v), out = res
         f, last = out["first"], out["last"]
-        lines.append(f"| {chapter} | {tracker} | {Path(str(clip)).name} | {name}={v} | "
+        knob = f"{name}={v}".replace("|", "\\|")      # a features string has bars
+        lines.append(f"| {chapter} | {tracker} | {Path(str(clip)).name} | {knob} | "
                      f"{f[0] * 1e3:.0f} | {f[2]}/{f[3]} | {last[0] * 1e3:.0f} | "
                      f"{f[1] * 1e3:.0f} |")
     return "\n".join(lines)
