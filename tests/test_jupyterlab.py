@@ -88,6 +88,10 @@ def lab(tmp_path):
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
     token = secrets.token_hex(16)
+    # every cell in the page (JupyterLab 4 may leave cells out of view out of the DOM)
+    user = tmp_path / "cfg" / "lab" / "user-settings" / "@jupyterlab" / "notebook-extension"
+    user.mkdir(parents=True)
+    (user / "tracker.jupyterlab-settings").write_text(json.dumps({"windowingMode": "none"}))
     env = {**os.environ, "PYTHONPATH": f"{ROOT / 'src'}{os.pathsep}{os.environ.get('PYTHONPATH', '')}",
            "JUPYTER_CONFIG_DIR": str(tmp_path / "cfg"), "JUPYTER_RUNTIME_DIR": str(tmp_path / "rt")}
     proc = subprocess.Popen(
@@ -110,6 +114,22 @@ def lab(tmp_path):
     proc.wait(timeout=20)
 
 
+#: some cell's prompt shows it queued, running or run ([*] or [n])
+RUNNING = """() => [...document.querySelectorAll('.jp-InputPrompt')]
+  .some((e) => /\\[(\\*|\\d+)\\]/.test(e.textContent))"""
+
+
+def _kernel_ready(url, token, timeout=120):
+    """Wait until the notebook's kernel is up and idle (the server's own account)."""
+    for _ in range(timeout * 2):
+        with urllib.request.urlopen(f"{url}/api/sessions?token={token}", timeout=5) as r:
+            sessions = json.load(r)
+        if sessions and all(s["kernel"]["execution_state"] == "idle" for s in sessions):
+            return
+        time.sleep(0.5)
+    _missing("the notebook's kernel did not start")
+
+
 def test_playground_in_jupyterlab(lab):
     sync_api = _need("playwright.sync_api")
     url, token, tmp = lab
@@ -124,18 +144,29 @@ def test_playground_in_jupyterlab(lab):
         page.wait_for_selector(".jp-Notebook", timeout=120_000)
         page.wait_for_selector(".jp-Notebook-ExecutionIndicator[data-status='idle']",
                                timeout=120_000)
-        page.click(".jp-Notebook .jp-Cell >> nth=0")
-        page.keyboard.press("Escape")
-        page.click("text=Run", timeout=10_000)
-        page.click("text=Run All Cells", timeout=10_000)
-        root = page.wait_for_selector(".tb-playground canvas", timeout=300_000)
-        for _ in range(600):                      # Run All finishes (or stops at an error)
+        _kernel_ready(url, token)
+        for _ in range(4):      # a Run All given before the page holds the kernel runs nothing
+            page.click(".jp-Notebook .jp-Cell >> nth=0")
+            page.keyboard.press("Escape")
+            page.click(".lm-MenuBar-itemLabel:text-is('Run')", timeout=10_000)
+            page.click(".lm-Menu-itemLabel:text-is('Run All Cells')", timeout=10_000)
+            try:
+                page.wait_for_function(RUNNING, timeout=20_000)
+                break
+            except sync_api.TimeoutError:
+                continue
+        for _ in range(900):                      # Run All finishes (or stops at an error)
             if (tmp / MARKER).exists() or page.query_selector("text=Traceback"):
                 break
             page.wait_for_timeout(500)
         tb = page.query_selector("text=Traceback")
         assert tb is None, f"a cell raised: {tb.inner_text()[:800] if tb else ''}"
-        assert (tmp / MARKER).exists(), "Run All did not reach the notebook's last cell"
+        if not (tmp / MARKER).exists():
+            page.screenshot(path=str(tmp / "lab.png"))
+            pytest.fail(f"Run All did not reach the notebook's last cell (screenshot "
+                        f"{tmp / 'lab.png'}); the page ends: "
+                        f"{page.inner_text('.jp-Notebook')[-600:]!r}", pytrace=False)
+        page.wait_for_selector(".tb-playground canvas", timeout=60_000)
         root = page.query_selector(".tb-playground")
         page.wait_for_function("(r) => r.querySelector('.tb-scores').textContent.includes('AUC')",
                                arg=root, timeout=120_000)
