@@ -331,7 +331,8 @@ class Playground(anywidget.AnyWidget):
         Any param of the current tracker is a knob, declared in ``params=`` or not (an
         undeclared one joins the panel's knobs). Every value goes through
         :func:`trackbook.params.parse`: a wrong name or value raises ``ValueError`` naming the
-        knob, and the playground keeps its values and the run it shows.
+        knob, and the playground keeps its values and the run it shows. The run is whole when
+        ``set`` returns, in Jupyter too (a knob moved in the viewer streams instead).
         """
         new = parse_values(self.tracker, {**self.values, **knobs})
         self._adopt(knobs)      # now a knob of the panel too
