@@ -78,14 +78,14 @@ def test_a_real_tracker_with_an_unknown_resampler():
 
 
 def test_a_combination_the_tracker_refuses_is_raised_and_rolled_back(pg, monkeypatch):
-    from trackbook.playground import data as D
-    real = D.run_payload
+    from trackbook.playground import core
 
-    def refuse_slow(tracker, clip, params, *a, **k):   # a rule between knobs, as trackers have
-        if params.get("speed", 0) > 6:
-            raise ValueError("speed above 6 needs n_particles >= 50")
-        return real(tracker, clip, params, *a, **k)
-    monkeypatch.setattr(D, "run_payload", refuse_slow)
+    class Refusing(core.LiveRun):   # a rule between knobs, as trackers have
+        def __init__(self, tracker, clip, params, *a, **k):
+            if params.get("speed", 0) > 6:
+                raise ValueError("speed above 6 needs n_particles >= 50")
+            super().__init__(tracker, clip, params, *a, **k)
+    monkeypatch.setattr(core, "LiveRun", Refusing)
     before, run, runs = dict(pg.values), pg.run_data, pg.runs
     with pytest.raises(ValueError, match="needs n_particles"):
         pg.set(speed=7.0)

@@ -4,8 +4,9 @@ One JavaScript module (``viewer.js``, shipped in this package) draws everything 
 the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve and the scores.
 
 * In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob change
-  re-runs the tracker in the kernel and sends only boxes and state; the frames travel once as
-  JPEG, so a frame step costs no Python.
+  re-runs the tracker in the kernel and sends only boxes and state, first up to the frame on
+  screen, then the rest of the clip in chunks that leave the kernel free (``live.py``); the
+  frames travel once as JPEG, so a frame step costs no Python.
 * In the HTML book (built with ``TRACKBOOK_BOOK_BUILD=1``, which ``trackbook.sphinx_playground``
   sets) the same module runs from the page: the runs for a few values of each knob, one knob
   at a time around the default, and for every clip and tracker at defaults, are computed at
@@ -33,6 +34,7 @@ from .. import params as _params
 from .. import trackers as _trackers
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
+from .live import LiveRun, running_loop, stream
 
 HERE = Path(__file__).parent
 VIEWER_JS = HERE / "viewer.js"
@@ -179,6 +181,9 @@ class Playground(anywidget.AnyWidget):
     init_box = T.List().tag(sync=True)
     busy = T.Bool(False).tag(sync=True)
     error = T.Unicode("").tag(sync=True)
+    #: the frame on screen, which the viewer sends with a knob change: a re-run reaches it
+    #: first and streams the rest
+    frame = T.Int(0).tag(sync=True)
 
     def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None,
                  samples=None, box=None, **kwargs):
@@ -218,6 +223,9 @@ class Playground(anywidget.AnyWidget):
         self.result = None
         self.states: list[dict] = []
         self.runs = 0
+        self._gen = 0               # the newest run; a streaming run older than it stops
+        self._task = None
+        self._sync = False
         super().__init__(**kwargs)
         self.config = self._config(list(self._clips), trackers)
         with self.hold_sync():
@@ -230,7 +238,7 @@ class Playground(anywidget.AnyWidget):
         self.observe(self._on_clip, names="clip")
         self.observe(self._on_tracker, names="tracker")
         self.observe(self._on_change, names=["values", "init_box"])
-        self._run()
+        self._run(sync=True)
 
     # -- refusals: a bad name or value never replaces what the view shows ---------------
     @T.validate("tracker")
@@ -305,7 +313,16 @@ class Playground(anywidget.AnyWidget):
         self.values = self._defaults(change["new"])   # triggers _on_change -> _run
 
     def _on_change(self, change):
-        self._run()
+        if change["name"] == "values":
+            self._adopt(change["new"])
+        self._run(sync=self._sync)
+
+    def _adopt(self, names):
+        """Knobs set without being declared in ``params=`` join the panel's knobs."""
+        extra = [k for k in names if k not in self.param_names]
+        if extra:
+            self.param_names.extend(extra)
+            self.config = self._config(list(self._clips), self._trackers_list)
 
     def set(self, **knobs):
         """Re-run with these knob values (others unchanged) and return the new result,
@@ -314,16 +331,22 @@ class Playground(anywidget.AnyWidget):
         Any param of the current tracker is a knob, declared in ``params=`` or not (an
         undeclared one joins the panel's knobs). Every value goes through
         :func:`trackbook.params.parse`: a wrong name or value raises ``ValueError`` naming the
-        knob, and the playground keeps its values and the run it shows.
+        knob, and the playground keeps its values and the run it shows. The run is whole when
+        ``set`` returns, in Jupyter too (a knob moved in the viewer streams instead).
         """
         new = parse_values(self.tracker, {**self.values, **knobs})
-        extra = [k for k in knobs if k not in self.param_names]
-        if extra:       # now a knob of the panel too
-            self.param_names.extend(extra)
-            self.config = self._config(list(self._clips), self._trackers_list)
+        self._adopt(knobs)      # now a knob of the panel too
         old, old_error = dict(self.values), self.error
         self.error = ""
-        self.values = new
+        self._sync = True       # the caller waits for the result: the whole run, now
+        try:
+            if new == dict(self.values):
+                if self._task is not None:      # a streaming run of these values: finish it
+                    self._run(sync=True)
+            else:
+                self.values = new
+        finally:
+            self._sync = False
         if self.error:          # the tracker refused this combination while running
             error = self.error
             self.unobserve(self._on_change, names=["values", "init_box"])
@@ -346,30 +369,66 @@ class Playground(anywidget.AnyWidget):
         g = np.asarray(clip.groundtruth[0], dtype=float)
         return None if np.isfinite(g).all() else False
 
-    def _run(self):
+    def _run(self, sync=False):
+        """Re-run the tracker with the current clip, values and first box.
+
+        ``sync`` (or no running event loop, as in a script): the whole run now, returning the
+        result. Otherwise (the kernel's loop, a knob moved in the viewer) the run streams: the
+        frames up to the one on screen first, then the rest in chunks that leave the kernel
+        free, each sent as a partial ``run_data`` (``n_done < n_total``), the complete payload
+        last; a newer change stops an older run."""
+        self._gen += 1
+        gen = self._gen
+        if self._task is not None:
+            self._task.cancel()
+            self._task = None
         clip = self._clips[self.clip]
         box = self._init_box(clip)
         if box is False:      # your own video: wait for the box the student drags
+            self.busy = False
             self.run_data = {"clip": clip.name, "tracker": self.tracker, "waiting": True}
             self.result = None
             return None
-        self.busy = True
         try:
-            payload, r, states = D.run_payload(self.tracker, clip, self.params(),
-                                               self._n(clip), self.seed, box)
-            self.error = ""
-        except ValueError as e:   # a knob combination the tracker refuses: say why
-            self.error = str(e)
-            return self.result
-        finally:
-            self.busy = False
-        self.result, self.states = r, states
+            run = LiveRun(self.tracker, clip, self.params(), self._n(clip), self.seed, box)
+        except ValueError as e:
+            return self._refused(e)
+        loop = None if sync else running_loop()
+        if loop is None:
+            try:
+                run.advance()
+            except ValueError as e:
+                run.close()
+                return self._refused(e)
+            return self._finish(run, box, run.payload())
+        self.busy = True
+
+        def send(payload):
+            if payload["n_done"] < payload["n_total"]:
+                self.run_data = payload
+            else:
+                self._task = None
+                self._finish(run, box, payload)
+
+        self._task = loop.create_task(stream(run, send, self.frame, lambda: gen == self._gen,
+                                             self._refused))
+        return self.result
+
+    def _refused(self, e):
+        """A knob combination the tracker refuses: say why, keep the last complete run."""
+        self.error, self.busy, self._task = str(e), False, None
+        return self.result
+
+    def _finish(self, run, box, payload):
+        self.error = ""
+        self.result, self.states = run.result(), run.states
         self.runs += 1
         # the book's precompute starts with this very run (same tracker, clip, values, frames)
-        _RUN_CACHE.setdefault(_cache_key(self.tracker, clip.name, self._n(clip), self.seed,
-                                         self.values, box), payload)
+        _RUN_CACHE.setdefault(_cache_key(run.name, run.clip.name,
+                                         run.n_total, self.seed, self.values, box), payload)
+        self.busy = False
         self.run_data = payload
-        return r
+        return self.result
 
     @property
     def scores(self) -> dict:

@@ -476,6 +476,7 @@ function render({ model, el: root }) {
     setTracker(t) { model.set("tracker", t); model.save_changes(); },
     setKnob(name, v) {
       model.set("values", { ...model.get("values"), [name]: v });
+      model.set("frame", v_.frame);  // the kernel re-runs up to the frame on screen first
       model.save_changes();
       v_.status.textContent = "running\u2026";
     },
