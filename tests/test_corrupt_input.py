@@ -80,6 +80,9 @@ def test_a_failed_video_write_is_an_error(tmp_path, tiny_folder, monkeypatch, ca
         def isOpened(self):
             return False
 
+        def release(self):     # a real writer has it, and the codec probe calls it
+            pass
+
     monkeypatch.setattr(cv2, "VideoWriter", Refusing)
     code = cli.main(["track", "mean-shift", str(tiny_folder), "--out", str(tmp_path / "o")])
     out, err = capsys.readouterr()
