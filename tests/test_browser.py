@@ -340,3 +340,60 @@ def test_static_playground_ships_the_widget_module(static_page):
     assert js.replace("<\\/script", "</script") == VIEWER_JS.read_text(encoding="utf-8")
     assert Playground._esm.default_value == js
     assert len(html.encode()) < 300_000          # the runs and frames are files of their own
+
+
+def test_partial_run_shows_progress_and_never_a_blank_frame(browser, tmp_path):
+    """A run payload with n_done < n_total (the Jupyter widget streams them): the slider spans
+    the whole clip, the scores line says how far the run is, and past n_done the frame is
+    drawn with the previous complete run's box (greyed) instead of nothing."""
+    import json
+
+    from trackbook import clips
+    from trackbook.playground import VIEWER_JS
+    from trackbook.playground import data as D
+    from trackbook.style import VIEWER
+
+    clip = clips.load("red-cube")
+    full = D.run_payload("mean-shift", clip, {}, 20)[0]
+    shifted = [[b[0] + 30, b[1], b[2], b[3]] for b in full["boxes"]]   # another run's boxes
+    partial = {**full, "boxes": shifted[:5], "ok": full["ok"][:5], "iou": full["iou"][:5],
+               "n_done": 5, "n_total": 20, "state": {}}
+    cfg = {"clips": [{"key": "c", "name": clip.name}], "trackers": ["mean-shift"],
+           "knobs": {"mean-shift": []}, "colors": VIEWER}
+    host = """
+const root = document.getElementById('pg');
+let run = @FULL@;
+const host = { live: true, config: () => (@CFG@), clipKey: () => 'c', tracker: () => 'mean-shift',
+  clip: () => (@CLIP@), run: () => run, knobs: () => [], value: () => undefined,
+  sampled: () => true, note: () => '', status: () => '', setClip() {}, setTracker() {},
+  setKnob() {}, setBox() {} };
+const v = new Viewer(root, host);
+v.update();
+window.__v = v;
+window.__setRun = (r) => { run = r; v.update(); };
+"""
+    values = {"FULL": full, "CFG": cfg, "CLIP": D.clip_payload(clip, 20)}
+    host = re.sub(r"@(\w+)@", lambda m: json.dumps(values[m.group(1)]), host)   # one pass
+    (tmp_path / "index.html").write_text(
+        '<!doctype html><html><body><div id="pg"></div><script type="module">'
+        + VIEWER_JS.read_text(encoding="utf-8") + host + "</script></body></html>",
+        encoding="utf-8")
+    page = browser.new_page()
+    errors = []
+    watch_errors(page, errors)
+    page.goto((tmp_path / "index.html").as_uri(), wait_until="load")
+    page.wait_for_timeout(300)
+    assert not errors and page.evaluate("() => !!window.__v"), errors
+    page.evaluate("(p) => window.__setRun(p)", partial)
+    scores = page.inner_text(".tb-scores")
+    assert scores.startswith("running\u2026 5/20"), scores
+    assert page.eval_on_selector("[data-frame]", "e => +e.max") == 19
+    pixels = """() => { const c = document.querySelector('canvas');
+        return c.getContext('2d').getImageData(0, 0, c.width, c.height).data.join(','); }"""
+    page.evaluate("() => window.__v.seek(12)")
+    with_previous = page.evaluate(pixels)
+    page.evaluate("() => { window.__v.lastFull = null; window.__v.seek(12); }")
+    without = page.evaluate(pixels)
+    assert with_previous != without         # frame 12: the previous run's box is drawn
+    assert len(set(without.split(",")[:4000])) > 8     # and the frame itself, not a blank
+    page.close()

@@ -336,7 +336,7 @@ class Viewer {
     const r = this.run, st = this.state || {};
     const done = r && r.boxes ? (r.n_done !== undefined ? r.n_done : r.boxes.length) : 0;
     if (r && r.boxes && i >= done && this.lastFull && this.lastFull !== r &&
-        this.lastFull.boxes[i]) {         // a run still coming: the previous run's box, greyed
+        this.lastFull.clip === r.clip && this.lastFull.boxes[i]) {         // a run still coming: the previous run's box, greyed
       this.box(this.lastFull.boxes[i], "rgba(128,128,128,0.8)", 2, [6, 4]);
     }
     if (this.stale) c.globalAlpha = 0.45;
