@@ -188,3 +188,41 @@ def test_a_deterministic_pair_runs_once_per_value(tmp_path, monkeypatch):
                         seed=0, workers=1)
     assert again == out
     assert not math.isnan(runs["red-cube|condensation|"]["seeds"]["auc"][0])
+
+
+def test_background_precompute_writes_the_planned_files(tmp_path, monkeypatch):
+    """During the book build a page names its run files before they exist; a background
+    process writes them under those names, and the same runs computed in this process give
+    the same data."""
+    from trackbook import clips
+
+    monkeypatch.setenv(S.OUT_ENV, str(tmp_path / "bg"))
+    monkeypatch.setenv(S.BACKGROUND_ENV, "1")
+    c = {"red-cube": clips.load("red-cube")}
+    spec = D.knob_spec(trackers.get("condensation"), "n_particles")
+    knobs = {"condensation": [{**spec, "samples": [spec["default"], 30]}]}
+    defaults = {"condensation": {"n_particles": spec["default"]}}
+    args = (c, ["condensation"], knobs, defaults, {"red-cube": 10}, {"red-cube": None})
+    names = S.book_files(*args, seed=0, workers=1)
+    assert set(names) == {"red-cube|condensation|", "red-cube|condensation|n_particles#1"}
+    assert names == S.plan_names(*args, seed=0)
+    S.wait_background(tmp_path / "bg", poll=0.1)
+    assert not list((tmp_path / "bg" / "pending").glob("*.pkl"))
+    monkeypatch.setenv(S.BACKGROUND_ENV, "0")
+    monkeypatch.setenv(S.OUT_ENV, str(tmp_path / "here"))
+    here = S.book_files(*args, seed=0, workers=1)
+    for key, name in names.items():
+        got = _read(tmp_path / "bg" / "files" / name)[1]
+        want = _read(tmp_path / "here" / "files" / here[key])[1]
+        for k in ("boxes", "iou", "seeds", "values", "n_total"):
+            assert got[k] == want[k], (key, k)
+
+
+def test_a_background_precompute_that_dies_fails_the_wait(tmp_path):
+    pending = tmp_path / "pending"
+    pending.mkdir()
+    (pending / "x.pkl").write_bytes(b"not a plan")
+    (pending / "x.log").write_text("Traceback: the run crashed")
+    (pending / "x.pid").write_text("999999999")          # no such process
+    with pytest.raises(RuntimeError, match="(?s)stopped without finishing.*the run crashed"):
+        S.wait_background(tmp_path, poll=0.01)

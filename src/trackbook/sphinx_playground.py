@@ -5,7 +5,9 @@
   ``TRACKBOOK_PLAYGROUND_DIR`` to ``<build dir>/.playground``: there the chapters' kernels
   write the playgrounds' run files and frame files (``files/``) and keep computed runs
   (``runs/``), so a rebuild reuses every run whose tracker code, clip and values did not change
-  (:mod:`trackbook.playground.static`).
+  (:mod:`trackbook.playground.static`). With ``TRACKBOOK_PLAYGROUND_BACKGROUND=1`` a page's
+  runs are computed by a background process while the next pages execute (one such process
+  at a time, two workers); the extension waits for them when the build ends.
 * Writes, into each page, the page's path to ``_static/playground/`` (where the viewer finds
   the files), and at the end copies there every file a page names.
 * Stops every request that would leave the machine: MyST-NB's ipywidgets loaders (require.js and
@@ -24,7 +26,7 @@ import shutil
 from pathlib import Path
 
 from .playground.core import BOOK_ENV, STATIC_BASE, VIEWER_CSS, VIEWER_JS
-from .playground.static import OUT_ENV, PREFIX
+from .playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 
 #: the folder of the built book that holds the playgrounds' files
 STATIC_DIR = "_static/playground"
@@ -85,12 +87,14 @@ def copy_files(outdir) -> int:
 
 def _finished(app, exception):
     if exception is None and app.builder.format == "html":
+        wait_background(os.environ.get(OUT_ENV) or store_dir(app.outdir))
         copy_files(app.outdir)
 
 
 def setup(app):
     os.environ[BOOK_ENV] = "1"
     os.environ.setdefault(OUT_ENV, str(store_dir(app.outdir)))
+    os.environ[BACKGROUND_ENV] = "1"   # a page's runs compute while the next pages execute
     app.connect("config-inited", _configure, priority=900)
     app.connect("html-page-context", _page_context, priority=900)
     app.connect("build-finished", _finished)

@@ -435,8 +435,8 @@ class Playground(anywidget.AnyWidget):
         return out
 
     def static_runs(self, workers: int | None = None, **kwargs) -> dict:
-        """Every run the HTML book offers, as run files (see
-        :func:`trackbook.playground.static.book_runs`): every clip x tracker at its defaults
+        """``{run key: file name}`` of every run the HTML book offers (see
+        :func:`trackbook.playground.static.book_files`): every clip x tracker at its defaults
         and each knob at each of its :meth:`static_knobs` samples, over the seeds."""
         _refuse_unknown_keywords("static_runs", kwargs)
         known = dict(self._reused)
@@ -450,7 +450,7 @@ class Playground(anywidget.AnyWidget):
                               "auc": float(self.result.scores.get("auc", float("nan"))),
                               "payload": p})
         trackers = self.config["trackers"]
-        return S.book_runs(self._clips, trackers, {t: self.static_knobs(t) for t in trackers},
+        return S.book_files(self._clips, trackers, {t: self.static_knobs(t) for t in trackers},
                            {t: self._defaults(t) for t in trackers},
                            {c: self._n(clip) for c, clip in self._clips.items()},
                            {c: self._init_box(clip) for c, clip in self._clips.items()},
@@ -473,8 +473,7 @@ class Playground(anywidget.AnyWidget):
             clips[c] = info
         config = {**self.config, "knobs": {t: self.static_knobs(t)
                                            for t in self.config["trackers"]}}
-        return {"config": config, "clips": clips, "files": runs["runs"],
-                "deterministic": runs["deterministic"],
+        return {"config": config, "clips": clips, "files": runs,
                 "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
 
     def static_html(self, workers: int | None = None, **kwargs) -> str:

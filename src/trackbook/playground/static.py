@@ -66,30 +66,32 @@ def script_text(name: str, data) -> str:
     return f'(window.tbPlaygroundRegister||function(){{}})("{name}",{js});\n'
 
 
-def write_script(data, cap: int = MAX_RUN_BYTES, folder=None) -> str:
-    """Write ``data`` as a run file named by the hash of its content; return the file name.
+def write_script(data, cap: int = MAX_RUN_BYTES, folder=None, name: str | None = None) -> str:
+    """Write ``data`` as a run file named by the hash of its content (or ``name``, a name
+    :func:`plan_names` gave beforehand); return the file name.
 
     Raises ``ValueError`` when the file would exceed ``cap`` bytes (the caller thins it)."""
     js = json.dumps(data, separators=(",", ":"), sort_keys=True)
-    name = f"{PREFIX}{_digest(js)}.js"
+    name = name or f"{PREFIX}{_digest(js)}.js"
     text = script_text(name, data)
     size = len(text.encode("utf-8"))
     if size > cap:
         raise ValueError(f"run file {name} would be {size} bytes, over the {cap}-byte cap; "
                          "send fewer particles or frames per file.")
     path = Path(folder or store() / "files") / name
-    if not path.exists():
+    if not path.exists() or path.read_text(encoding="utf-8") != text:
         _runs.write_atomic(path, text)
     return name
 
 
-def write_run(payload: dict, cap: int = MAX_RUN_BYTES, folder=None) -> str:
+def write_run(payload: dict, cap: int = MAX_RUN_BYTES, folder=None,
+              name: str | None = None) -> str:
     """:func:`write_script` for a run payload; over ``cap`` its drawn state is left out
     (boxes, IoU and scores stay)."""
     try:
-        return write_script(payload, cap, folder)
+        return write_script(payload, cap, folder, name)
     except ValueError:
-        return write_script({**payload, "state": {}}, cap, folder)
+        return write_script({**payload, "state": {}}, cap, folder, name)
 
 
 def write_frames(clip, n: int, per: int = CHUNK_FRAMES, cap: int = MAX_RUN_BYTES,
@@ -269,7 +271,8 @@ class Runner:
 
 
 def book_runs(clip_objs: dict, trackers: list, knobs: dict, defaults: dict, n_of: dict,
-              boxes: dict, seed: int = 0, known=None, workers: int = WORKERS) -> dict:
+              boxes: dict, seed: int = 0, known=None, workers: int = WORKERS,
+              names: dict | None = None) -> dict:
     """Every run a playground's page offers, written as run files: ``{run key: file name}``
     (``clip|tracker|`` at defaults, ``clip|tracker|knob#i`` with the knob at its i-th sample
     of ``knobs[tracker]`` and the others at ``defaults[tracker]``), plus ``"deterministic"``,
@@ -277,8 +280,10 @@ def book_runs(clip_objs: dict, trackers: list, knobs: dict, defaults: dict, n_of
 
     Each pair first runs at its defaults with two seeds; if their boxes are the same the pair
     is deterministic and each knob value runs once, otherwise every run has ``N_SEEDS``
-    seeds. A pair whose clip has no first box (``boxes[c] is False``) is left out."""
+    seeds. A pair whose clip has no first box (``boxes[c] is False``) is left out. ``names``
+    (``{run key: file name}``, :func:`plan_names`) names the files instead of their content."""
     runner = Runner(clip_objs, workers, known)
+    names = names or {}
     seeds = [seed + i for i in range(N_SEEDS)]
     pairs = [(c, t) for t in trackers for c in clip_objs if boxes.get(c) is not False]
     first = runner.run([(t, c, defaults[t], n_of[c], seeds[:2], boxes.get(c), seed)
@@ -300,23 +305,173 @@ def book_runs(clip_objs: dict, trackers: list, knobs: dict, defaults: dict, n_of
                     keys.append((c, t, f"{c}|{t}|{k['name']}#{i}", None))
     out = {"runs": {}, "deterministic": sorted(f"{c}|{t}" for (c, t), d in det.items() if d)}
     for (c, t), r in zip(pairs, first):
+        key = f"{c}|{t}|"
         if isinstance(r, dict):
-            out["runs"][f"{c}|{t}|"] = write_script({"error": r["error"]})
+            out["runs"][key] = write_script({"error": r["error"]}, name=names.get(key))
+            for k in knobs[t]:       # the pair's knob runs share the refusal
+                for i, v in enumerate(k["samples"]):
+                    kk = f"{c}|{t}|{k['name']}#{i}"
+                    if v != k["default"]:
+                        out["runs"][kk] = write_script({"error": r["error"]}, name=names.get(kk))
         elif det[(c, t)]:
-            out["runs"][f"{c}|{t}|"] = _finish(r, True)
+            out["runs"][key] = _finish(r, True, names.get(key))
     for (c, t, key, head), r in zip(keys, runner.run(jobs)):
         if isinstance(r, dict):
-            out["runs"][key] = write_script({"error": r["error"]})
+            out["runs"][key] = write_script({"error": r["error"]}, name=names.get(key))
         else:
-            out["runs"][key] = _finish((head or []) + r, det[(c, t)])
+            out["runs"][key] = _finish((head or []) + r, det[(c, t)], names.get(key))
     return out
 
 
-def _finish(results: list, deterministic: bool) -> str:
+def _finish(results: list, deterministic: bool, name=None) -> str:
     payload = dict(results[0]["payload"])
     payload["seeds"] = seeds_entry(results, deterministic)
     payload["spread"] = spread_text(payload["seeds"])
-    return write_run(payload)
+    return write_run(payload, name=name)
+
+
+# ------------------------------------------------- the book build: runs in the background
+#: set (by the Sphinx extension) to run a playground's precompute in a background process
+#: while the next chapters execute; the extension waits for it before copying the files
+BACKGROUND_ENV = "TRACKBOOK_PLAYGROUND_BACKGROUND"
+
+
+def _format() -> str:
+    """A hash of the code that writes run files: a change renames every planned file."""
+    return _digest("".join(Path(m.__file__).read_text(encoding="utf-8") for m in (D, sys.modules[
+        __name__])))
+
+
+def run_keys(clip_objs: dict, trackers: list, knobs: dict, boxes: dict) -> list:
+    """``(run key, clip, tracker, knob name or None, value)`` of every run of a page."""
+    out = []
+    for t in trackers:
+        for c in clip_objs:
+            if boxes.get(c) is False:
+                continue
+            out.append((f"{c}|{t}|", c, t, None, None))
+            for k in knobs[t]:
+                for i, v in enumerate(k["samples"]):
+                    if v != k["default"]:
+                        out.append((f"{c}|{t}|{k['name']}#{i}", c, t, k["name"], v))
+    return out
+
+
+def plan_names(clip_objs: dict, trackers: list, knobs: dict, defaults: dict, n_of: dict,
+               boxes: dict, seed: int = 0) -> dict:
+    """``{run key: file name}`` before any run: each name hashes what the run depends on (the
+    tracker's code, the clip's bytes, the values, frames, seeds, first box and the writer's
+    code), so a page can name files that are still being computed."""
+    fmt, fps = _format(), {}
+    out = {}
+    for key, c, t, name, v in run_keys(clip_objs, trackers, knobs, boxes):
+        if c not in fps:
+            fps[c] = _runs.fingerprint(clip_objs[c])
+        values = dict(defaults[t]) if name is None else {**defaults[t], name: v}
+        b = boxes.get(c)
+        out[key] = PREFIX + _digest(json.dumps(
+            [t, _runs.code_fingerprint(t), fps[c], values, n_of[c], seed, N_SEEDS,
+             None if b is None else [float(x) for x in b], fmt], sort_keys=True,
+            default=str)) + ".js"
+    return out
+
+
+def background_ok(trackers) -> bool:
+    """Whether this playground's runs may go to a background process: asked for by the book
+    build, on a system with ``fcntl`` (the processes take turns), for trackers a fresh
+    process can import."""
+    if os.environ.get(BACKGROUND_ENV) != "1":
+        return False
+    try:
+        import fcntl  # noqa: F401
+    except ImportError:
+        return False
+    return all(_importable(t) for t in trackers)
+
+
+def book_files(clip_objs: dict, trackers: list, knobs: dict, defaults: dict, n_of: dict,
+               boxes: dict, seed: int = 0, known=None, workers: int = WORKERS) -> dict:
+    """``{run key: file name}`` of a page: computed now (:func:`book_runs`), or, during the
+    book build (:func:`background_ok`), by a background process started here, whose files
+    the Sphinx extension waits for (:func:`wait_background`)."""
+    if not background_ok(trackers):
+        return book_runs(clip_objs, trackers, knobs, defaults, n_of, boxes, seed, known,
+                         workers)["runs"]
+    names = plan_names(clip_objs, trackers, knobs, defaults, n_of, boxes, seed)
+    if all((store() / "files" / n).exists() for n in names.values()):
+        return names
+    import pickle
+    import subprocess
+
+    pending = store() / "pending"
+    pending.mkdir(parents=True, exist_ok=True)
+    job = pending / f"{_digest(json.dumps(sorted(names.values())))}.pkl"
+    plan = {"clips": list(clip_objs), "trackers": trackers, "knobs": knobs,
+            "defaults": defaults, "n_of": n_of, "boxes": boxes, "seed": seed,
+            "known": known or {}, "workers": workers, "names": names}
+    _runs.write_atomic(job, pickle.dumps(plan))
+    log = open(job.with_suffix(".log"), "w")   # noqa: SIM115  the child writes it
+    p = subprocess.Popen([sys.executable, "-m", __name__, str(job)], stdout=log,
+                         stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                         start_new_session=True, env={**os.environ, "PYTHONPATH": os.pathsep.join(
+                             [p for p in sys.path if p])})
+    log.close()
+    _runs.write_atomic(job.with_suffix(".pid"), str(p.pid))
+    return names
+
+
+def _background(job: Path) -> None:
+    """The background process: wait for the store's lock (one precompute at a time), run the
+    plan, and remove the job file (its ``.log`` stays on failure)."""
+    import fcntl
+    import pickle
+
+    plan = pickle.loads(job.read_bytes())
+    with open(store() / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        objs = {c: _clips.load(c) for c in plan["clips"] if plan["boxes"].get(c) is not False}
+        book_runs(objs, plan["trackers"], plan["knobs"], plan["defaults"], plan["n_of"],
+                  plan["boxes"], plan["seed"], plan["known"], plan["workers"], plan["names"])
+    job.unlink()
+    for ext in (".log", ".pid"):
+        job.with_suffix(ext).unlink(missing_ok=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    try:       # a finished child of this process that nobody waited for is a zombie
+        return Path(f"/proc/{pid}/stat").read_text().split()[2] != "Z"
+    except OSError:
+        return True
+
+
+def wait_background(folder=None, poll: float = 0.5) -> None:
+    """Wait until every background precompute under ``folder`` (the store) has finished;
+    raises ``RuntimeError`` with its log when one stopped without finishing."""
+    import time
+
+    pending = Path(folder or store()) / "pending"
+    while True:
+        jobs = sorted(pending.glob("*.pkl")) if pending.is_dir() else []
+        if not jobs:
+            return
+        for job in jobs:
+            pid_file = job.with_suffix(".pid")
+            if not pid_file.exists():
+                continue
+            if not _alive(int(pid_file.read_text() or 0)) and job.exists():
+                log = job.with_suffix(".log")
+                text = log.read_text(errors="replace")[-3000:] if log.exists() else ""
+                job.unlink()
+                pid_file.unlink(missing_ok=True)
+                raise RuntimeError(f"a playground's background precompute stopped without "
+                                   f"finishing ({job.name}); its output:\n{text}")
+        time.sleep(poll)
 
 
 def seeds_entry(results: list, deterministic: bool) -> dict:
@@ -337,6 +492,10 @@ def spread_text(seeds: dict) -> str:
     return f"AUC {mean:.2f} ({min(a):.2f}\u2013{max(a):.2f} over {len(a)} seeds)"
 
 
-__all__ = ["CHUNK_FRAMES", "MAX_RUN_BYTES", "N_SEEDS", "OUT_ENV", "PREFIX", "Runner",
-           "book_runs", "run_seeds", "script_text", "seeds_entry", "spread_text", "store",
+__all__ = ["BACKGROUND_ENV", "CHUNK_FRAMES", "MAX_RUN_BYTES", "N_SEEDS", "OUT_ENV", "PREFIX",
+           "Runner", "book_files", "book_runs", "plan_names", "run_seeds", "wait_background", "script_text", "seeds_entry", "spread_text", "store",
            "write_frames", "write_run", "write_script"]
+
+
+if __name__ == "__main__":
+    _background(Path(sys.argv[1]))

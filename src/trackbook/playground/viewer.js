@@ -558,7 +558,6 @@ function staticHost(data, root) {
   const ask = () => {
     if (onDemand && table[key]) loadFile(base, table[key], () => { if (viewer) viewer.update(); });
   };
-  const det = new Set(data.deterministic || []);
   const host = {
     live: false,
     config: () => cfg,
@@ -581,8 +580,8 @@ function staticHost(data, root) {
       "for a few values of each knob (the book's default, the paper's value where it prints " +
       "one, and two others), one knob at a time (the others return to their defaults), each " +
       "over several seeds; in Jupyter the playground re-runs the tracker for any value." +
-      (det.has(`${clipKey}|${tracker}`) ? ` ${tracker} gave the same boxes for two seeds ` +
-       "here, so each of its runs is computed once." : "") +
+      (host.run() && host.run().seeds && host.run().seeds.deterministic ? ` ${tracker} ` +
+       "gave the same boxes for two seeds here, so each of its runs is computed once." : "") +
       (knobs().some((k) => !host.sampled(k)) ? " Greyed knobs: Jupyter only." : ""),
     status: () => {
       if (!table[key]) return "(no precomputed run for this choice)";
