@@ -9,7 +9,8 @@
   runs are computed by a background process while the next pages execute (one such process
   at a time, two workers); the extension waits for them when the build ends.
 * Writes, into each page, the page's path to ``_static/playground/`` (where the viewer finds
-  the files), and at the end copies there every file a page names.
+  the files), and at the end copies there every file a page names; figures get
+  ``loading="lazy"`` (they load as the reader scrolls to them).
 * Stops every request that would leave the machine: MyST-NB's ipywidgets loaders (require.js and
   the embed script from CDNs) and sphinx-thebe's loader (``const THEBE_JS_URL = ...``, which
   also raised a script error on some pages); any other remote script or stylesheet is dropped
@@ -31,6 +32,7 @@ from .playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 #: the folder of the built book that holds the playgrounds' files
 STATIC_DIR = "_static/playground"
 _NAME = re.compile(re.escape(PREFIX) + r"[0-9a-f]{8,40}\.js")
+_LAZY = re.compile(r"<img (?![^>]*\bloading=)")
 
 
 def _remote(name) -> bool:
@@ -58,7 +60,9 @@ def _page_context(app, pagename, templatename, context, doctree):
         context["default_mode"] = "auto"
     body = context.get("body") or ""
     if STATIC_BASE in body and "pathto" in context:
-        context["body"] = body.replace(STATIC_BASE, context["pathto"](STATIC_DIR + "/", 1))
+        body = body.replace(STATIC_BASE, context["pathto"](STATIC_DIR + "/", 1))
+    # figures load as the reader scrolls to them: a chapter's first load stays light
+    context["body"] = _LAZY.sub('<img loading="lazy" ', body)
 
 
 def store_dir(outdir) -> Path:

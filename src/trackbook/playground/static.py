@@ -427,6 +427,7 @@ def _background(job: Path) -> None:
     import pickle
 
     plan = pickle.loads(job.read_bytes())
+    os.nice(5)       # the pages still executing go first: this only fills the idle core
     with open(store() / ".lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         objs = {c: _clips.load(c) for c in plan["clips"] if plan["boxes"].get(c) is not False}
