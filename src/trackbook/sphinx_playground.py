@@ -14,7 +14,8 @@
 * Stops every request that would leave the machine: MyST-NB's ipywidgets loaders (require.js and
   the embed script from CDNs) and sphinx-thebe's loader (``const THEBE_JS_URL = ...``, which
   also raised a script error on some pages); any other remote script or stylesheet is dropped
-  from the pages, so the book shows the same thing offline.
+  from the pages, so the book shows the same thing offline. The widget state MyST-NB embeds
+  (unused: no ipywidgets manager runs on the pages) is dropped too.
 
 Enabled in ``_config.yml`` (``sphinx.extra_extensions``).
 """
@@ -42,8 +43,12 @@ def _remote(name) -> bool:
 
 def _drop(asset) -> bool:
     name = getattr(asset, "filename", asset)
-    body = (getattr(asset, "attributes", {}) or {}).get("body", "") or ""
-    return _remote(name) or "thebe" in str(name or "").lower() or "THEBE" in body
+    attrs = getattr(asset, "attributes", {}) or {}
+    body = attrs.get("body", "") or ""
+    # MyST-NB embeds the kernel's widget state (a playground's model holds every frame as
+    # JPEG: megabytes per page); nothing on the page reads it, the playgrounds draw themselves
+    state = attrs.get("type") == "application/vnd.jupyter.widget-state+json"
+    return state or _remote(name) or "thebe" in str(name or "").lower() or "THEBE" in body
 
 
 def _configure(app, config):

@@ -41,7 +41,10 @@ PREFIX = "tbpg-"
 #: most bytes of one run file (or one chunk of frames)
 MAX_RUN_BYTES = 300_000
 #: frames per file of a clip's frames
-CHUNK_FRAMES = 20
+CHUNK_FRAMES = 15
+#: frames wider than this are shrunk before they are written (the viewer draws them at most
+#: this wide; boxes stay in the clip's pixels)
+MAX_FRAME_WIDTH = 480
 #: seeds per run (from the playground's seed on); a pair whose boxes are the same for the
 #: first two is run with one seed only
 N_SEEDS = 3
@@ -96,13 +99,25 @@ def write_run(payload: dict, cap: int = MAX_RUN_BYTES, folder=None,
 
 def write_frames(clip, n: int, per: int = CHUNK_FRAMES, cap: int = MAX_RUN_BYTES,
                  folder=None) -> list:
-    """The first ``n`` frames of ``clip`` as files of ``per`` JPEG frames each (quality
-    lowered until a file fits ``cap``); returns the file names in order."""
+    """The first ``n`` frames of ``clip`` as files of ``per`` JPEG frames each (at most
+    ``MAX_FRAME_WIDTH`` px wide, quality lowered until a file fits ``cap``); returns the file
+    names in order."""
+    import cv2
+
+    w = clip.size[0]
+    shrink = min(1.0, MAX_FRAME_WIDTH / w) if w else 1.0
+
+    def img(i):       # the viewer draws a frame at most MAX_FRAME_WIDTH px wide
+        f = clip.frames[i]
+        if shrink < 1.0:
+            f = cv2.resize(f, None, fx=shrink, fy=shrink, interpolation=cv2.INTER_AREA)
+        return f
+
     names = []
     for start in range(0, n, per):
         stop = min(n, start + per)
         for q in (D.JPEG_QUALITY, 60, 50, 40, 30, 20):
-            frames = [D.jpeg(clip.frames[i], q) for i in range(start, stop)]
+            frames = [D.jpeg(img(i), q) for i in range(start, stop)]
             try:
                 names.append(write_script({"frames": frames, "start": start}, cap, folder))
                 break
