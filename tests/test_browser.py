@@ -12,6 +12,7 @@ their files by script, which ``file://`` pages may block). Screenshots of every 
 from __future__ import annotations
 
 import functools
+import json
 import http.server
 import os
 import re
@@ -401,4 +402,37 @@ window.__setRun = (r) => { run = r; v.update(); };
     without = page.evaluate(pixels)
     assert with_previous != without         # frame 12: the previous run's box is drawn
     assert len(set(without.split(",")[:4000])) > 8     # and the frame itself, not a blank
+    page.close()
+
+
+def test_book_animation_loads_its_frames_and_runs_from_files(browser, tmp_path, monkeypatch):
+    """In the book build an animation's inline runs and frames become files beside the page
+    (its HTML stays small), and the viewer draws and steps through them as before."""
+    from trackbook.playground import BOOK_ENV
+    from trackbook.playground.animations import kalman_ball
+    from trackbook.playground.core import STATIC_BASE
+    from trackbook.playground.static import OUT_ENV
+    from trackbook.sphinx_playground import STATIC_DIR, copy_files
+
+    monkeypatch.setenv(OUT_ENV, str(tmp_path / "store"))
+    monkeypatch.setenv(BOOK_ENV, "1")
+    a = kalman_ball(n_frames=40)
+    inline = len(json.dumps(a.static_data))
+    body = a._repr_mimebundle_()["text/html"]
+    assert '"runs"' not in body and "data:image/png" not in body
+    assert len(body) < inline / 3 and len(body) < 60_000
+    site = tmp_path / "site"
+    site.mkdir()
+    (site / "index.html").write_text(
+        '<!doctype html><html><head><meta charset="utf-8"></head><body style="max-width:688px">'
+        + body.replace(STATIC_BASE, STATIC_DIR + "/") + "</body></html>", encoding="utf-8")
+    assert copy_files(site) >= 3                       # runs, frames, the picture
+    page = browser.new_page()
+    errors = []
+    watch_errors(page, errors)
+    page.goto((site / "index.html").as_uri(), wait_until="load")
+    settle(page)
+    root = page.query_selector(".tb-playground")
+    fails = exercise(page, root)
+    assert not errors and not fails, (errors, fails)
     page.close()

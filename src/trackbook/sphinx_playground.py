@@ -32,7 +32,7 @@ from .playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 
 #: the folder of the built book that holds the playgrounds' files
 STATIC_DIR = "_static/playground"
-_NAME = re.compile(re.escape(PREFIX) + r"[0-9a-f]{8,40}\.js")
+_NAME = re.compile(re.escape(PREFIX) + r"[0-9a-f]{8,40}\.(?:js|png)")
 _LAZY = re.compile(r"<img (?![^>]*\bloading=)")
 
 

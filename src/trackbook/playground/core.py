@@ -135,14 +135,20 @@ def page_html(payload: dict, png: bytes, alt: str) -> str:
     """One fragment: root ``div.tb-playground``, the data as JSON in a ``<script>`` (no
     fetch, so ``file://`` works), the viewer module inline and ``png`` in a ``<noscript>``
     (print, no JavaScript). Files the data names (``payload["files"]``) are loaded from
-    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there."""
+    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there. In the book
+    build (``TRACKBOOK_BOOK_BUILD``) inline runs and frames (an animation's) and the picture
+    become files too (:func:`trackbook.playground.static.to_files`): the page stays light."""
+    if os.environ.get(BOOK_ENV):
+        payload = S.to_files(payload)
+        src = STATIC_BASE + S.write_png(png)
+    else:
+        src = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
     data = json.dumps(payload, separators=(",", ":")).replace("</", "<\\/")
-    b64 = base64.b64encode(png).decode("ascii")
     js = VIEWER_JS.read_text(encoding="utf-8").replace("</script", "<\\/script")
     css = VIEWER_CSS.read_text(encoding="utf-8")
     return (f'<div class="tb-playground" data-tb-static="1" data-tb-base="{STATIC_BASE}">'
             f'<script type="application/json" class="tb-data">{data}</script>'
-            f'<noscript><img alt="{html.escape(alt)}" src="data:image/png;base64,{b64}">'
+            f'<noscript><img alt="{html.escape(alt)}" src="{src}">'
             f'</noscript></div><style>{css}</style><script type="module">{js}</script>')
 
 

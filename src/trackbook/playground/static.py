@@ -127,6 +127,44 @@ def write_frames(clip, n: int, per: int = CHUNK_FRAMES, cap: int = MAX_RUN_BYTES
     return names
 
 
+def write_png(png: bytes, folder=None) -> str:
+    """A picture (the no-JavaScript fallback) as a file named by its content."""
+    name = f"{PREFIX}{hashlib.blake2b(png, digest_size=10).hexdigest()}.png"
+    path = Path(folder or store() / "files") / name
+    if not path.exists():
+        _runs.write_atomic(path, png)
+    return name
+
+
+def to_files(payload: dict, per: int = CHUNK_FRAMES, folder=None) -> dict:
+    """A page payload whose runs and frames sit inline (the animations') with them moved to
+    files: ``runs`` becomes ``files`` (run key -> file name) and each clip's ``frames`` become
+    ``chunks`` of ``per`` frames (fewer when a file would pass the cap)."""
+    if "runs" not in payload:
+        return payload
+    clips = {}
+    for key, c in payload["clips"].items():
+        c = dict(c)
+        frames = c.pop("frames", None)
+        if frames is not None:
+            step = per
+            while True:
+                try:
+                    c["chunks"] = [write_script({"frames": frames[i:i + step], "start": i},
+                                                folder=folder)
+                                   for i in range(0, len(frames), step)]
+                    break
+                except ValueError:
+                    if step == 1:
+                        raise
+                    step = max(1, step // 2)
+            c.update(n=len(frames), per=step)
+        clips[key] = c
+    files = {k: write_run(r, folder=folder) for k, r in payload["runs"].items()}
+    return {**{k: v for k, v in payload.items() if k != "runs"}, "clips": clips,
+            "files": files}
+
+
 # ----------------------------------------------------------------------------- the runs
 _WORKER_CLIPS: dict = {}
 
@@ -509,7 +547,8 @@ def spread_text(seeds: dict) -> str:
 
 
 __all__ = ["BACKGROUND_ENV", "CHUNK_FRAMES", "MAX_RUN_BYTES", "N_SEEDS", "OUT_ENV", "PREFIX",
-           "Runner", "book_files", "book_runs", "plan_names", "run_seeds", "wait_background", "script_text", "seeds_entry", "spread_text", "store",
+           "Runner", "book_files", "book_runs", "plan_names", "run_seeds", "to_files",
+           "wait_background", "write_png", "script_text", "seeds_entry", "spread_text", "store",
            "write_frames", "write_run", "write_script"]
 
 

@@ -280,8 +280,9 @@ class Viewer {
     this.frame = Math.max(0, Math.min(n - 1, i | 0));
     this.slider.value = this.frame;
     const per = this.clipInfo && this.clipInfo.per;
-    this.needFrame(this.frame);
-    if (per && this.frame % per >= per - 10) this.needFrame(this.frame + 10);
+    const at = (k) => (this.frameIndex ? this.frameIndex[Math.min(k, this.frameIndex.length - 1)] : k);
+    this.needFrame(at(this.frame));
+    if (per && at(this.frame) % per >= per - 10) this.needFrame(at(this.frame) + 10);
     this.draw();
   }
 
@@ -319,13 +320,14 @@ class Viewer {
     if (!this.clipInfo) return;
     c.fillStyle = "#fff";
     c.fillRect(0, 0, this.W, this.H);
-    const im = this.images[this.frameIndex ? this.frameIndex[i] : i];
+    const ii = this.frameIndex ? this.frameIndex[i] : i;   // animations: step -> image
+    const im = this.images[ii];
     if (im && im.complete && im.naturalWidth) c.drawImage(im, 0, 0, this.fw, this.fh);
     else {
       c.fillStyle = "#222"; c.fillRect(0, 0, this.fw, this.fh);
       c.fillStyle = "#ddd"; c.font = "13px sans-serif";
       c.fillText("loading frames\u2026", 12, 22);
-      this.needFrame(i);
+      this.needFrame(ii);
     }
     c.save();
     c.beginPath(); c.rect(0, 0, this.fw, this.fh); c.clip();   // nothing spills off the frame
