@@ -241,7 +241,7 @@ def _check_page(browser, url, root_dir: Path = HTML, base: str | None = None):
             and own > MAX_FIRST_LOAD:
         fails.append(f"{own} bytes of its own at first load, over {MAX_FIRST_LOAD}")
     for i, root in enumerate(roots):
-        if root.query_selector("script.tb-data") and '"files"' in \
+        if root.query_selector("script.tb-data") and '"kind":"playground"' in \
                 root.query_selector("script.tb-data").text_content():
             pair_fails, _ = check_pairs(page, root)
             fails += [f"playground {i}: {f}" for f in pair_fails]

@@ -479,7 +479,7 @@ class Playground(anywidget.AnyWidget):
             clips[c] = info
         config = {**self.config, "knobs": {t: self.static_knobs(t)
                                            for t in self.config["trackers"]}}
-        return {"config": config, "clips": clips, "files": runs,
+        return {"kind": "playground", "config": config, "clips": clips, "files": runs,
                 "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
 
     def static_html(self, workers: int | None = None, **kwargs) -> str:
