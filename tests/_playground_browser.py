@@ -255,6 +255,10 @@ _OVERFLOW = """(r) => {
   if (r.scrollWidth > r.clientWidth + 1) out.push(`scrolls: ${r.scrollWidth} > ${r.clientWidth}`);
   if (box.right > col.right + 1) out.push(`wider than its column: ${box.right} > ${col.right}`);
   if (box.right > document.documentElement.clientWidth + 1) out.push('wider than the window');
+  for (const c of r.querySelectorAll('canvas')) {     // laid out to fit, not squeezed to fit
+    const shown = c.getBoundingClientRect().width, drawn = c.width / (window.devicePixelRatio || 1);
+    if (Math.abs(shown - drawn) > 1) out.push(`canvas squeezed: drawn ${drawn} px, shown ${shown} px`);
+  }
   for (const e of r.querySelectorAll('canvas, select, input, .tb-scores, .tb-legend')) {
     const b = e.getBoundingClientRect();
     if (b.width && b.right > box.right + 1) out.push(`${e.tagName.toLowerCase()}.${e.className}` +
