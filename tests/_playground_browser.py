@@ -37,6 +37,17 @@ def watch_errors(page, errors: list):
             else None)
 
 
+#: no playground file still loading (the HTML book loads runs and frames on demand)
+SETTLED = """() => { const r = window.__tbPlaygroundFiles;
+  return !r || Object.keys(r.wait).length === 0; }"""
+
+
+def settle(page, timeout=20_000):
+    """Wait until every run or frame file the page asked for has arrived (or failed)."""
+    page.wait_for_function(SETTLED, timeout=timeout)
+    page.wait_for_timeout(30)
+
+
 def set_input(handle, value):
     """Set an input/select's value and fire input + change, as a user's drag does."""
     handle.evaluate("""(e, v) => { if (e.type === 'checkbox') e.checked = !e.checked;
@@ -67,6 +78,8 @@ def exercise(page, root, wait_run=None, timeout=60_000):
     page.wait_for_timeout(300)       # the JPEGs decode
     scores = root.query_selector(".tb-scores")
     static = root.get_attribute("data-tb-static") is not None
+    if static:
+        settle(page)
     all_knobs = root.query_selector_all("[data-knob]")
     knobs = [k for k in all_knobs if k.is_enabled()]
     if all_knobs and not knobs:
@@ -96,6 +109,8 @@ def exercise(page, root, wait_run=None, timeout=60_000):
             set_input(k, v)
             if wait_run:
                 wait_run(raw_before)
+            if static:
+                settle(page)
             page.wait_for_timeout(50)
             changed = {"scores": _scores(scores) != before_txt,
                        "picture": page.evaluate(CANVAS_SIG, root) != before_sig}
@@ -107,6 +122,7 @@ def exercise(page, root, wait_run=None, timeout=60_000):
             fails.append(f"knob {name}: picture did not change")
         if static:
             set_input(k, start)
+            settle(page)
     fails += _choices(page, root, scores)
     set_input(fr, 0)
     label = root.query_selector(".tb-frame-label")
@@ -142,11 +158,13 @@ def _every_sample(page, root, knobs):
         name, start = k.get_attribute("data-knob"), k.evaluate("e => e.value")
         for i in range(int(k.evaluate("e => +e.min")), int(k.evaluate("e => +e.max")) + 1):
             set_input(k, i)
+            settle(page)
             if status.inner_text().strip() or not scores.inner_text().strip():
                 fails.append(f"knob {name} sample #{i}: no run ({status.inner_text()!r})")
             elif "refused" in scores.inner_text():
                 fails.append(f"knob {name} sample #{i}: {scores.inner_text()}")
         set_input(k, start)
+        settle(page)
     return fails
 
 
@@ -165,11 +183,91 @@ def _choices(page, root, scores):
                 continue
             sig, txt = page.evaluate(CANVAS_SIG, root), scores.inner_text()
             set_input(sel, v)
+            settle(page)
             page.wait_for_timeout(150)        # the new clip's JPEGs decode
             if page.evaluate(CANVAS_SIG, root) == sig:
                 fails.append(f"{what} {v}: picture did not change")
             if scores.inner_text() == txt or not scores.inner_text().strip():
                 fails.append(f"{what} {v}: scores did not change")
         set_input(sel, first)
+        settle(page)
         page.wait_for_timeout(150)
     return fails
+
+
+_PAIR_INFO = """(r) => {
+  const data = JSON.parse(r.querySelector('script.tb-data').textContent);
+  const fr = r.querySelector('[data-frame]');
+  return { clip: r.querySelector('select[data-control=clip]').value,
+    tracker: r.querySelector('select[data-control=tracker]').value,
+    n_clip: (data.clips[r.querySelector('select[data-control=clip]').value] || {}).n,
+    frames: +fr.max + 1,
+    label: r.querySelector('.tb-frame-label').innerText,
+    greyed: [...r.querySelectorAll('[data-knob]')].filter(k => k.disabled)
+      .map(k => k.getAttribute('data-knob')),
+    knobs: r.querySelectorAll('[data-knob]').length,
+    declared: (data.config.knobs[r.querySelector('select[data-control=tracker]').value] || []).length,
+    spread: r.querySelector('.tb-spread').innerText,
+    scores: r.querySelector('.tb-scores').innerText,
+    status: r.querySelector('.tb-status').innerText };
+}"""
+
+
+def check_pairs(page, root) -> tuple[list, int]:
+    """The HTML book's playground, every clip x tracker pair at its defaults: every declared
+    knob movable (none greyed "Jupyter only"), the run spanning the whole clip, the spread over
+    seeds shown (at least 3 seeds, or the same boxes for every seed). Returns (failures,
+    pairs seen); back to the first pair afterwards."""
+    fails, seen = [], 0
+    clip_sel = root.query_selector("select[data-control=clip]")
+    tr_sel = root.query_selector("select[data-control=tracker]")
+    clips = clip_sel.evaluate("e => [...e.options].map(o => o.value)")
+    trackers = tr_sel.evaluate("e => [...e.options].map(o => o.value)")
+    first = (clips[0], trackers[0])
+    for c in clips:
+        set_input(clip_sel, c)
+        for t in trackers:
+            set_input(tr_sel, t)
+            settle(page)
+            info = root.evaluate(_PAIR_INFO)
+            seen += 1
+            name = f"{c} x {t}"
+            if info["status"].strip():
+                fails.append(f"{name}: {info['status']}")
+            if info["greyed"]:
+                fails.append(f"{name}: greyed knobs {info['greyed']}")
+            if info["knobs"] != info["declared"]:
+                fails.append(f"{name}: {info['knobs']} knobs shown, {info['declared']} declared")
+            if info["frames"] != info["n_clip"]:
+                fails.append(f"{name}: the run spans {info['frames']} of {info['n_clip']} frames")
+            m = re.search(r"over (\d+) seeds", info["spread"])
+            if not (m and int(m.group(1)) >= 3) and "same boxes for every seed" not in info["spread"]:
+                fails.append(f"{name}: no spread over seeds ({info['spread']!r})")
+    set_input(clip_sel, first[0])
+    set_input(tr_sel, first[1])
+    settle(page)
+    return fails, seen
+
+
+_OVERFLOW = """(r) => {
+  const box = r.getBoundingClientRect(), col = r.parentElement.getBoundingClientRect();
+  const out = [];
+  if (r.scrollWidth > r.clientWidth + 1) out.push(`scrolls: ${r.scrollWidth} > ${r.clientWidth}`);
+  if (box.right > col.right + 1) out.push(`wider than its column: ${box.right} > ${col.right}`);
+  if (box.right > document.documentElement.clientWidth + 1) out.push('wider than the window');
+  for (const c of r.querySelectorAll('canvas')) {     // laid out to fit, not squeezed to fit
+    const shown = c.getBoundingClientRect().width, drawn = c.width / (window.devicePixelRatio || 1);
+    if (Math.abs(shown - drawn) > 1) out.push(`canvas squeezed: drawn ${drawn} px, shown ${shown} px`);
+  }
+  for (const e of r.querySelectorAll('canvas, select, input, .tb-scores, .tb-legend')) {
+    const b = e.getBoundingClientRect();
+    if (b.width && b.right > box.right + 1) out.push(`${e.tagName.toLowerCase()}.${e.className}` +
+      ` sticks out by ${Math.round(b.right - box.right)} px`);
+  }
+  return out;
+}"""
+
+
+def overflow(root) -> list:
+    """What of the playground sticks out of its box or its column (empty when it fits)."""
+    return root.evaluate(_OVERFLOW)

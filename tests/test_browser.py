@@ -12,6 +12,7 @@ their files by script, which ``file://`` pages may block). Screenshots of every 
 from __future__ import annotations
 
 import functools
+import json
 import http.server
 import os
 import re
@@ -24,7 +25,8 @@ from pathlib import Path
 
 import pytest
 
-from ._playground_browser import CHROMIUM, exercise, local_only, watch_errors
+from ._playground_browser import (CHROMIUM, check_pairs, exercise, local_only, overflow, settle,
+                                  watch_errors)
 
 ROOT = Path(__file__).resolve().parents[1]
 OTHER_HTML = os.environ.get("TRACKBOOK_BOOK_HTML")
@@ -195,19 +197,61 @@ def _pages_of(html_dir: Path):
                   and p.name not in ("genindex.html", "search.html"))
 
 
-def _check_page(browser, url):
-    """Open ``url``; every playground answers its knobs, frame slider and play button; no
-    request leaves the machine; no script error."""
-    page = browser.new_page()
-    errors, blocked = [], []
+#: most bytes a chapter page may load before the reader touches it
+MAX_FIRST_LOAD = 1_500_000
+#: the widths the playground must fit: a laptop's window and a phone's
+WIDTHS = (1280, 390)
+
+
+def _local_file(url, root: Path, base: str | None):
+    """The file on disk behind a request of the page (None for data: and the like)."""
+    from urllib.parse import unquote, urlparse
+
+    u = urlparse(url)
+    if u.scheme == "file":
+        return Path(unquote(u.path))
+    if base and url.startswith(base):
+        return root / unquote(u.path).lstrip("/")
+    return None
+
+
+def _check_page(browser, url, root_dir: Path = HTML, base: str | None = None):
+    """Open ``url``; every playground answers its knobs, frame slider and play button, every
+    clip x tracker pair has its knobs, whole-clip runs and the spread over seeds, and it fits
+    the column at 1280 px and at 390 px; the page loads at most 1.5 MB of its own (HTML,
+    figures, playground files; the theme's shared files aside) before the reader touches it;
+    no request leaves the machine; no script error."""
+    page = browser.new_page(viewport={"width": WIDTHS[0], "height": 900})
+    errors, blocked, loaded = [], [], []
     watch_errors(page, errors)
     local_only(page, blocked)
+    page.on("request", lambda r: loaded.append(r.url))
     page.goto(url, wait_until="load")
     page.wait_for_timeout(300)
+    settle(page)
+    files = {f for f in {_local_file(u, root_dir, base) for u in loaded}
+             if f is not None and f.is_file()}
+    # the theme's and MathJax's files (_static, outside _static/playground) are the same for
+    # every page of the book and cached after the first: the page's own weight is the rest
+    own = sum(f.stat().st_size for f in files
+              if not ("_static" in f.parts and "playground" not in f.parts))
     fails = []
-    for i, root in enumerate(page.query_selector_all(".tb-playground")):
+    roots = page.query_selector_all(".tb-playground")
+    if any(r.get_attribute("data-tb-static") is not None for r in roots) \
+            and own > MAX_FIRST_LOAD:
+        fails.append(f"{own} bytes of its own at first load, over {MAX_FIRST_LOAD}")
+    for i, root in enumerate(roots):
+        if root.query_selector("script.tb-data") and '"kind":"playground"' in \
+                root.query_selector("script.tb-data").text_content():
+            pair_fails, _ = check_pairs(page, root)
+            fails += [f"playground {i}: {f}" for f in pair_fails]
+        fails += [f"playground {i} at {WIDTHS[0]} px: {f}" for f in overflow(root)]
         fails += [f"playground {i}: {f}" for f in exercise(page, root)]
-    n = len(page.query_selector_all(".tb-playground"))
+    page.set_viewport_size({"width": WIDTHS[1], "height": 844})
+    page.wait_for_timeout(300)
+    for i, root in enumerate(roots):
+        fails += [f"playground {i} at {WIDTHS[1]} px: {f}" for f in overflow(root)]
+    n = len(roots)
     page.close()
     assert not blocked, f"{url} requested off-machine: {blocked[:5]}"
     assert not errors, f"{url} raised: {errors[:5]}"
@@ -224,7 +268,7 @@ def test_built_pages_offline_and_playgrounds_live(browser, scheme):
         for rel in _pages_of(HTML):           # every page, so one report names them all
             url = (HTML / rel).as_uri() if scheme == "file" else f"{base}/{rel}"
             try:
-                seen += _check_page(browser, url)
+                seen += _check_page(browser, url, HTML, None if scheme == "file" else base)
             except AssertionError as e:
                 problems.append(str(e).split("\n")[0])
         assert not problems, "\n".join(problems)
@@ -237,16 +281,30 @@ def test_built_pages_offline_and_playgrounds_live(browser, scheme):
 
 @pytest.fixture(scope="module")
 def static_page(tmp_path_factory):
-    """One small playground's static page (as the book embeds it), without a book build."""
+    """One small playground's static page (as the book shows it: its run and frame files
+    copied beside it by the Sphinx extension), without a book build."""
+    from trackbook.playground.core import STATIC_BASE
+    from trackbook.playground.static import OUT_ENV
+    from trackbook.sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
-    pg = Playground(clips=["red-cube", "yellow-ball"], trackers=["color-pf"],
-                    params=["n_particles", "resampler"], n_frames=20,
-                    samples={"n_particles": [10, 100, 300]})
     d = tmp_path_factory.mktemp("static")
-    (d / "index.html").write_text('<!doctype html><html><head><meta charset="utf-8"></head>'
-                                  f"<body>{pg.static_html()}</body></html>", encoding="utf-8")
-    return d
+    mp = pytest.MonkeyPatch()
+    mp.setenv(OUT_ENV, str(d / "store"))
+    try:
+        pg = Playground(clips=["red-cube", "yellow-ball"], trackers=["color-pf", "mean-shift"],
+                        params=["n_particles", "resampler"], n_frames=30,
+                        samples={"n_particles": [10, 100, 300]})
+        body = pg.static_html(workers=1).replace(STATIC_BASE, STATIC_DIR + "/")
+        (d / "site").mkdir()
+        (d / "site" / "index.html").write_text(
+            '<!doctype html><html><head><meta charset="utf-8">'
+            '<meta name="viewport" content="width=device-width, initial-scale=1"></head>'
+            f'<body style="margin:0 auto;max-width:688px">{body}</body></html>', encoding="utf-8")
+        assert copy_files(d / "site") > 0
+    finally:
+        mp.undo()
+    return d / "site"
 
 
 @pytest.mark.parametrize("scheme", ["file", "http"])
@@ -254,9 +312,30 @@ def test_static_playground_answers(browser, static_page, scheme):
     httpd, base = _serve(static_page)
     try:
         url = (static_page / "index.html").as_uri() if scheme == "file" else f"{base}/index.html"
-        assert _check_page(browser, url) == 1
+        assert _check_page(browser, url, static_page, base) == 1
     finally:
         httpd.shutdown()
+
+
+def test_static_playground_loads_runs_on_demand(browser, static_page):
+    """The page holds no run: the first pair's run and frames arrive as files, a knob's run
+    when the reader picks it; the IoU band and the spread over three seeds are drawn."""
+    page = browser.new_page()
+    asked = []
+    page.on("request", lambda r: asked.append(r.url.rsplit("/", 1)[-1]))
+    page.goto((static_page / "index.html").as_uri(), wait_until="load")
+    settle(page)
+    first = [a for a in asked if a.startswith("tbpg-")]
+    assert len(first) == 2, first                # the first run and the first frames
+    root = page.query_selector(".tb-playground")
+    assert re.search(r"AUC \d\.\d\d \(\d\.\d\d\u2013\d\.\d\d over 3 seeds",
+                     root.query_selector(".tb-spread").inner_text())
+    knob = root.query_selector('[data-knob="n_particles"]')
+    knob.evaluate("e => { e.value = 0; e.dispatchEvent(new Event('input', {bubbles: true})); }")
+    settle(page)
+    assert len([a for a in asked if a.startswith("tbpg-")]) == 3
+    assert "10" in root.query_selector(".tb-knob-value").inner_text()
+    page.close()
 
 
 def test_static_playground_ships_the_widget_module(static_page):
@@ -266,4 +345,94 @@ def test_static_playground_ships_the_widget_module(static_page):
     js = re.search(r'<script type="module">(.*?)</script>', html, re.S).group(1)
     assert js.replace("<\\/script", "</script") == VIEWER_JS.read_text(encoding="utf-8")
     assert Playground._esm.default_value == js
-    assert len(html.encode()) < 3_000_000
+    assert len(html.encode()) < 300_000          # the runs and frames are files of their own
+
+
+def test_partial_run_shows_progress_and_never_a_blank_frame(browser, tmp_path):
+    """A run payload with n_done < n_total (the Jupyter widget streams them): the slider spans
+    the whole clip, the scores line says how far the run is, and past n_done the frame is
+    drawn with the previous complete run's box (greyed) instead of nothing."""
+    import json
+
+    from trackbook import clips
+    from trackbook.playground import VIEWER_JS
+    from trackbook.playground import data as D
+    from trackbook.style import VIEWER
+
+    clip = clips.load("red-cube")
+    full = D.run_payload("mean-shift", clip, {}, 20)[0]
+    shifted = [[b[0] + 30, b[1], b[2], b[3]] for b in full["boxes"]]   # another run's boxes
+    partial = {**full, "boxes": shifted[:5], "ok": full["ok"][:5], "iou": full["iou"][:5],
+               "n_done": 5, "n_total": 20, "state": {}}
+    cfg = {"clips": [{"key": "c", "name": clip.name}], "trackers": ["mean-shift"],
+           "knobs": {"mean-shift": []}, "colors": VIEWER}
+    host = """
+const root = document.getElementById('pg');
+let run = @FULL@;
+const host = { live: true, config: () => (@CFG@), clipKey: () => 'c', tracker: () => 'mean-shift',
+  clip: () => (@CLIP@), run: () => run, knobs: () => [], value: () => undefined,
+  sampled: () => true, note: () => '', status: () => '', setClip() {}, setTracker() {},
+  setKnob() {}, setBox() {} };
+const v = new Viewer(root, host);
+v.update();
+window.__v = v;
+window.__setRun = (r) => { run = r; v.update(); };
+"""
+    values = {"FULL": full, "CFG": cfg, "CLIP": D.clip_payload(clip, 20)}
+    host = re.sub(r"@(\w+)@", lambda m: json.dumps(values[m.group(1)]), host)   # one pass
+    (tmp_path / "index.html").write_text(
+        '<!doctype html><html><body><div id="pg"></div><script type="module">'
+        + VIEWER_JS.read_text(encoding="utf-8") + host + "</script></body></html>",
+        encoding="utf-8")
+    page = browser.new_page()
+    errors = []
+    watch_errors(page, errors)
+    page.goto((tmp_path / "index.html").as_uri(), wait_until="load")
+    page.wait_for_timeout(300)
+    assert not errors and page.evaluate("() => !!window.__v"), errors
+    page.evaluate("(p) => window.__setRun(p)", partial)
+    scores = page.inner_text(".tb-scores")
+    assert scores.startswith("running\u2026 5/20"), scores
+    assert page.eval_on_selector("[data-frame]", "e => +e.max") == 19
+    pixels = """() => { const c = document.querySelector('canvas');
+        return c.getContext('2d').getImageData(0, 0, c.width, c.height).data.join(','); }"""
+    page.evaluate("() => window.__v.seek(12)")
+    with_previous = page.evaluate(pixels)
+    page.evaluate("() => { window.__v.lastFull = null; window.__v.seek(12); }")
+    without = page.evaluate(pixels)
+    assert with_previous != without         # frame 12: the previous run's box is drawn
+    assert len(set(without.split(",")[:4000])) > 8     # and the frame itself, not a blank
+    page.close()
+
+
+def test_book_animation_loads_its_frames_and_runs_from_files(browser, tmp_path, monkeypatch):
+    """In the book build an animation's inline runs and frames become files beside the page
+    (its HTML stays small), and the viewer draws and steps through them as before."""
+    from trackbook.playground import BOOK_ENV
+    from trackbook.playground.animations import kalman_ball
+    from trackbook.playground.core import STATIC_BASE
+    from trackbook.playground.static import OUT_ENV
+    from trackbook.sphinx_playground import STATIC_DIR, copy_files
+
+    monkeypatch.setenv(OUT_ENV, str(tmp_path / "store"))
+    monkeypatch.setenv(BOOK_ENV, "1")
+    a = kalman_ball(n_frames=40)
+    inline = len(json.dumps(a.static_data))
+    body = a._repr_mimebundle_()["text/html"]
+    assert '"runs"' not in body and "data:image/png" not in body
+    assert len(body) < inline / 3 and len(body) < 60_000
+    site = tmp_path / "site"
+    site.mkdir()
+    (site / "index.html").write_text(
+        '<!doctype html><html><head><meta charset="utf-8"></head><body style="max-width:688px">'
+        + body.replace(STATIC_BASE, STATIC_DIR + "/") + "</body></html>", encoding="utf-8")
+    assert copy_files(site) >= 3                       # runs, frames, the picture
+    page = browser.new_page()
+    errors = []
+    watch_errors(page, errors)
+    page.goto((site / "index.html").as_uri(), wait_until="load")
+    settle(page)
+    root = page.query_selector(".tb-playground")
+    fails = exercise(page, root)
+    assert not errors and not fails, (errors, fails)
+    page.close()

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from trackbook.params import param
-from trackbook.playground import BOOK_ENV, VIEWER_JS
+from trackbook.playground import BOOK_ENV, VIEWER_JS, static
+from trackbook.playground.static import OUT_ENV
 from trackbook.playground.data import MAX_PARTICLES, knob_spec, sample_values
 from trackbook.trackers import registry
 from trackbook.trackers.base import Tracker
@@ -118,40 +119,53 @@ def test_your_own_video_waits_for_the_dragged_box(registered, tiny_folder, tmp_p
     np.testing.assert_allclose(pg.run_data["boxes"][0], [20, 40, 30, 30])
 
 
-def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monkeypatch):  # noqa: F811
+def _page_data(html):
+    return json.loads(html.split('class="tb-data">')[1].split("</script>")[0]
+                      .replace("<\\/", "</"))
+
+
+def _file(store, name):
+    """A run file's data, read back from its text (the call of the registration function)."""
+    text = (store / "files" / name).read_text(encoding="utf-8")
+    head = f'(window.tbPlaygroundRegister||function(){{}})("{name}",'
+    assert text.startswith(head) and text.endswith(");\n")
+    return json.loads(text[len(head):-3].replace("<\\/", "</"))
+
+
+def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monkeypatch,  # noqa: F811
+                                                  tmp_path):
+    monkeypatch.setenv(OUT_ENV, str(tmp_path))
     pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
                     params=["speed", "n_particles", "window"], n_frames=8,
                     samples={"speed": [0.0, 8.0]})
     assert pg._esm == VIEWER_JS.read_text(encoding="utf-8")
     assert "application/vnd.jupyter.widget-view+json" in pg._repr_mimebundle_()[0]
     monkeypatch.setenv(BOOK_ENV, "1")
+    monkeypatch.setattr(static, "WORKERS", 1)
     bundle = pg._repr_mimebundle_()
     html = bundle["text/html"]
     assert html.startswith('<div class="tb-playground"') and "<noscript><img" in html
     assert pg._esm.replace("</script", "<\\/script") in html
-    data = json.loads(html.split('class="tb-data">')[1].split("</script>")[0]
-                      .replace("<\\/", "</"))
-    keys = set(data["runs"])
+    data = _page_data(html)
+    assert "runs" not in data            # the runs are files, loaded on demand
+    keys = set(data["files"])
     tiny = str(tiny_folder)
     # defaults, then each knob's other samples one at a time (speed: the samples given)
     assert f"{tiny}|test-slider|" in keys
     assert {f"{tiny}|test-slider|speed#0", f"{tiny}|test-slider|speed#1"} <= keys
     assert data["config"]["knobs"]["test-slider"][0]["samples"] == [0.0, 8.0, 4.0]
-    assert data["runs"][f"{tiny}|test-slider|speed#0"]["values"]["speed"] == 0.0
-    assert all(r["values"]["n_particles"] == 20 for k, r in data["runs"].items()
-               if "n_particles" not in k)
-
-
-def test_static_cost_limit_leaves_knobs_to_jupyter(registered, tiny_folder):  # noqa: F811
-    pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
-                    params=["n_particles", "speed"], n_frames=10)
-    runs = pg.static_runs(max_cost=10 + 3 * 10)     # defaults + speed's three other samples
-    assert not any("n_particles#" in k for k in runs)   # 10..100 particles cost too much
-    assert sum("speed#" in k for k in runs) == 3
-    old = "bud" + "get"                              # the cost limit's former name
-    for method in (pg.static_runs, pg.static_payload, pg.static_html):
-        with pytest.raises(TypeError, match=f"'{old}'.*max_cost="):
-            method(**{old: 40})
+    assert _file(tmp_path, data["files"][f"{tiny}|test-slider|speed#0"])["values"]["speed"] == 0.0
+    for k, name in data["files"].items():
+        run = _file(tmp_path, name)
+        assert len(run["boxes"]) == run["n_total"] == run["n_done"] == 8   # n_frames=8
+        # the slider's box moves by `speed` whatever the seed: two seeds, same boxes, so
+        # the pair is deterministic and each knob value runs once
+        assert run["seeds"]["deterministic"]
+        assert run["seeds"]["seeds"] == ([0, 1] if k == f"{tiny}|test-slider|" else [0])
+        if "n_particles" not in k:
+            assert run["values"]["n_particles"] == 20
+    chunks = data["clips"][tiny]["chunks"]
+    assert sum(len(_file(tmp_path, c)["frames"]) for c in chunks) == 8
 
 
 def test_samples_stay_within_the_range():
@@ -162,21 +176,29 @@ def test_samples_stay_within_the_range():
     assert max(s) == 100.0 and min(s) == 0.01 and 1.0 in s
 
 
-def test_static_page_has_runs_for_every_knob(registered, tiny_folder):  # noqa: F811
-    """The HTML book moves EVERY knob; a knob the chapter does not name keeps its
-    default and at most three other samples (nearest below, nearest above, an end)."""
-    pg = Playground(clips=[str(tiny_folder)], trackers=["test-slider"],
+def test_static_page_has_runs_for_every_knob(registered, tiny_folder, monkeypatch,  # noqa: F811
+                                             tmp_path):
+    """The HTML book moves EVERY knob of EVERY clip x tracker: each knob keeps its default,
+    the paper's value (where printed) and about two others."""
+    monkeypatch.setenv(OUT_ENV, str(tmp_path))
+    pg = Playground(clips=[str(tiny_folder), "red-cube"], trackers=["test-slider", "mean-shift"],
                     params=["speed", "n_particles", "mode"], n_frames=8)
-    data = pg.static_payload()
-    tiny = str(tiny_folder)
+    data = pg.static_payload(workers=1)
     knobs = {k["name"]: k for k in data["config"]["knobs"]["test-slider"]}
-    assert knobs["speed"]["samples"] == [0.0, 2.0, 4.0, 6.0]      # 0..8 by 2, default 4
-    assert knobs["n_particles"]["samples"] == sample_values(knob_spec(_Slider, "n_particles"))
-    for name, k in knobs.items():
-        for i, v in enumerate(k["samples"]):
-            key = f"{tiny}|test-slider|" + ("" if v == k["default"] else f"{name}#{i}")
-            assert key in data["runs"], f"{name}={v}: no run in the page"
-            assert data["runs"][key]["values"][name] == v
+    assert knobs["speed"]["samples"] == [2.0, 4.0, 6.0]           # 0..8 by 2, default 4
+    assert knobs["n_particles"]["samples"] == [10, 20, 30]
+    assert knobs["mode"]["samples"] == ["a", "b"]
+    for c in (str(tiny_folder), "red-cube"):
+        for t in ("test-slider", "mean-shift"):
+            for k in data["config"]["knobs"][t]:
+                for i, v in enumerate(k["samples"]):
+                    key = f"{c}|{t}|" + ("" if v == k["default"] else f"{k['name']}#{i}")
+                    assert key in data["files"], f"{c} {t} {k['name']}={v}: no run file"
+                    assert _file(tmp_path, data["files"][key])["values"][k["name"]] == v
+    # mean-shift has no knob among these: its run at the defaults, over the first two seeds
+    # (the same boxes: it draws nothing at random)
+    run = _file(tmp_path, data["files"]["red-cube|mean-shift|"])
+    assert run["seeds"]["deterministic"] and run["seeds"]["seeds"] == [0, 1]
     # the live widget keeps the whole range (Jupyter takes any value)
     assert len(pg.config["knobs"]["test-slider"][0]["samples"]) == 5
 
@@ -213,16 +235,17 @@ def test_animations_use_the_viewer(make, monkeypatch):
     assert a._repr_mimebundle_()["text/html"].startswith('<div class="tb-playground"')
 
 
-def test_the_viewer_takes_its_colours_from_python():
+def test_the_viewer_takes_its_colours_from_python(monkeypatch, tmp_path):
     import re
 
+    monkeypatch.setenv(OUT_ENV, str(tmp_path))
     from trackbook import style
 
     js = VIEWER_JS.read_text(encoding="utf-8")
     assert not re.search(r"#[0-9a-fA-F]{6}\b", js)      # no second list of colours in the JS
     pg = Playground(clips=["red-cube"], trackers=["mean-shift"], params=[], n_frames=3)
     assert pg.config["colors"] == style.VIEWER
-    assert pg.static_payload()["config"]["colors"] == style.VIEWER
+    assert pg.static_payload(workers=1)["config"]["colors"] == style.VIEWER
     assert style.bgr(style.GT_COLOR) == (0x73, 0x9E, 0x00)   # "#009E73" read back to front
 
 

@@ -8,9 +8,11 @@ the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve 
   screen, then the rest of the clip in chunks that leave the kernel free (``live.py``); the
   frames travel once as JPEG, so a frame step costs no Python.
 * In the HTML book (built with ``TRACKBOOK_BOOK_BUILD=1``, which ``trackbook.sphinx_playground``
-  sets) the same module runs from the page: the runs for a few values of each knob, one knob
-  at a time around the default, and for every clip and tracker at defaults, are computed at
-  build time and embedded in the page, so it works with no kernel and no network.
+  sets) the same module runs from the page: for every clip and tracker, the runs at the
+  defaults and for a few values of each knob (one knob at a time) over whole clips and
+  several seeds are computed at build time (:mod:`trackbook.playground.static`) and written
+  as small files the page loads when the reader picks them, so it works with no kernel and
+  no network.
 """
 
 from __future__ import annotations
@@ -34,6 +36,7 @@ from .. import params as _params
 from .. import trackers as _trackers
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
+from . import static as S
 from .live import LiveRun, running_loop, stream
 
 HERE = Path(__file__).parent
@@ -41,14 +44,9 @@ VIEWER_JS = HERE / "viewer.js"
 VIEWER_CSS = HERE / "viewer.css"
 #: the environment variable that switches :meth:`Playground._repr_mimebundle_` to the static page
 BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
-#: longest clip the HTML book precomputes (frames), whatever ``n_frames`` says
-STATIC_MAX_FRAMES = 80
-#: the HTML book's samples of a knob outside _FIRST, besides its default
-STATIC_OTHER_SAMPLES = 3
-#: most bytes of one playground in the HTML book (a page stays under 3 MB to load quickly)
-MAX_PAGE_BYTES = 2_900_000
-#: the knobs the book's promise names, precomputed first
-_FIRST = ("n_particles", "alpha", "ratio_low", "ratio_high", "ratio_window")
+#: most bytes a chapter page loads before the reader touches a playground (its HTML, the
+#: first clip's first frames and the first run)
+MAX_PAGE_BYTES = 1_500_000
 
 _RUN_CACHE: dict = {}
 
@@ -131,17 +129,28 @@ def parse_values(tracker, values: dict) -> dict:
     return {k: _jsonable(v) for k, v in out.items()}
 
 
+#: what the Sphinx extension replaces with the page's path to ``_static/playground/``
+STATIC_BASE = "@@tb-static-playground@@"
+
+
 def page_html(payload: dict, png: bytes, alt: str) -> str:
-    """One self-contained fragment: root ``div.tb-playground``, the data as JSON in a
-    ``<script>`` (no fetch, so ``file://`` works), the viewer module inline and ``png`` in a
-    ``<noscript>`` (print, no JavaScript)."""
+    """One fragment: root ``div.tb-playground``, the data as JSON in a ``<script>`` (no
+    fetch, so ``file://`` works), the viewer module inline and ``png`` in a ``<noscript>``
+    (print, no JavaScript). Files the data names (``payload["files"]``) are loaded from
+    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there. In the book
+    build (``TRACKBOOK_BOOK_BUILD``) inline runs and frames (an animation's) and the picture
+    become files too (:func:`trackbook.playground.static.to_files`): the page stays light."""
+    if os.environ.get(BOOK_ENV):
+        payload = S.to_files(payload)
+        src = STATIC_BASE + S.write_png(png)
+    else:
+        src = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
     data = json.dumps(payload, separators=(",", ":")).replace("</", "<\\/")
-    b64 = base64.b64encode(png).decode("ascii")
     js = VIEWER_JS.read_text(encoding="utf-8").replace("</script", "<\\/script")
     css = VIEWER_CSS.read_text(encoding="utf-8")
-    return (f'<div class="tb-playground" data-tb-static="1">'
+    return (f'<div class="tb-playground" data-tb-static="1" data-tb-base="{STATIC_BASE}">'
             f'<script type="application/json" class="tb-data">{data}</script>'
-            f'<noscript><img alt="{html.escape(alt)}" src="data:image/png;base64,{b64}">'
+            f'<noscript><img alt="{html.escape(alt)}" src="{src}">'
             f'</noscript></div><style>{css}</style><script type="module">{js}</script>')
 
 
@@ -446,106 +455,99 @@ class Playground(anywidget.AnyWidget):
         return super()._repr_mimebundle_(**kwargs)
 
     # -- the HTML book -------------------------------------------------------------------
-    def _cached_run(self, tracker, key, values, n):
-        clip = self._clips[key]
-        box = self._init_box(clip)
-        if box is False:
-            return None
-        ck = _cache_key(tracker, clip.name, n, self.seed, values, box)
-        if ck not in _RUN_CACHE:
-            try:
-                _RUN_CACHE[ck] = D.run_payload(tracker, clip, {k: tuple(v) if isinstance(
-                    v, list) else v for k, v in values.items()}, n, self.seed, box)[0]
-            except ValueError as e:
-                _RUN_CACHE[ck] = {"error": str(e)}
-        return _RUN_CACHE[ck]
+    def reuse(self, runs: dict) -> "Playground":
+        """Take runs the chapter already made (``{clip: Result}`` of
+        :func:`trackbook.evaluate` at this playground's seed, first tracker, defaults and whole
+        clip) instead of running them again for the HTML book; their boxes and scores are
+        shown, not the tracker's state. Returns the playground (``pg.reuse(runs).show()``)."""
+        t = self.config["trackers"][0]
+        for key, r in runs.items():
+            clip = self._clips.get(str(key))
+            if clip is None or r.tracker != t or len(r.boxes) != self._n(clip):
+                raise ValueError(f"reuse: {key!r} is not a whole-clip run of {t} on one of "
+                                 f"this playground's clips ({list(self._clips)}).")
+            p = D.result_payload(r, clip, self._defaults(t), [], self._n(clip), t)
+            self._reused[S.Runner.known_key(t, str(key), self._defaults(t), self._n(clip),
+                                            self.seed)] = {
+                "seed": self.seed, "boxes": p["boxes"], "iou": p["iou"],
+                "auc": float(r.scores.get("auc", float("nan"))), "payload": p}
+        return self
 
-    def static_runs(self, max_cost: int = 2400, room: int = MAX_PAGE_BYTES, **kwargs) -> dict:
-        """The runs the HTML book embeds, keyed ``clip|tracker|`` (defaults) and
-        ``clip|tracker|knob#i`` (knob at its i-th sample in :meth:`static_knobs`, the others
-        at their defaults).
-
-        Every clip x tracker at defaults first; then, on the first clip and tracker, each knob's
-        samples (the promised knobs first) while the cost stays under ``max_cost`` tracker-frames
-        (a run of n frames with P particles costs n * max(1, P / default P)): the build stays
-        quick; and while the runs' JSON stays under ``room`` bytes (the page under 3 MB). Knobs
-        left out are marked "Jupyter only" in the page.
-        """
-        _refuse_unknown_keywords("static_runs", kwargs)
-        runs, cost, size = {}, 0, 0
-        t0, c0 = self.config["trackers"][0], self.config["clips"][0]["key"]
-        for t in self.config["trackers"]:
-            for c in self._clips:
-                n = self._n(self._clips[c], STATIC_MAX_FRAMES)
-                r = self._cached_run(t, c, self._defaults(t), n)
-                if r is not None:
-                    runs[f"{c}|{t}|"] = r
-                    cost += n
-                    size += len(json.dumps(r))
-        knobs = sorted(self.static_knobs(t0),
-                       key=lambda k: (k["name"] not in _FIRST, self.param_names.index(k["name"])))
-        n = self._n(self._clips[c0], STATIC_MAX_FRAMES)
-        defaults = self._defaults(t0)
-        p0 = defaults.get("n_particles") or 1
-        for k in knobs:
-            todo = [(i, v) for i, v in enumerate(k["samples"]) if v != k["default"]]
-            need = sum(n * max(1.0, (v if k["name"] == "n_particles" else p0) / p0)
-                       for _, v in todo)
-            typical = size / max(len(runs), 1)
-            if cost + need > max_cost or size + typical * len(todo) > room:
-                continue
-            for i, v in todo:
-                r = self._cached_run(t0, c0, {**defaults, k["name"]: v}, n)
-                if r is not None:
-                    runs[f"{c0}|{t0}|{k['name']}#{i}"] = r
-                    size += len(json.dumps(r))
-            cost += need
-        return runs
+    @property
+    def _reused(self) -> dict:
+        if "_reused_runs" not in self.__dict__:
+            self.__dict__["_reused_runs"] = {}
+        return self.__dict__["_reused_runs"]
 
     def static_knobs(self, tracker) -> list:
-        """The knobs of ``tracker`` as the HTML book offers them: the knobs of ``_FIRST``
-        (particles, alpha, the ratio window) and those given ``samples=`` keep all their
-        samples; every other knob keeps its default and at most ``STATIC_OTHER_SAMPLES``
-        others (the nearest below and above the default, then the range's ends), so that
-        every knob has runs in the page while the build stays quick."""
+        """The knobs of ``tracker`` as the HTML book offers them: each knob's default, the
+        paper's value where it prints one (:func:`~trackbook.playground.data.paper_sample`)
+        and about two others (:func:`~trackbook.playground.data.static_samples`), or the
+        values given in ``samples=``."""
+        cls = _params_cls(tracker)
         out = []
         for k in self.config["knobs"][tracker]:
-            k = {**k, "samples": list(k["samples"])}
-            if k["name"] not in _FIRST and k["name"] not in self._samples:
-                others = [v for v in k["samples"] if v != k["default"]]
-                if len(others) > STATIC_OTHER_SAMPLES and k["kind"] in ("int", "float"):
-                    below = [v for v in others if v < k["default"]]
-                    above = [v for v in others if v > k["default"]]
-                    pick = []
-                    for v in ([below[-1]] if below else []) + ([above[0]] if above else []) \
-                            + [others[0], others[-1]] + others:
-                        if v not in pick and len(pick) < STATIC_OTHER_SAMPLES:
-                            pick.append(v)
-                    k["samples"] = sorted(pick + [k["default"]])
-            out.append(k)
+            if k["name"] in self._samples:
+                out.append({**k, "samples": list(k["samples"])})
+                continue
+            paper = D.paper_sample(cls, k["name"])
+            try:
+                if paper is not None:
+                    parse_values(tracker, {k["name"]: paper})
+            except (ValueError, TypeError):
+                paper = None
+            out.append({**k, "samples": D.static_samples(k, paper), "paper": paper})
         return out
 
-    def static_payload(self, max_cost: int = 2400, **kwargs) -> dict:
+    def static_runs(self, workers: int | None = None, **kwargs) -> dict:
+        """``{run key: file name}`` of every run the HTML book offers (see
+        :func:`trackbook.playground.static.book_files`): every clip x tracker at its defaults
+        and each knob at each of its :meth:`static_knobs` samples, over the seeds."""
+        _refuse_unknown_keywords("static_runs", kwargs)
+        known = dict(self._reused)
+        if self.result is not None and len(self.result.boxes) == self._n(self._clips[self.clip]):
+            t, c = self.tracker, self.clip      # the run the Jupyter half has just made
+            p = D.result_payload(self.result, self._clips[c], dict(self.values), self.states,
+                                 self._n(self._clips[c]), t)
+            known.setdefault(S.Runner.known_key(t, c, self.values, self._n(self._clips[c]),
+                                                self.seed),
+                             {"seed": self.seed, "boxes": p["boxes"], "iou": p["iou"],
+                              "auc": float(self.result.scores.get("auc", float("nan"))),
+                              "payload": p})
+        trackers = self.config["trackers"]
+        return S.book_files(self._clips, trackers, {t: self.static_knobs(t) for t in trackers},
+                           {t: self._defaults(t) for t in trackers},
+                           {c: self._n(clip) for c, clip in self._clips.items()},
+                           {c: self._init_box(clip) for c, clip in self._clips.items()},
+                           self.seed, known, S.WORKERS if workers is None else workers)
+
+    def static_payload(self, workers: int | None = None, **kwargs) -> dict:
+        """What the page holds: the configuration, each clip's ground truth and the names of
+        its frame files, the name of every run file; the files themselves are written to
+        :func:`trackbook.playground.static.store`."""
         _refuse_unknown_keywords("static_payload", kwargs)
-        # the frames take most of the page: lower the JPEG quality until they fit in 2 MB
-        for quality in (D.JPEG_QUALITY, 60, 50, 40, 30):
-            clip_data = {c: D.clip_payload(clip, self._n(clip, STATIC_MAX_FRAMES), quality)
-                         for c, clip in self._clips.items()}
-            if len(json.dumps(clip_data)) <= 2_000_000:
-                break
-        room = MAX_PAGE_BYTES - len(json.dumps(clip_data)) - 150_000   # viewer, PNG, config
-        runs = self.static_runs(max_cost, room)
-        t0 = self.config["trackers"][0]
-        config = {**self.config, "knobs": {**self.config["knobs"], t0: self.static_knobs(t0)}}
-        return {"config": config, "clips": clip_data, "runs": runs,
+        runs = self.static_runs(workers)
+        clips = {}
+        for c, clip in self._clips.items():
+            n = self._n(clip)
+            info = {k: v for k, v in D.clip_payload(clip, 0).items() if k != "frames"}
+            gt = np.asarray(clip.groundtruth[:n], dtype=float)
+            info.update(n=n, per=S.CHUNK_FRAMES, chunks=S.write_frames(clip, n),
+                        gt=[[round(float(v), 1) for v in b] if np.isfinite(b).all() else None
+                            for b in gt] if np.isfinite(gt).all(axis=1).any() else None)
+            clips[c] = info
+        config = {**self.config, "knobs": {t: self.static_knobs(t)
+                                           for t in self.config["trackers"]}}
+        return {"kind": "playground", "config": config, "clips": clips, "files": runs,
                 "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
 
-    def static_html(self, max_cost: int = 2400, **kwargs) -> str:
-        """The panel as one self-contained HTML fragment: root ``div.tb-playground``, the data
-        in a ``<script type="application/json">``, the viewer module inline (so ``file://``
-        works) and a PNG of the first run in ``<noscript>`` for print and no-JavaScript."""
+    def static_html(self, workers: int | None = None, **kwargs) -> str:
+        """The panel as an HTML fragment: root ``div.tb-playground``, the configuration in a
+        ``<script type="application/json">``, the viewer module inline and a PNG of the first
+        run in ``<noscript>`` for print and no-JavaScript; the runs and frames are files
+        beside the page, loaded when the reader picks them."""
         _refuse_unknown_keywords("static_html", kwargs)
-        return page_html(self.static_payload(max_cost), self._static_png(),
+        return page_html(self.static_payload(workers), self._static_png(),
                          "the playground's first run: frames and IoU")
 
     def _static_png(self) -> bytes:

@@ -67,6 +67,7 @@ class Viewer {
     this.note = el("div", { class: "tb-note" }, root);
     this.canvas = el("canvas", { class: "tb-canvas" }, root);
     this.ctx = this.canvas.getContext("2d");
+    this.legendBox = el("div", { class: "tb-legend" }, root);
     const tr = el("div", { class: "tb-row tb-transport" }, root);
     this.playBtn = el("button", { "data-play": "", type: "button", text: "\u25b6 play" }, tr);
     this.slider = el("input", { type: "range", "data-frame": "", min: 0, max: 0, step: 1,
@@ -76,6 +77,14 @@ class Viewer {
     for (const [name, fps] of SPEEDS) el("option", { value: fps, text: name }, this.speedSel);
     this.speedSel.value = "12";
     this.scores = el("div", { class: "tb-scores" }, root);
+    this.spread = el("div", { class: "tb-spread" }, root);
+    if (typeof ResizeObserver !== "undefined") {
+      // the column's width decides the layout: side by side, or the curve under the frame
+      this.resizer = new ResizeObserver(() => {
+        if (this.clipInfo && this.root.clientWidth !== this.laidOut) { this.layout(); this.draw(); }
+      });
+      this.resizer.observe(root);
+    }
     this.slider.addEventListener("input", () => this.seek(+this.slider.value));
     this.playBtn.addEventListener("click", () => this.togglePlay());
     root.addEventListener("keydown", (ev) => {
@@ -103,8 +112,14 @@ class Viewer {
     this.trackerSel.value = h.tracker();
     const clip = h.clip();
     if (clip && this.clipKey !== h.clipKey()) this.loadClip(clip, h.clipKey());
-    this.run = h.run();
-    this.state = decodeState(this.run);
+    let run = h.run();
+    this.loading = !run && !!(h.loading && h.loading());
+    if (!run && this.loading && this.lastFull && this.lastFull.clip === (clip && clip.name)) {
+      run = this.lastFull;         // the previous run, greyed, until this one arrives
+      this.stale = true;
+    } else this.stale = false;
+    if (run && !this.stale && run.boxes && !(run.n_done < run.n_total)) this.lastFull = run;
+    if (run !== this.run) { this.run = run; this.state = decodeState(run); }
     this.buildKnobs();
     const n = this.nFrames();
     this.slider.max = Math.max(0, n - 1);
@@ -119,8 +134,14 @@ class Viewer {
     else if (!clipHasGt) this.scores.textContent = (r.tracker || "") +
       " on your clip: no ground truth, so no scores; the curve is the tracker's ok flag.";
     else this.scores.textContent = r.scores || "";
+    const partial = r.n_done !== undefined && r.n_done < r.n_total;
+    if (partial) this.scores.textContent = `running\u2026 ${r.n_done}/${r.n_total} \u00b7 ` + this.scores.textContent;
+    if (this.stale) this.scores.textContent = "loading this run\u2026 (the previous one shown, greyed)";
+    else if (!run && this.loading) this.scores.textContent = "loading the run\u2026";
+    this.spread.textContent = !this.stale && r.seeds ? spreadText(r.seeds) : "";
     this.note.textContent = h.note();
     this.status.textContent = h.status();
+    this.legend();
     this.draw();
   }
 
@@ -128,31 +149,69 @@ class Viewer {
     this.clipKey = key;
     this.clipInfo = clip;
     this.frameIndex = clip.index || null;  // animations: step -> image (steps share frames)
-    this.images = clip.frames.map((b64) => {
+    const imgs = [];
+    this.images = imgs;
+    const add = (b64, at) => {
       const im = new Image();
       im.onload = () => { if (this.images === imgs) this.draw(); };
       im.src = "data:image/jpeg;base64," + b64;
-      return im;
-    });
+      imgs[at] = im;
+    };
+    this.addFrames = (frames, start) => frames.forEach((b64, j) => add(b64, start + j));
+    this.chunkAsked = {};
+    if (clip.frames) this.addFrames(clip.frames, 0);
+    else this.needFrame(0);
+    this.layout();
+  }
+
+  // frames arrive in files of clip.per frames, asked for when the cursor comes near them
+  needFrame(i) {
+    const clip = this.clipInfo;
+    if (!clip || clip.frames || !clip.chunks || !this.host.loadFile) return;
+    const c = Math.floor(i / clip.per);
+    if (c < 0 || c >= clip.chunks.length || this.chunkAsked[c]) return;
+    this.chunkAsked[c] = true;
     const imgs = this.images;
-    const scale = Math.min(2, 480 / clip.w);
-    this.scale = scale;
-    this.fw = Math.round(clip.w * scale);
-    this.fh = Math.round(clip.h * scale);
-    this.cx0 = this.fw + 16;
-    this.cw = 320;
+    this.host.loadFile(clip.chunks[c], (d) => {
+      if (this.images !== imgs) return;
+      if (d) this.addFrames(d.frames, d.start);
+      else this.chunkAsked[c] = false;
+      this.draw();
+    });
+  }
+
+  layout() {
+    const clip = this.clipInfo;
+    if (!clip) return;
+    const cs = getComputedStyle(this.root);
+    const pad = (parseFloat(cs.paddingLeft) || 0) + (parseFloat(cs.paddingRight) || 0);
+    this.laidOut = this.root.clientWidth;
+    const avail = Math.max(200, (this.root.clientWidth || 640) - pad);
+    const side = avail >= 560;     // the IoU curve beside the frame, or under it
+    this.cw = side ? Math.round(Math.max(220, Math.min(320, avail * 0.36))) : avail;
+    const fwMax = side ? avail - 16 - this.cw : avail;
+    this.scale = Math.min(2, 480 / clip.w, fwMax / clip.w);
+    this.fw = Math.round(clip.w * this.scale);
+    this.fh = Math.round(clip.h * this.scale);
+    this.cx0 = side ? this.fw + 16 : 0;
+    this.cy0 = side ? 0 : this.fh + 8;
+    this.ch = side ? this.fh : 150;
+    const W = side ? this.cx0 + this.cw : avail, H = side ? this.fh : this.cy0 + this.ch;
+    this.W = W; this.H = H;
     const dpr = window.devicePixelRatio || 1;
-    this.canvas.width = Math.round((this.cx0 + this.cw) * dpr);
-    this.canvas.height = Math.round(this.fh * dpr);
-    this.canvas.style.width = (this.cx0 + this.cw) + "px";
-    this.canvas.style.height = this.fh + "px";
+    this.canvas.width = Math.round(W * dpr);
+    this.canvas.height = Math.round(H * dpr);
+    this.canvas.style.width = W + "px";
+    this.canvas.style.height = H + "px";
     this.ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   }
 
   nFrames() {
     const r = this.run;
+    if (r && r.n_total) return r.n_total;
     if (r && r.boxes) return r.boxes.length;
-    return this.clipInfo ? this.clipInfo.frames.length : 1;
+    if (!this.clipInfo) return 1;
+    return this.clipInfo.n || (this.clipInfo.frames ? this.clipInfo.frames.length : 1);
   }
 
   buildKnobs() {
@@ -220,6 +279,10 @@ class Viewer {
     const n = this.nFrames();
     this.frame = Math.max(0, Math.min(n - 1, i | 0));
     this.slider.value = this.frame;
+    const per = this.clipInfo && this.clipInfo.per;
+    const at = (k) => (this.frameIndex ? this.frameIndex[Math.min(k, this.frameIndex.length - 1)] : k);
+    this.needFrame(at(this.frame));
+    if (per && at(this.frame) % per >= per - 10) this.needFrame(at(this.frame) + 10);
     this.draw();
   }
 
@@ -256,16 +319,30 @@ class Viewer {
     const c = this.ctx, s = this.scale, i = this.frame;
     if (!this.clipInfo) return;
     c.fillStyle = "#fff";
-    c.fillRect(0, 0, this.cx0 + this.cw, this.fh);
-    const im = this.images[this.frameIndex ? this.frameIndex[i] : i];
+    c.fillRect(0, 0, this.W, this.H);
+    const ii = this.frameIndex ? this.frameIndex[i] : i;   // animations: step -> image
+    const im = this.images[ii];
     if (im && im.complete && im.naturalWidth) c.drawImage(im, 0, 0, this.fw, this.fh);
-    else { c.fillStyle = "#222"; c.fillRect(0, 0, this.fw, this.fh); }
+    else {
+      c.fillStyle = "#222"; c.fillRect(0, 0, this.fw, this.fh);
+      c.fillStyle = "#ddd"; c.font = "13px sans-serif";
+      c.fillText("loading frames\u2026", 12, 22);
+      this.needFrame(ii);
+    }
+    c.save();
+    c.beginPath(); c.rect(0, 0, this.fw, this.fh); c.clip();   // nothing spills off the frame
     const gt = this.clipInfo.gt;
     if (gt && gt[i]) this.box(gt[i], this.colors.gt, 2);
     const extra = this.run && this.run.extra_boxes;   // animations: e.g. the measurement
     if (extra) for (const e of extra) if (e.boxes[i]) this.box(e.boxes[i], e.color, 2, e.dash);
     const r = this.run, st = this.state || {};
-    if (r && r.boxes) {
+    const done = r && r.boxes ? (r.n_done !== undefined ? r.n_done : r.boxes.length) : 0;
+    if (r && r.boxes && i >= done && this.lastFull && this.lastFull !== r &&
+        this.lastFull.clip === r.clip && this.lastFull.boxes[i]) {         // a run still coming: the previous run's box, greyed
+      this.box(this.lastFull.boxes[i], "rgba(128,128,128,0.8)", 2, [6, 4]);
+    }
+    if (this.stale) c.globalAlpha = 0.45;
+    if (r && r.boxes && i < done) {
       if (st.search_window && st.search_window[i]) this.box(st.search_window[i], this.colors.window, 1.5, [5, 4]);
       if (st.candidates && st.candidates[i]) for (const b of st.candidates[i]) this.box(b, this.colors.cand, 1);
       if (st.particles && st.particles[i]) {
@@ -296,8 +373,9 @@ class Viewer {
       }
       if (r.boxes[i]) this.box(r.boxes[i], this.colors.est, 2.5);
     }
+    c.globalAlpha = 1;
     if (this.drag && this.drag.b) this.box(this.drag.b, this.colors.est, 2, [4, 3]);
-    this.legend();
+    c.restore();
     this.curve();
     const iou = r && r.iou ? r.iou[i] : null;
     this.frameLabel.textContent = `frame ${i} / ${Math.max(0, this.nFrames() - 1)}` +
@@ -306,24 +384,28 @@ class Viewer {
       (r && r.captions && r.captions[i] ? " \u00b7 " + r.captions[i] : "");
   }
 
+  // the legend sits under the canvas, never over the frame
   legend() {
-    const c = this.ctx;
-    c.font = "11px sans-serif";
-    let x = 6;
     const items = [[(this.run && this.run.est_label) || "estimate", this.colors.est]];
-    if (this.clipInfo.gt) items.unshift(["ground truth", this.colors.gt]);
+    if (this.clipInfo && this.clipInfo.gt) items.unshift(["ground truth", this.colors.gt]);
     for (const e of (this.run && this.run.extra_boxes) || []) items.push([e.label, e.color]);
-    for (const [name, col] of items) {
-      const w = c.measureText(name).width + 18;
-      c.fillStyle = "rgba(255,255,255,0.8)"; c.fillRect(x - 2, this.fh - 18, w, 15);
-      c.fillStyle = col; c.fillRect(x, this.fh - 13, 10, 5);
-      c.fillStyle = "#000"; c.fillText(name, x + 13, this.fh - 7);
-      x += w + 4;
+    if (this.run && this.run.seeds && !this.run.seeds.deterministic)
+      items.push(["IoU range over the seeds", this.colors.curve, 0.25]);
+    const sig = JSON.stringify(items);
+    if (sig === this.legendSig) return;
+    this.legendSig = sig;
+    this.legendBox.textContent = "";
+    for (const [name, col, alpha] of items) {
+      const it = el("span", { class: "tb-legend-item" }, this.legendBox);
+      const sw = el("span", { class: "tb-swatch" }, it);
+      sw.style.background = col;
+      if (alpha) sw.style.opacity = alpha;
+      el("span", { text: name }, it);
     }
   }
 
   curve() {
-    const c = this.ctx, x0 = this.cx0 + 34, y0 = 12, w = this.cw - 44, h = this.fh - 40;
+    const c = this.ctx, x0 = this.cx0 + 34, y0 = this.cy0 + 12, w = this.cw - 44, h = this.ch - 40;
     const r = this.run, n = this.nFrames();
     c.strokeStyle = "#000"; c.lineWidth = 1; c.strokeRect(x0, y0, w, h);
     c.fillStyle = "#000"; c.font = "11px sans-serif";
@@ -340,6 +422,25 @@ class Viewer {
     c.strokeStyle = this.colors.grid; c.setLineDash([4, 3]);
     c.beginPath(); c.moveTo(x0, Y(0.5)); c.lineTo(x0 + w, Y(0.5)); c.stroke(); c.setLineDash([]);
     const ys = custom ? custom.values : useIou ? r.iou : (r && r.ok ? r.ok : null);
+    const sd = useIou && r.seeds && !this.stale ? r.seeds : null;
+    if (sd && sd.iou_lo && !sd.deterministic) {     // the band: least to greatest IoU over seeds
+      c.save(); c.fillStyle = this.colors.curve; c.globalAlpha = 0.22;
+      let open = false;
+      const flush = (k0, k1) => {
+        c.beginPath();
+        for (let k = k0; k <= k1; k++) c.lineTo(X(k), Y(sd.iou_hi[k]));
+        for (let k = k1; k >= k0; k--) c.lineTo(X(k), Y(sd.iou_lo[k]));
+        c.closePath(); c.fill();
+      };
+      let k0 = 0;
+      for (let k = 0; k <= sd.iou_lo.length; k++) {
+        const okk = k < sd.iou_lo.length && sd.iou_lo[k] !== null && sd.iou_hi[k] !== null;
+        if (okk && !open) { open = true; k0 = k; }
+        if (!okk && open) { open = false; flush(k0, k - 1); }
+      }
+      c.restore();
+    }
+    if (this.stale) c.globalAlpha = 0.35;
     if (ys) {
       c.strokeStyle = this.colors.curve; c.lineWidth = 1.5; c.beginPath();
       let pen = false;
@@ -350,6 +451,7 @@ class Viewer {
       });
       c.stroke();
     }
+    c.globalAlpha = 1;
     c.strokeStyle = "#000"; c.lineWidth = 1; c.setLineDash([2, 2]);
     c.beginPath(); c.moveTo(X(this.frame), y0); c.lineTo(X(this.frame), y0 + h); c.stroke();
     c.setLineDash([]);
@@ -388,42 +490,120 @@ class Viewer {
   }
 }
 
-// ---- the static HTML book: every run precomputed, embedded in the page -------------------
-function staticHost(data) {
+// ---- the static HTML book: runs precomputed at build time -------------------------------
+// A page carries only the configuration; each run and each chunk of frames is a file
+// tbpg-<hash>.js beside the book's pages that calls window.tbPlaygroundRegister(name, data).
+// A <script> tag loads it when the reader picks it: that works from file:// and over http.
+
+function spreadText(sd) {
+  const a = (sd.auc || []).filter((x) => x !== null && x === x);
+  if (!a.length) return "";
+  if (sd.deterministic) return `AUC ${a[0].toFixed(2)} (same boxes for every seed)`;
+  const mean = a.reduce((p, q) => p + q, 0) / a.length;
+  return `AUC ${mean.toFixed(2)} (${Math.min(...a).toFixed(2)}\u2013${Math.max(...a).toFixed(2)} ` +
+    `over ${a.length} seeds; boxes and state shown: seed ${sd.seeds[0]})`;
+}
+
+function files() {
+  const g = typeof window !== "undefined" ? window : {};
+  if (!g.__tbPlaygroundFiles) {
+    const reg = { data: {}, wait: {}, failed: {} };
+    g.__tbPlaygroundFiles = reg;
+    g.tbPlaygroundRegister = (name, d) => {
+      const r = g.__tbPlaygroundFiles;
+      r.data[name] = d;
+      const w = r.wait[name] || [];
+      delete r.wait[name];
+      for (const f of w) f(d);
+    };
+  }
+  return g.__tbPlaygroundFiles;
+}
+
+function baseOf(root) {
+  const b = root.getAttribute("data-tb-base") || "";
+  if (b && !b.startsWith("@@")) return b;
+  // not through the book's Sphinx extension: beside the page's _static scripts, if any
+  const s = document.querySelector('script[src*="_static/"]');
+  return s ? s.getAttribute("src").replace(/_static\/.*$/, "_static/playground/") : "";
+}
+
+function loadFile(base, name, cb) {
+  const reg = files();
+  if (name in reg.data) { cb(reg.data[name]); return; }
+  if (reg.wait[name]) { reg.wait[name].push(cb); return; }
+  reg.wait[name] = [cb];
+  delete reg.failed[name];
+  const s = document.createElement("script");
+  s.src = base + name;
+  s.async = true;
+  s.onerror = () => {
+    reg.failed[name] = true;
+    const w = reg.wait[name] || [];
+    delete reg.wait[name];
+    for (const f of w) f(null);
+  };
+  document.head.appendChild(s);
+}
+
+function staticHost(data, root) {
   const cfg = data.config;
+  const onDemand = !!data.files;
+  const table = data.files || data.runs || {};
+  const base = onDemand && root ? baseOf(root) : "";
   let clipKey = data.initial.clip, tracker = data.initial.tracker, values = {};
   let viewer = null;
   const knobs = () => cfg.knobs[tracker] || [];
   const defaults = () => Object.fromEntries(knobs().map((k) => [k.name, k.default]));
   values = defaults();
   let key = `${clipKey}|${tracker}|`;
+  const ask = () => {
+    if (onDemand && table[key]) loadFile(base, table[key], () => { if (viewer) viewer.update(); });
+  };
   const host = {
     live: false,
     config: () => cfg,
     clipKey: () => clipKey,
     tracker: () => tracker,
     clip: () => data.clips[clipKey],
-    run: () => data.runs[key] || null,
+    run: () => {
+      if (!onDemand) return table[key] || null;
+      const d = table[key] ? files().data[table[key]] : null;
+      return d || null;
+    },
+    loading: () => onDemand && !!table[key] && !(table[key] in files().data) &&
+      !files().failed[table[key]],
+    loadFile: onDemand ? (name, cb) => loadFile(base, name, cb) : null,
     knobs,
     value: (name) => values[name],
-    sampled: (k) => k.samples.some((v, i) => `${clipKey}|${tracker}|${k.name}#${i}` in data.runs),
-    note: () => data.note !== undefined ? data.note : "This page holds runs for a few sampled values of each knob, one knob at a " +
-      "time around the default (the others return to their defaults); in Jupyter the " +
-      "playground re-runs the tracker for any value." +
+    sampled: (k) => k.samples.some((v, i) => !same(v, k.default) &&
+                                   `${clipKey}|${tracker}|${k.name}#${i}` in table),
+    note: () => data.note !== undefined ? data.note : "This page holds runs over the whole clip " +
+      "for a few values of each knob (the book's default, the paper's value where it prints " +
+      "one, and two others), one knob at a time (the others return to their defaults), each " +
+      "over several seeds; in Jupyter the playground re-runs the tracker for any value." +
+      (host.run() && host.run().seeds && host.run().seeds.deterministic ? ` ${tracker} ` +
+       "gave the same boxes for two seeds here, so each of its runs is computed once." : "") +
       (knobs().some((k) => !host.sampled(k)) ? " Greyed knobs: Jupyter only." : ""),
-    status: () => (data.runs[key] ? "" : "(no precomputed run for this choice)"),
-    setClip(c) { clipKey = c; values = defaults(); key = `${clipKey}|${tracker}|`; viewer.update(); },
-    setTracker(t) { tracker = t; values = defaults(); key = `${clipKey}|${tracker}|`; viewer.update(); },
+    status: () => {
+      if (!table[key]) return "(no precomputed run for this choice)";
+      if (onDemand && files().failed[table[key]]) return "\u26a0 could not load " + table[key];
+      return host.loading() ? "loading\u2026" : "";
+    },
+    setClip(c) { clipKey = c; values = defaults(); key = `${clipKey}|${tracker}|`; ask(); viewer.update(); },
+    setTracker(t) { tracker = t; values = defaults(); key = `${clipKey}|${tracker}|`; ask(); viewer.update(); },
     setKnob(name, v) {
       values = defaults();
       const k = knobs().find((q) => q.name === name);
       const i = k.samples.findIndex((s) => same(s, v));
       values[name] = v;
       key = same(v, k.default) ? `${clipKey}|${tracker}|` : `${clipKey}|${tracker}|${name}#${i}`;
+      ask();
       viewer.update();
     },
     setBox() {},
   };
+  ask();
   return { host, attach: (v) => { viewer = v; } };
 }
 
@@ -431,7 +611,7 @@ function mountStatic(root) {
   const script = root.querySelector("script.tb-data");
   if (!script) return;
   const data = JSON.parse(script.textContent);
-  const { host, attach } = staticHost(data);
+  const { host, attach } = staticHost(data, root);
   const v = new Viewer(root, host);
   attach(v);
   v.update();
@@ -453,7 +633,7 @@ if (typeof document !== "undefined") {
 function render({ model, el: root }) {
   const fixed = model.get("static_data");
   if (fixed && fixed.runs) {              // an animation: everything precomputed, no kernel
-    const { host, attach } = staticHost(fixed);
+    const { host, attach } = staticHost(fixed, null);
     const v = new Viewer(root, host);
     attach(v);
     v.update();
@@ -489,5 +669,5 @@ function render({ model, el: root }) {
   return () => { v_.playing = false; for (const ev of ["change:run_data", "change:clip_data", "change:busy", "change:error"]) model.off(ev, up); };
 }
 
-export { Viewer, decodeState, mountAll };
+export { Viewer, decodeState, mountAll, spreadText };
 export default { render };
