@@ -11,7 +11,7 @@ from trackbook import results
 ROOT = Path(__file__).resolve().parents[1]
 #: The results the chapters and lab notes read.
 NAMES = ["claims", "cho2005_real", "kim2016_edges", "kim2016_real", "lee2012_learning",
-         "lee2012_learning_samples", "lee2012_real", "lee2015_real", "real"]
+         "lee2012_learning_samples", "lee2012_real", "lee2015_real", "real", "samples"]
 
 
 @pytest.mark.parametrize("cwd", [ROOT / "book", ROOT, ROOT / "tests"])

@@ -481,7 +481,7 @@ class Playground(anywidget.AnyWidget):
 
     def static_knobs(self, tracker) -> list:
         """The knobs of ``tracker`` as the HTML book offers them: each knob's default, the
-        paper's value where it prints one (:func:`~trackbook.playground.data.paper_sample`)
+        printed value where there is one (:func:`~trackbook.playground.data.paper_sample`)
         and about two others (:func:`~trackbook.playground.data.static_samples`), or the
         values given in ``samples=``."""
         cls = _params_cls(tracker)

@@ -260,10 +260,10 @@ def sample_values(spec: dict, k: int = 5) -> list:
 
 
 def paper_sample(cls, name: str):
-    """The paper's value of knob ``name`` of a tracker class, as its ``preset="paper"`` sets
-    it (:func:`trackbook.params.paper_value`): the printed value, or for an addition of the
-    book the setting that switches it off (0 or False: the paper's method); ``None`` where
-    the paper prints nothing else."""
+    """The paper preset's value of knob ``name`` of a tracker class, as ``preset="paper"``
+    sets it (:func:`trackbook.params.paper_value`): the printed value, or for an addition of
+    the book the setting that switches it off (0 or False); ``None`` for a field whose value
+    is not printed."""
     fields = {f.name: f for f in dataclasses.fields(cls.Params)} if cls else {}
     f = fields.get(name)
     if f is None or not _params.has_paper(f):
@@ -272,16 +272,16 @@ def paper_sample(cls, name: str):
     if f.metadata.get("paper") is _params.NOT_PRINTED and (
             f.metadata.get("paper_value", _params._UNSET) is _params._UNSET
             or isinstance(v, str) or bool(v)):
-        # nothing printed: only an addition's "off" (0, False), the paper's method, counts;
-        # a reading such as a particle count the paper does not give does not
+        # not printed: only an addition's "off" (0, False) counts as the preset's value;
+        # a reading of a value that is not printed does not
         return None
     return list(v) if isinstance(v, tuple) else v
 
 
 def static_samples(spec: dict, paper=None, others: int = 2) -> list:
-    """The values of one knob the HTML book precomputes: the book's default, the paper's
-    value (``paper``, where there is one; the caller checks the params take it) and ``others``
-    more from :func:`sample_values` (one fewer when the paper's value is a stop of its own) --
+    """The values of one knob the HTML book precomputes: the book's default, the preset value
+    ``paper`` (where there is one; the caller checks the params take it) and ``others``
+    more from :func:`sample_values` (one fewer when ``paper`` is a stop of its own) --
     the nearest below and above the default, then the next ones out -- sorted; a choice or a
     switch keeps all its values. Each run costs build time, hence so few stops."""
     d = spec["default"]
@@ -293,7 +293,7 @@ def static_samples(spec: dict, paper=None, others: int = 2) -> list:
     keep = [d]
     if paper is not None and paper != d:      # outside the slider's range too: the preset's
         keep.append(paper)
-    if len(keep) > 1:          # the paper's value is one of the "others": three stops in all
+    if len(keep) > 1:          # the preset value is one of the "others": three stops in all
         others = max(1, others - 1)
     rest = [v for v in sample_values(spec) if v not in keep]
     key = (lambda v: max(v)) if spec["kind"] == "pair" else (lambda v: v)
