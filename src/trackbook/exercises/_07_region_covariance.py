@@ -88,8 +88,8 @@ definition of the generalised eigenvalues (eq. 6). Then say why it does not foll
 $d_F(C, ACA^T) = 0$, and compute $d_F(C, ACA^T)$ by hand for $C = I_2$ and
 $A = \mathrm{diag}(1, 2)$.
 --- solution
-$\det(\lambda AC_1A^T - AC_2A^T) = \det(A)\det(\lambda C_1 - C_2)\det(A^T) =
-\det(A)^2\det(\lambda C_1 - C_2)$, and $\det(A) \ne 0$: both matrix pairs have the same
+$\det(\lambda AC_1A^T - AC_2A^T)$ $= \det(A)\det(\lambda C_1 - C_2)\det(A^T)$
+$= \det(A)^2\det(\lambda C_1 - C_2)$, and $\det(A) \ne 0$: both matrix pairs have the same
 generalised eigenvalues, hence the same $d_F$. The invariance needs the same $A$ on both
 sides; $d_F(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
 $ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_F = \sqrt{0 + \ln^2 4} = \ln 4 \approx

@@ -65,8 +65,9 @@ hand, in one dimension: the Epanechnikov profile $k(r) = 1 - r$ for $r \le 1$, $
 pixels at $x = 0, 1, 2$ with weights $w = 1, 2, 1$, start $\hat y_0 = 1.5$. Where is
 $\hat y_1$?
 --- solution
-$\nabla \hat f(y) = C \sum_i w_i\, k'(\cdot)\, 2(y - x_i)/h^2 =
-\frac{2C}{h^2} \sum_i w_i g_i (x_i - y) = \frac{2C}{h^2}\left(\sum_i w_i g_i\right)
+$\nabla \hat f(y) = C \sum_i w_i\, k'(\cdot)\, 2(y - x_i)/h^2$
+$= \frac{2C}{h^2} \sum_i w_i g_i (x_i - y)$
+$= \frac{2C}{h^2}\left(\sum_i w_i g_i\right)
 \left(\frac{\sum_i x_i w_i g_i}{\sum_i w_i g_i} - y\right)$. The last factor is the mean-shift
 vector $\hat y_1 - y$: it points along the gradient, and it is zero exactly where the gradient
 is. For the Epanechnikov profile $g = 1$ inside the kernel and 0 outside, so the step is the
