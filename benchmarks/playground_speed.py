@@ -9,8 +9,9 @@ reader on frame 0, then back with the reader on the clip's last frame. Target: t
 answer within 300 ms (median over the pairs).
 
 The HTML book, when built (``book/_build/html`` or ``_build/html``): per chapter page, the
-bytes loaded at first (the page and the local files its tags load; run files fetched on
-demand are not counted), the playgrounds' clip x tracker pairs that have knob runs, the run
+bytes its tags load (the page's own at first, the figures it loads lazily as the reader
+scrolls, the theme's files every page shares; the run and frame files the viewer adds on demand
+are not counted: the browser test measures those), the playgrounds' clip x tracker pairs that have knob runs, the run
 length against the clip's length, and the seeds behind the spread, read from the page's
 ``.tb-data`` JSON (and the run files it names).
 
@@ -217,32 +218,56 @@ def _json_in(text: str):
         return json.loads(text[a:b + 1]) if a >= 0 and b > a else None
 
 
-def _first_load_bytes(page: Path) -> int:
-    """The page and the local files its tags load at once (scripts, stylesheets, images)."""
-    html = page.read_text(encoding="utf-8", errors="replace")
-    total, seen = page.stat().st_size, set()
-    for m in re.finditer(r"<(?:script|img)[^>]*\ssrc=\"([^\"]+)\"|<link[^>]*rel=\"stylesheet\""
-                         r"[^>]*href=\"([^\"]+)\"", html):
+def _run_file(f: Path):
+    """A run file's data: ``(window.tbPlaygroundRegister||...)("name", {...});``."""
+    text = f.read_text(encoding="utf-8").strip()
+    m = re.search(r'\("[^"]+",', text)
+    if m is None:
+        return _json_in(text)
+    body = text[m.end():].rstrip(";").rstrip()
+    return _json_in(body[:-1] if body.endswith(")") else body)
+
+
+def _runs_of(data: dict, page: Path, html: Path) -> dict:
+    """A playground's runs: inline (``runs``) or named as files (``files``, in the book's
+    ``_static/playground``), those loaded too."""
+    runs = {}
+    named = {**(data.get("runs") or {}), **(data.get("files") or {})}
+    for key, r in named.items():
+        if isinstance(r, str):
+            f = next((g for g in (page.parent / r, html / "_static" / "playground" / r)
+                      if g.is_file()), None)
+            r = _run_file(f) if f is not None else None
+        if isinstance(r, dict):
+            runs[key] = r
+    return runs
+
+
+def _first_load(page: Path, html: Path) -> tuple[int, int, int]:
+    """Bytes a page loads: its own at first load (its HTML, eager images, playground files its
+    tags load), the figures it loads as the reader scrolls (``loading="lazy"``), and the theme's
+    files every page shares (cached after the first page)."""
+    text = page.read_text(encoding="utf-8", errors="replace")
+    own, lazy, shared, seen = page.stat().st_size, 0, 0, set()
+    for m in re.finditer(r"<(?:script|img)[^>]*\ssrc=\"([^\"]+)\"[^>]*>|<link[^>]*"
+                         r"rel=\"stylesheet\"[^>]*href=\"([^\"]+)\"", text):
         ref = (m.group(1) or m.group(2)).split("?")[0].split("#")[0]
         if re.match(r"^[a-z]+:", ref):
             continue
         f = (page.parent / ref).resolve()
-        if f not in seen and f.is_file():
-            seen.add(f)
-            total += f.stat().st_size
-    return total
-
-
-def _runs_of(data: dict, page: Path) -> dict:
-    """A playground's runs, those named as files beside the page loaded too."""
-    runs = {}
-    for key, r in (data.get("runs") or {}).items():
-        if isinstance(r, str):
-            f = page.parent / r
-            r = _json_in(f.read_text(encoding="utf-8")) if f.is_file() else None
-        if isinstance(r, dict):
-            runs[key] = r
-    return runs
+        if f in seen or not f.is_file():
+            continue
+        seen.add(f)
+        root = html.resolve()
+        rel = f.relative_to(root).as_posix() if f.is_relative_to(root) else ""
+        size = f.stat().st_size
+        if 'loading="lazy"' in m.group(0):
+            lazy += size
+        elif rel.startswith(("_images/", "_static/playground/")):
+            own += size
+        else:
+            shared += size
+    return own, lazy, shared
 
 
 def book_table(prefixes=()) -> str | None:
@@ -253,11 +278,13 @@ def book_table(prefixes=()) -> str | None:
     lines = [f"Built book: {html.relative_to(ROOT)}, "
              f"{sum(f.stat().st_size for f in html.rglob('*') if f.is_file()) / 1e6:.1f} MB "
              "in all.", "",
-             "| chapter | first load (MB) | pairs with knob runs | run length (frames/clip) | "
-             "seeds |", "|---|---|---|---|---|"]
+             "| chapter | first load, own (MB) | figures on scroll (MB) | theme, shared (MB) "
+             "| pairs with knob runs | run length (frames/clip) | seeds |",
+             "|---|---|---|---|---|---|---|"]
     for md in sorted((ROOT / "book").glob("*.md")):
-        page = html / (md.stem + ".html")
-        if (prefixes and not md.name.startswith(tuple(prefixes))) or not page.is_file():
+        page = next((p for p in (html / "book" / (md.stem + ".html"), html / (md.stem + ".html"))
+                     if p.is_file()), None)
+        if (prefixes and not md.name.startswith(tuple(prefixes))) or page is None:
             continue
         text = page.read_text(encoding="utf-8", errors="replace")
         blocks = re.findall(r'<script type="application/json" class="tb-data">(.*?)</script>',
@@ -269,9 +296,9 @@ def book_table(prefixes=()) -> str | None:
         for b in blocks:
             data = _json_in(b.replace("<\\/", "</")) or {}
             cfg = data.get("config") or {}
-            if not cfg.get("trackers"):
+            if not cfg.get("trackers") or data.get("kind") != "playground":
                 continue
-            runs = _runs_of(data, page)
+            runs = _runs_of(data, page, html)
             clip_n = {k: len(c.get("frames") or []) or c.get("n") for k, c in
                       (data.get("clips") or {}).items() if isinstance(c, dict)}
             for c in cfg.get("clips", []):
@@ -283,9 +310,14 @@ def book_table(prefixes=()) -> str | None:
                         r = runs[k]
                         n = r.get("n_total") or len(r.get("boxes") or [])
                         lengths.add(f"{n}/{clip_n.get(c['key'], '?')}")
-                        s = r.get("seeds")
-                        seeds.add(len(s["seeds"]) if isinstance(s, dict) and "seeds" in s else 1)
-        lines.append(f"| {md.stem} | {_first_load_bytes(page) / 1e6:.2f} | {covered}/{pairs} | "
+                        sd = r.get("seeds")
+                        seeds.add(len(sd["seeds"]) if isinstance(sd, dict) and "seeds" in sd
+                                  else 1)
+        if not pairs:
+            continue
+        own, lazy, shared = _first_load(page, html)
+        lines.append(f"| {md.stem} | {own / 1e6:.2f} | {lazy / 1e6:.2f} | {shared / 1e6:.2f} | "
+                     f"{covered}/{pairs} | "
                      f"{', '.join(sorted(lengths)) or '–'} | "
                      f"{', '.join(map(str, sorted(seeds))) or '–'} |")
     return "\n".join(lines)
