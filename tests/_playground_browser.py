@@ -1,5 +1,5 @@
 """Drive every ``.tb-playground`` of a page in Chromium as a reader would (shared by the
-browser test, the JupyterLab test and benchmarks/playground_speed.py)."""
+browser test and the JupyterLab test)."""
 
 from __future__ import annotations
 
