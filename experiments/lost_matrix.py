@@ -23,13 +23,11 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 
 import trackbook  # noqa: E402
 from trackbook import clips, trackers  # noqa: E402
-from trackbook.evaluation import metrics  # noqa: E402
 
 import _scenarios as S  # noqa: E402
 
@@ -42,16 +40,6 @@ def scenario_row(name, scenarios):
     return cells
 
 
-def in_view(clip_name):
-    """Frames of a sample clip whose target shows at least half of itself (as the test: a
-    target mostly hidden behind something drawn over it is behind an occluder)."""
-    from trackbook.clips import samples
-
-    support = samples.render_masks(clip_name).sum(axis=(1, 2))
-    visible = samples.render_masks(clip_name, visible=True).sum(axis=(1, 2))
-    return visible >= 0.5 * np.maximum(support, 1)
-
-
 def false_lost(name):
     """Over all sample clips: frames with IoU > 0.5 whose target is at least half in view,
     how many of them are ok=False, and the clips where that is more than 1 % (the test's
@@ -60,14 +48,11 @@ def false_lost(name):
     over = []
     for c in clips.available():
         clip = clips.load(c)
-        r = trackbook.evaluate(name, clip, seed=0)
-        iou = np.nan_to_num(metrics.iou(r.boxes, clip.groundtruth), nan=0.0)[1:]
-        on = (iou > 0.5) & in_view(c)[1:len(iou) + 1]
-        k = int((~np.asarray(r.ok, bool)[1:][on]).sum())
-        n_on += int(on.sum())
+        k, on = S.false_losses(trackbook.evaluate(name, clip, seed=0), clip)
+        n_on += on
         n_lost += k
-        if k > 0.01 * on.sum():
-            over.append(f"{c} {k}/{int(on.sum())}")
+        if k > 0.01 * on:
+            over.append(f"{c} {k}/{on}")
     return n_lost, n_on, over
 
 

@@ -243,3 +243,25 @@ def measure(result, sc: Scenario) -> dict:
             "false_lost": float((~ok[on]).mean()) if on.any() else float("nan"),
             "ok_off": float(ok[off].mean()) if off.any() else float("nan"),
             "n_off": int(off.sum())}
+
+
+@lru_cache(maxsize=None)
+def in_view(name):
+    """Frames of sample clip ``name`` whose target shows at least half of itself: a target
+    mostly hidden behind something drawn over it (a tree, the other face) is behind an
+    occluder, where ``ok=False`` is the right answer, whatever the box's IoU."""
+    from trackbook.clips import samples
+
+    support = samples.render_masks(name).sum(axis=(1, 2))
+    visible = samples.render_masks(name, visible=True).sum(axis=(1, 2))
+    return visible >= 0.5 * np.maximum(support, 1)
+
+
+def false_losses(result, clip) -> tuple[int, int]:
+    """(frames reported lost, frames with IoU > 0.5 and the target at least half in view) of
+    a run on a sample clip, the first frame (given) left out."""
+    from trackbook.evaluation import metrics
+
+    iou = np.nan_to_num(metrics.iou(result.boxes, clip.groundtruth), nan=0.0)[1:]
+    on = (iou > 0.5) & in_view(clip.name)[1:len(iou) + 1]
+    return int((~np.asarray(result.ok, bool)[1:][on]).sum()), int(on.sum())

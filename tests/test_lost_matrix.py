@@ -25,7 +25,6 @@ import pytest
 
 import trackbook
 from trackbook import clips, trackers
-from trackbook.evaluation import metrics
 
 from . import _scenarios as S
 
@@ -86,18 +85,6 @@ def test_long_run_on_a_small_clip(name):
             f"{name}: ok=True on {m['ok_off']:.0%} of {m['n_off']} frames with IoU < 0.1"
 
 
-@lru_cache(maxsize=None)
-def _in_view(name):
-    """Frames of sample clip ``name`` whose target shows at least half of itself: a target
-    mostly hidden behind something drawn over it (a tree, the other face) is behind an
-    occluder, where ``ok=False`` is the right answer, whatever the box's IoU."""
-    from trackbook.clips import samples
-
-    support = samples.render_masks(name).sum(axis=(1, 2))
-    visible = samples.render_masks(name, visible=True).sum(axis=(1, 2))
-    return visible >= 0.5 * np.maximum(support, 1)
-
-
 #: Cells of the matrix that fail today, each with what happens; strict, so a fix that makes one
 #: pass fails here until the mark goes.
 KNOWN_FAILING: dict = {}
@@ -111,10 +98,7 @@ def test_no_false_losses_on_the_sample_clips(name):
     worst = []
     for c in clips.available():
         clip = clips.load(c)
-        r = trackbook.evaluate(name, clip, seed=0)
-        iou = np.nan_to_num(metrics.iou(r.boxes, clip.groundtruth), nan=0.0)[1:]
-        on = (iou > 0.5) & _in_view(c)[1:len(iou) + 1]
-        lost = int((~np.asarray(r.ok, bool)[1:][on]).sum())
-        if lost > 0.01 * on.sum():
-            worst.append(f"{c}: {lost} of {int(on.sum())}")
+        lost, on = S.false_losses(trackbook.evaluate(name, clip, seed=0), clip)
+        if lost > 0.01 * on:
+            worst.append(f"{c}: {lost} of {on}")
     assert not worst, f"{name} reports ok=False with IoU > 0.5 on more than 1 %: {worst}"
