@@ -17,7 +17,6 @@ import cv2
 import numpy as np
 
 from .. import params as _params
-from .. import trackers as _trackers
 from ..evaluation import metrics
 from ..evaluation.runner import evaluate
 
@@ -135,30 +134,40 @@ def run_payload(tracker: str, clip, values: dict, n: int | None, seed: int = 0,
     return result_payload(r, clip, values, states, n, tracker), r, states
 
 
+def payload(clip, tracker: str, values: dict, boxes, ok, scores: str, states: list,
+            n_total: int) -> dict:
+    """The run payload of the frames done so far: ``boxes``/``ok`` of the first
+    ``n_done = len(boxes)`` frames, their snapshots ``states`` and the ``scores`` line;
+    ``n_total`` the frames the run will have (``n_done < n_total``: partial)."""
+    boxes = np.asarray(boxes, dtype=float)
+    nb = len(boxes)
+    gt = np.asarray(clip.groundtruth[:max(n_total, nb)], dtype=float)
+    has_gt = bool(np.isfinite(gt).all(axis=1)[1:].any())
+    iou = metrics.iou(boxes, gt[:nb]) if has_gt and nb else None
+    return {
+        "clip": clip.name, "tracker": tracker,
+        "values": {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()},
+        "boxes": np.round(boxes, 1).tolist(),
+        "ok": np.asarray(ok, dtype=bool).astype(int).tolist(),
+        "iou": None if iou is None else [None if not math.isfinite(v) else round(float(v), 3)
+                                          for v in iou],
+        "scores": scores,
+        "state": _encode_state(states),
+        "n_done": nb, "n_total": max(n_total, nb),
+    }
+
+
 def result_payload(r, clip, values: dict, states: list, n: int | None = None,
                    tracker: str | None = None) -> dict:
     """The run payload of a finished :class:`~trackbook.evaluation.runner.Result` and its
     per-frame snapshots (``[]`` when the tracker draws no state): ``n_done`` frames computed,
     ``n_total`` the frames the run has (the clip, or ``n``)."""
     nb = len(r.boxes)
-    gt = np.asarray(clip.groundtruth[:nb], dtype=float)
-    has_gt = bool(np.isfinite(gt).all(axis=1)[1:].any())
-    iou = metrics.iou(r.boxes, gt) if has_gt else None
-    ok = np.asarray(r.ok, dtype=bool)
     n_total = len(clip) if n is None else min(int(n), len(clip))
     if not states:
         states = [{}] * nb
-    return {
-        "clip": clip.name, "tracker": tracker or str(r.tracker),
-        "values": {k: list(v) if isinstance(v, tuple) else v for k, v in values.items()},
-        "boxes": np.round(np.asarray(r.boxes, dtype=float), 1).tolist(),
-        "ok": ok.astype(int).tolist(),
-        "iou": None if iou is None else [None if not math.isfinite(v) else round(float(v), 3)
-                                          for v in iou],
-        "scores": scores_text(r),
-        "state": _encode_state(states[:nb] if len(states) >= nb else [{}] + states),
-        "n_done": nb, "n_total": max(n_total, nb),
-    }
+    return payload(clip, tracker or str(r.tracker), values, r.boxes, r.ok, scores_text(r),
+                   states[:nb] if len(states) >= nb else [{}] + states, n_total)
 
 
 def seed_summary(seeds, ious, aucs, deterministic: bool) -> dict:

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import asyncio
 import dataclasses
-import math
 import time
 
 import numpy as np
@@ -130,27 +129,12 @@ class LiveRun:
         """What the viewer draws: the run payload of :mod:`trackbook.playground.data` for the
         frames done so far, with ``n_done`` and ``n_total`` (``n_done < n_total``: partial)."""
         k = self.n_done
-        boxes = self.boxes[:k]
-        gt = np.asarray(self.clip.groundtruth[:k], dtype=float)
-        full_gt = np.asarray(self.clip.groundtruth[:self.n_total], dtype=float)
-        has_gt = bool(np.isfinite(full_gt).all(axis=1)[1:].any())
-        iou = metrics.iou(boxes, gt) if has_gt and k else None
         if self.done:
             scores = D.scores_text(self.result())
         else:
             scores = f"{self.name} on {self.clip.name}: running\u2026 {k}/{self.n_total} frames"
-        return {
-            "clip": self.clip.name, "tracker": self.name,
-            "values": {key: list(v) if isinstance(v, tuple) else v
-                       for key, v in self.values.items()},
-            "boxes": np.round(boxes, 1).tolist(),
-            "ok": self.ok[:k].astype(int).tolist(),
-            "iou": None if iou is None else [None if not math.isfinite(v) else round(float(v), 3)
-                                              for v in iou],
-            "scores": scores,
-            "state": D._encode_state(self.states[:k]),
-            "n_done": k, "n_total": self.n_total,
-        }
+        return D.payload(self.clip, self.name, self.values, self.boxes[:k], self.ok[:k],
+                         scores, self.states[:k], self.n_total)
 
 
 def running_loop():
