@@ -185,6 +185,30 @@ def psr(response: np.ndarray, exclude: int = SIDELOBE_EXCLUDE) -> np.ndarray:
     return float(out) if out.ndim == 0 else out
 
 
+def apce(response: np.ndarray) -> np.ndarray:
+    """Average peak-to-correlation energy |g_max - g_min|^2 / mean((g - g_min)^2) (Wang et
+    al. 2017): how sharp the peak is against the whole response (a sharp single peak is
+    large, a noisy or multi-peaked map small). Not what the trackers report (they report the
+    PSR); a second measure to compare it with. A constant response gives 0.
+
+    Parameters
+    ----------
+    response : (…, rows, cols) one or a stack of responses.
+
+    Returns
+    -------
+    float, or an array of the stack's shape.
+    """
+    r = np.asarray(response, dtype=float)
+    flat = r.reshape(-1, r.shape[-2] * r.shape[-1])
+    lo = flat.min(axis=1)
+    span2 = (flat.max(axis=1) - lo) ** 2
+    energy = np.mean((flat - lo[:, None]) ** 2, axis=1)
+    out = np.where(energy > 0, span2 / np.where(energy > 0, energy, 1.0), 0.0)
+    out = out.reshape(r.shape[:-2])
+    return float(out) if out.ndim == 0 else out
+
+
 def peak_offset(response: np.ndarray) -> tuple[float, float]:
     """The response's peak as a signed cyclic offset (dy, dx), refined by a parabola.
 
@@ -210,4 +234,4 @@ def peak_offset(response: np.ndarray) -> tuple[float, float]:
 
 __all__ = ["SIDELOBE_EXCLUDE", "hann_window", "signed_index", "gaussian_labels", "mosse_terms",
            "mosse_filter", "linear_response", "gaussian_correlation", "kcf_train",
-           "kcf_response", "psr", "peak_offset"]
+           "kcf_response", "psr", "apce", "peak_offset"]

@@ -56,6 +56,10 @@ class TrackerState:
     candidates : (n, 4) boxes ``(x, y, w, h)`` evaluated on the last frame.
     rays : (N, 8) edge distances of every particle along the 8 rays (Kim et al. 2016 eq. 4),
         row i belonging to ``particles[i]``.
+    confidence : float, the tracker's own confidence in the last estimate, larger is surer;
+        see each tracker's docstring for its definition. A finite number after every
+        ``update`` (lost and constant frames included), None before the first one. It is the
+        number the tracker computed during that ``update``: reading it changes nothing.
     """
 
     box: tuple | None = None
@@ -66,6 +70,7 @@ class TrackerState:
     ellipse: tuple | None = None
     candidates: np.ndarray | None = None
     rays: np.ndarray | None = None
+    confidence: float | None = None
 
     def __post_init__(self):
         for name in ("particles", "weights", "candidates", "rays"):
@@ -74,6 +79,8 @@ class TrackerState:
             v = getattr(self, name)
             if v is not None:
                 object.__setattr__(self, name, tuple(float(x) for x in np.ravel(v)))
+        if self.confidence is not None:
+            object.__setattr__(self, "confidence", float(self.confidence))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -164,10 +171,20 @@ class Tracker:
 
         This base gives the box and ``ok``; after ``init`` it adds the fields of
         :meth:`_drawn`, which trackers with particles, a search window, an ellipse, candidates
-        or rays extend.
+        or rays extend, and after the first ``update`` the ``confidence`` of
+        :meth:`_last_confidence`.
         """
         st = TrackerState(box=self.bbox, ok=bool(self.ok))
-        return st if self._shape is None else dataclasses.replace(st, **self._drawn())
+        if self._shape is None:
+            return st
+        conf = self._last_confidence() if self.frame_index > 0 else None
+        return dataclasses.replace(st, confidence=conf, **self._drawn())
+
+    def _last_confidence(self) -> float | None:
+        """Hook: the tracker's own confidence in the last estimate, larger is surer (None: the
+        tracker has none). Returns a number the last ``update`` stored, never computes one, so
+        ``state()`` costs nothing and changes nothing."""
+        return None
 
     def _drawn(self) -> dict:
         """The :class:`TrackerState` fields this tracker has once started, by name; a subclass

@@ -188,6 +188,16 @@ class ColorHogIPCA(ColorHogPF):
     learning : bool, whether the likelihood uses the learned subspaces.
     n_learned : number of frames added to the subspaces (or collected before T).
     n_rejected : number of frames the relative gate refused.
+
+    Confidence
+    ----------
+    ``state().confidence`` is the best particle's colour match of the last frame,
+    max_i (1 - D^2_color,i), with the tracker's own D^2: before T frames 1 - rho (as
+    ``color-pf``); after, beta (1 - rho) + (1 - beta) e_i with e_i = D_i^2 (or D_i, as
+    ``exponent`` says), D_i = ||z_i - U U^T z_i|| the reconstruction error of the particle's
+    colour feature in the learned subspace (eq. 12-13; beta = ``anchor``), so the confidence
+    is one minus the (anchored) reconstruction error, clipped to [0, 1]; 0 on a constant
+    frame. The HOG term is not in it.
     """
 
     name = "color-hog-ipca"

@@ -51,6 +51,9 @@ class ColorHogPF(ColorPF):
 
     Lost rule: that of ``ParticleFilterTracker`` (flat frames, the distance gate with its
     second look, the scatter while lost); the gate's match is the colour term 1 - D^2_color.
+
+    Confidence: that match of the best particle, max_i rho_color,i (the colour
+    Bhattacharyya coefficient, as ``color-pf``'s); the HOG term is not in it.
     """
 
     name = "color-hog-pf"

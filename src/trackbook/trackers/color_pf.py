@@ -117,6 +117,13 @@ class ColorPF(ParticleFilterTracker):
     likelihoods : (N,) p(z|x) of the last update.
     similarities : dict of (N,) arrays ``exp(-D^2 / 2 sigma^2)`` per feature ("color", ...).
     reference : dict of the reference features ("color": (256,), ...).
+
+    Confidence
+    ----------
+    ``state().confidence`` is the best particle's Bhattacharyya coefficient of the last frame,
+    max_i rho_i, rho_i = sum_u sqrt(h_u(x_i) h_u^ref) = 1 - D^2_i (eq. 10-11): the number the
+    distance gate reads, in [0, 1]; 0 on a constant frame (not scored). The estimate itself,
+    the weighted mean of the states, is not scored again.
     """
 
     name = "color-pf"

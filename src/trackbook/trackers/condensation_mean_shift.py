@@ -242,6 +242,10 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     weights : (N,) their normalised weights; likelihoods : (N,) unnormalised
     rho : (N,) their Bhattacharyya coefficients
     ellipse : ``(cx, cy, Hx, Hy)`` of the estimate
+
+    Confidence: ``state().confidence`` is the best candidate's Bhattacharyya coefficient of
+    the last frame, max_i rho[p(s_i), q] (the number ``min_rho`` tests), in [0, 1]; 0 on a
+    constant frame (not scored). The estimate itself, the weighted mean, is not scored again.
     """
 
     name = "condensation"
@@ -340,6 +344,9 @@ class CondensationMeanShift(Condensation):
     motion : ``(p, q, ok)`` the motion vector of the last frame (eq. 8)
     mean_shift_result : the :class:`~trackbook.filters.mean_shift.MeanShiftResult` of the last
         frame (trajectories of every candidate, for Fig. 2 (b))
+
+    Confidence: as :class:`Condensation`'s, max_i rho of the candidates after mean-shift
+    moved them (the hill tops they reached).
     """
 
     name = "condensation-mean-shift"
@@ -472,6 +479,11 @@ class MeanShift(_EllipseColourModel, Tracker):
 
     Lost rule: a flat frame, or a climb that ends below ``min_rho``, is lost; the latter climbs
     again from a grid over the whole frame (``_search_frame``, at most ``max_starts`` starts).
+
+    Confidence: ``state().confidence`` is the Bhattacharyya coefficient at the estimate,
+    rho[p(y), q] = sum_u sqrt(p_u(y) q_u), p(y) the colour distribution (eq. 3) of the
+    ellipse where the climb stopped (the whole-frame search's hill top when that was taken),
+    in [0, 1]; 0 on a constant frame.
     """
 
     name = "mean-shift"
@@ -540,6 +552,10 @@ class MeanShift(_EllipseColourModel, Tracker):
             self._centre = np.clip(res.centres[best], [0, 0], [W, H])
             self._rho = res.rho[best:best + 1].copy()
             self._trajectory = res.trajectory[:, best, :]
+
+    def _last_confidence(self) -> float:
+        """rho of the last frame's estimate (see "Confidence")."""
+        return float(self._rho[0])
 
     def frame_report(self) -> dict:
         """The likelihood of the single candidate (Cho & Kang 2005 Fig. 5), its rho, and the

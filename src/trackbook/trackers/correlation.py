@@ -187,6 +187,11 @@ class KcfParams:
 class _CorrelationTracker(Tracker):
     """What both trackers share: the window around the centre, the lost rule, re-detection.
 
+    Confidence: ``state().confidence`` is ``confidence`` below, the peak-to-sidelobe ratio
+    PSR = (g_max - mu_s) / sigma_s of the response that placed the box (the re-detected
+    window's when re-detection found the target, else the window at the last position; see
+    :func:`trackbook.filters.correlation.psr`); 0 on a constant frame (nothing matched).
+
     Attributes (read-only, for drawing)
     -----------------------------------
     response : the last response map (cyclic: index 0 is "no move")
@@ -282,6 +287,10 @@ class _CorrelationTracker(Tracker):
             self._centre = centre
             return True, self._box()
         return False, self._box()
+
+    def _last_confidence(self) -> float:
+        """The PSR of the last frame's response (``confidence``), stored by ``_update``."""
+        return float(self.confidence)
 
     def _box_at(self, centre):
         w, h = self._size
@@ -401,6 +410,14 @@ class MosseTracker(_CorrelationTracker):
     is the target's own grey pattern: such a peak is kept without asking the colours (the log
     and unit-norm preprocessing make the filter blind to a change of light; the colour
     histogram is not).
+
+    Confidence
+    ----------
+    ``state().confidence`` is Bolme et al.'s peak-to-sidelobe ratio of the last response g,
+    PSR = (g_max - mu_s) / sigma_s, mu_s and sigma_s the mean and standard deviation of the
+    sidelobe: the response without the 11 x 11 window around the peak (cyclic); 0 on a
+    constant frame or a flat sidelobe. :func:`trackbook.filters.correlation.apce` gives the
+    average peak-to-correlation energy of a response, another sharpness measure.
     """
 
     name = "mosse"
@@ -485,6 +502,13 @@ class KcfTracker(_CorrelationTracker):
     sidelobe excluding ±3 σ_y around the peak). Every accepted peak must pass the colour
     check, however high its PSR: the padded window is mostly background, which keeps matching
     the model while an occluder covers the target.
+
+    Confidence
+    ----------
+    ``state().confidence`` is the peak-to-sidelobe ratio of the last response f(z),
+    PSR = (f_max - mu_s) / sigma_s, with the sidelobe excluding a square of side
+    2 ceil(3 sigma_y) + 1 cells around the peak (the labels' own peak; Bolme et al.'s 11 x 11
+    is in pixels, KCF's response is in cells); 0 on a constant frame or a flat sidelobe.
     """
 
     name = "kcf"

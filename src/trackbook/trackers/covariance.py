@@ -198,6 +198,14 @@ class _CovarianceSearch(Tracker):
     ``threshold``. While lost (``fallback="frame"``) the whole frame is searched every frame,
     at a bounded cost (``max_global_windows`` coarse windows, then a few refinements), and
     ``ok=True`` comes back only with a best ρ at most ``threshold``.
+
+    Confidence
+    ----------
+    ``state().confidence`` is the negative Förstner distance of the last frame's best window,
+    -d_F = -sqrt(sum_k ln^2 λ_k) (eq. 5-6, λ_k the generalised eigenvalues of
+    λ (C_model + εI) x = (C_best + εI) x), i.e. ``-best_rho``: at most 0, larger is surer. On
+    a lost frame it is that of the best window the searches found (the whole frame's when it
+    was searched); a distance beyond float64 is given as the most negative float.
     """
 
     Params = CovarianceParams
@@ -322,6 +330,10 @@ class _CovarianceSearch(Tracker):
         return (center[0] - w / 2.0 - radius[0], center[1] - h / 2.0 - radius[1],
                 w + 2.0 * radius[0], h + 2.0 * radius[1])
 
+    def _last_confidence(self) -> float:
+        """-d_F of the last frame's best window (see "Confidence")."""
+        return -min(float(self.best_rho), float(np.finfo(float).max))
+
     def frame_report(self) -> dict:
         """Per-frame numbers for Table 1: search rate, candidate count, best ρ."""
         return {"search_rate": self._n_evaluated / self._n_all,
@@ -344,6 +356,9 @@ class CovarianceTracker(_CovarianceSearch):
     Candidates are target-sized windows whose centres lie within ±``search_radius`` px of
     the last box's centre (every ``stride`` px). If the best ρ exceeds ``threshold`` the
     whole frame is searched; if that fails too, ``ok`` is False and the box stays put.
+
+    Confidence: -d_F of the last frame's best window (the negative Förstner distance, see
+    "Confidence" of the shared search below).
     """
 
     name = "covariance"
@@ -400,6 +415,9 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     manoeuvre : True when the last frame's measurement came from the manoeuvre window
     ellipse : (cx, cy, hx, hy, angle°) the predicted position's ``gate``-σ uncertainty ellipse
     search_window, candidates, distances, best_rho, model : as for ``covariance``
+
+    Confidence: as ``covariance``'s, -d_F of the last frame's best window (the manoeuvre
+    window's or the whole frame's when those found a better one).
     """
 
     name = "kalman-covariance"

@@ -102,6 +102,15 @@ class EdgeRayPF(CentreParticleFilter):
     325 histograms a frame, paid only while lost); a box that passes the gate restarts the
     filter there (``ok=True``). ``lost_check=False`` (the paper preset) leaves only the rules of
     ``ParticleFilterTracker``.
+
+    Confidence
+    ----------
+    ``state().confidence`` is the edge likelihood of the best particle of the last frame,
+    max_i w_i with w_i = 1 - sum_j |pDis_j - mDis_j| / sum_j mDis_j (eq. 6, 0 outside the
+    Ratio window), in [0, 1]; 0 on a constant frame (not scored). It cannot say that the
+    target is gone on a textured background: edges everywhere put some particle's rays near
+    the model's, so a frame without the target can score as high as one with it (the reason
+    for the colour lost rule above, which the confidence does not include).
     """
 
     name = "edge-ray-pf"
@@ -205,6 +214,11 @@ class EdgeRayPF(CentreParticleFilter):
         self.estimate, self.lost, self._lost_run = c, False, 0
         self.velocity = np.zeros(2)
         return True, self.state_to_box(c)
+
+    def _last_confidence(self) -> float:
+        """The best particle's edge likelihood of eq. 6 (see "Confidence")."""
+        lik = self._likelihoods
+        return float(lik.max()) if lik.size else 0.0
 
     def frame_report(self) -> dict:
         """Per-frame numbers: the fraction of particles inside the Ratio window, the scale."""

@@ -53,6 +53,9 @@ class _AppearancePF(CentreParticleFilter):
     ----------
     reference : the model histogram of the initial box.
     particles, weights, likelihoods, estimate, lost : see ``ParticleFilterTracker``.
+
+    Confidence: ``state().confidence`` is the best particle's Bhattacharyya coefficient of the
+    last frame, max_i rho(q, p_i) = 1 - min_i D^2_i, in [0, 1]; 0 on a constant frame.
     """
 
     Params = AppearanceParams
@@ -101,6 +104,9 @@ class HSIColorPF(_AppearancePF):
     as poorly once relit: the frame stays lost. Only frames the gate would call lost pay for
     it (one frame scaling, one histogram); ``gate_contrast = 0`` turns it off with the rest of
     the second look.
+
+    Confidence: the best particle's rho of the HSI histograms, max_i rho(q, p_i), of the
+    frame as it is (the relit look does not enter it); 0 on a constant frame.
     """
 
     name = "hsi-color-pf"
@@ -143,7 +149,11 @@ class HSIColorPF(_AppearancePF):
 
 @register
 class HOGPF(_AppearancePF):
-    """Baseline (2) of Kim et al. 2016: HOG (Lee et al. 2012, 192 values) particle filter."""
+    """Baseline (2) of Kim et al. 2016: HOG (Lee et al. 2012, 192 values) particle filter.
+
+    Confidence: the best particle's Bhattacharyya coefficient of the HOGs, max_i rho(q, p_i),
+    in [0, 1]; 0 on a constant frame.
+    """
 
     name = "hog-pf"
     #: No second look: a textured background's HOG stands out from its surroundings as much

@@ -227,6 +227,13 @@ class ParticleFilterTracker(Tracker):
         m = self._match
         return float(np.nanmax(m)) if m.size and np.isfinite(m).any() else float("nan")
 
+    def _last_confidence(self) -> float:
+        """``TrackerState.confidence``: the best particle's match of the last frame,
+        max_i (1 - D^2_i) (:attr:`best_match`, the number the distance gate reads); 0, the
+        lowest match, on a constant frame, which is not scored."""
+        m = self.best_match
+        return m if np.isfinite(m) else 0.0
+
     def on_lost(self):
         """Hook: called on a frame where every particle scored zero."""
 

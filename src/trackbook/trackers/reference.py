@@ -88,6 +88,15 @@ class OpenCVMIL(Tracker):
     it: a sudden change of light). While lost, the whole frame is searched by
     colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most 325 histograms a
     frame, paid only while lost); a box that passes the gate restarts MIL there (a fresh child process, as ``init``) and is reported ``ok=True``.
+
+    Confidence
+    ----------
+    OpenCV exposes no classifier margin of MIL, so ``state().confidence`` is the generic
+    appearance match of the lost rule, not MIL's own: the Bhattacharyya coefficient
+    rho = sum_u sqrt(h_u h_u^ref) of a kernel colour histogram against the first frame's,
+    of MIL's box (best over the nine quarter-box shifts), or of the whole-frame search's best
+    box on a frame that searched; in [0, 1]; 0 when the frame computed none (a constant
+    frame, or MIL's process gone).
     """
 
     name = "opencv-mil"
@@ -175,9 +184,11 @@ class OpenCVMIL(Tracker):
         self._colour = ColourCheck(frame, box)
         self._gate = MatchGate()
         self._lost = False
+        self._rho = 0.0
 
     def _update(self, frame):
         last = np.asarray(self.bbox, dtype=float)
+        self._rho = 0.0
         if self._is_flat(frame):
             self._lost = True
             return False, last                  # nothing to match (see "Lost rule")
@@ -188,9 +199,11 @@ class OpenCVMIL(Tracker):
             ok = False
         if ok:
             rho, near = self._colour.match_near(frame, box)
+            self._rho = rho
             ok = not self._gate.lost(rho, lambda: self._colour.stands_out(frame, near, rho))
         if not ok and not self._dead:
             found, rho = self._colour.search(frame, max_boxes=300)
+            self._rho = rho
             if visible_fraction(found, frame.shape) >= self.min_visible \
                     and not self._gate.lost(rho):
                 b = safe_box(found, frame.shape)
@@ -199,6 +212,10 @@ class OpenCVMIL(Tracker):
                 ok, box = True, np.asarray(b, dtype=float)
         self._lost = not ok
         return ok, (box if ok else last)
+
+    def _last_confidence(self) -> float:
+        """The last frame's colour rho (see "Confidence"): generic, not MIL's own."""
+        return float(self._rho)
 
 
 @atexit.register
