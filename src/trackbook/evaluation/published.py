@@ -51,6 +51,14 @@ files do not agree with each other for Struck and TLD (column ``alt_success_rate
 a published number is one run, not the tracker's value. A gap of a few frames on one sequence
 means nothing; a tracker that fails where the canonical ones succeed (or the reverse) is worth
 a look at the frames.
+
+A bench of your own
+-------------------
+:func:`plot_side_by_side` draws a ``trackbook bench`` folder beside the table on the sequences
+both cover, and :func:`bench_scores` gives its numbers: the bench scores frames 2..N (frame 1
+is the initialisation), the table frames 1..N with frame 1 set to the ground truth, as the OTB
+toolkit and got10k count; the bench's numbers are restated to the table's count
+(:func:`with_first_frame`), never the reverse, so the published values are drawn as they are.
 """
 
 from __future__ import annotations
