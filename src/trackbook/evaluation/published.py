@@ -51,6 +51,14 @@ files do not agree with each other for Struck and TLD (column ``alt_success_rate
 a published number is one run, not the tracker's value. A gap of a few frames on one sequence
 means nothing; a tracker that fails where the canonical ones succeed (or the reverse) is worth
 a look at the frames.
+
+A bench of your own
+-------------------
+:func:`plot_side_by_side` draws a ``trackbook bench`` folder beside the table on the sequences
+both cover, and :func:`bench_scores` gives its numbers: the bench scores frames 2..N (frame 1
+is the initialisation), the table frames 1..N with frame 1 set to the ground truth, as the OTB
+toolkit and got10k count; the bench's numbers are restated to the table's count
+(:func:`with_first_frame`), never the reverse, so the published values are drawn as they are.
 """
 
 from __future__ import annotations
@@ -306,3 +314,197 @@ def side_by_side(results=None) -> list[dict]:
                 rows.append({"tracker": rec["tracker"], "source": "trackbook",
                              "sequence": rec["clip"], "rate": rate})
     return rows
+
+
+# --- a bench's runs beside the published ones ------------------------------------------------
+
+#: What :func:`plot_side_by_side` can draw: the column of :func:`load` and its axis label.
+MEASURES = {"auc": "AUC of the success plot",
+            "success_rate_iou50": "success rate (IoU > 0.5)"}
+
+
+def with_first_frame(value: float, frames: int, *, auc: bool = False) -> float:
+    """A rate (or, with ``auc=True``, an AUC) over frames 2..N restated over frames 1..N as
+    the OTB toolkit and got10k count them: frame 1 set to the ground truth.
+
+    Frame 1 then has IoU 1: a success at IoU > 0.5 (one more frame) and above 20 of the 21
+    thresholds of the success curve (all but 1), so the count of successes grows by 1, or the
+    sum of the 21 rates' numerators by 20. The inverse of :func:`without_first_frame` for a
+    rate.
+    """
+    gained = 20.0 / 21.0 if auc else 1.0
+    return (float(value) * (frames - 1) + gained) / frames
+
+
+def _key(name: str) -> str:
+    # David, Jogging1, Jogging-1 (OTB's name) and Jogging.1 (trackbook's name for the first
+    # target of OTB-100's Jogging) are one sequence
+    return "".join(ch for ch in str(name).lower() if ch.isalnum())
+
+
+def _bench_rows(bench) -> list[dict]:
+    if isinstance(bench, (str, Path)) or hasattr(bench, "__fspath__"):
+        from . import bench as _bench
+
+        folder = Path(bench)
+        if not (folder / "results.json").is_file():
+            raise ValueError(f"{folder} has no results.json: it is not the --out folder of a "
+                             "finished `trackbook bench` (run the bench, or pass the rows "
+                             "bench.run returns).")
+        return _bench.load(folder)
+    rows = list(bench)
+    if rows and not all(isinstance(r, dict) and {"tracker", "clip"} <= set(r) for r in rows):
+        raise ValueError("bench rows must be dicts with 'tracker' and 'clip', as bench.run and "
+                         "bench.load return them; or pass the bench's --out folder.")
+    return rows
+
+
+def bench_scores(bench) -> list[dict]:
+    """A bench's runs on the published sequences, scored as the published ones are.
+
+    Parameters
+    ----------
+    bench : path or list of dict
+        The ``--out`` folder of ``trackbook bench`` (its ``results.json``) or the rows that
+        :func:`trackbook.evaluation.bench.run` returns.
+
+    Returns
+    -------
+    list of dict
+        One row per tracker and published sequence the bench ran, ``{"tracker", "sequence",
+        "auc", "success_rate_iou50", "frames", "seeds"}``: the bench's AUC and tracking rate
+        (frames 2..N) restated over frames 1..N with :func:`with_first_frame`, as the
+        toolkit counts them, and averaged over the bench's seeds. ``sequence`` is the
+        development set's name (:data:`SEQUENCES`). A bench clip matches a published sequence
+        by name (``David``, ``Jogging1``, ``Jogging-1`` or ``Jogging.1``; case and
+        punctuation aside).
+
+    Raises
+    ------
+    ValueError
+        When a matching clip was benched on another number of frames than the published
+        runs (``--max-frames``), which would compare different frames.
+    """
+    frames = {r["sequence"]: r["frames"] for r in load()}
+    by_key = {_key(k): k for k in SEQUENCES} | {_key(v): k for k, v in SEQUENCES.items()}
+    acc: dict = {}
+    for r in _bench_rows(bench):
+        seq = by_key.get(_key(r["clip"]))
+        if seq is None or r.get("auc") is None:
+            continue
+        n = int(r["frames"])
+        if n != frames[seq] or int(r.get("frames_scored", n - 1)) != n - 1:
+            raise ValueError(f"the bench ran {r['tracker']} on {n} frames of {r['clip']}, the "
+                             f"published runs cover its {frames[seq]} frames; bench it "
+                             "without --max-frames to compare.")
+        acc.setdefault((r["tracker"], seq), []).append(
+            (with_first_frame(r["auc"], n, auc=True), with_first_frame(r["tracking_rate"], n)))
+    return [{"tracker": t, "sequence": s, "auc": float(np.mean([v[0] for v in vs])),
+             "success_rate_iou50": float(np.mean([v[1] for v in vs])), "frames": frames[s],
+             "seeds": len(vs)} for (t, s), vs in acc.items()]
+
+
+def plot_side_by_side(bench, *, measure: str = "auc", trackers=None):
+    """A bench's trackers beside the OTB authors' published runs, on the sequences both cover.
+
+    One panel per published sequence the bench ran, and one for the mean over them: a
+    horizontal bar per tracker, best on top, the value at its end. The published runs
+    (:func:`load`, the values of the committed table as they are) are grey; the bench's runs
+    are coloured and named ``"<tracker> (ours)"``, restated to the toolkit's count of frames
+    (:func:`bench_scores`). The mean panel holds the trackers with a value on every panel.
+
+    Parameters
+    ----------
+    bench : path or list of dict
+        The ``--out`` folder of ``trackbook bench`` or the rows :func:`bench.run
+        <trackbook.evaluation.bench.run>` returns.
+    measure : {"auc", "success_rate_iou50"}
+        The AUC of the success plot (published for IVT, Struck, TLD, MEEM and KCF, whose
+        boxes are available) or the success rate at IoU 0.5 (all eight trackers).
+    trackers : list of str, optional
+        The bench's trackers to draw (default: all of them, the ``opencv-mil`` reference
+        included).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        A figure not attached to pyplot (it does not change a notebook's backend); Jupyter
+        shows it as a cell's value, ``fig.savefig(path)`` writes it.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``measure``, a folder that is not a bench's, a bench that ran none of the
+        published sequences (or none of ``trackers``), or one run on fewer frames.
+    """
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
+
+    from ..style import CYCLE, GREY
+
+    if measure not in MEASURES:
+        raise ValueError(f"unknown measure {measure!r}; use one of {', '.join(MEASURES)}.")
+    ours = bench_scores(bench)
+    names = list(dict.fromkeys(r["tracker"] for r in ours))
+    if trackers is not None:
+        trackers = [trackers] if isinstance(trackers, str) else list(trackers)
+        missing = [t for t in trackers if t not in names]
+        if missing:
+            raise ValueError(f"tracker(s) {', '.join(missing)} have no run on a published "
+                             f"sequence in this bench; it has {', '.join(names) or 'none'}.")
+        names = trackers
+    seqs = [s for s in SEQUENCES if any(r["sequence"] == s for r in ours)]
+    if not seqs:
+        raise ValueError("the bench ran none of the sequences with published results ("
+                         f"{', '.join(SEQUENCES)}); bench them, e.g. --clips shared or the "
+                         "root of OTB-100, without --max-frames.")
+    values: dict = {}                      # label -> {sequence: value}
+    colour: dict = {}                      # label -> bar colour
+    for r in load():
+        if r["sequence"] in seqs and r[measure] is not None:
+            values.setdefault(r["tracker"], {})[r["sequence"]] = r[measure]
+            colour[r["tracker"]] = GREY
+    for r in ours:
+        if r["tracker"] in names:
+            label = f"{r['tracker']} (ours)"
+            values.setdefault(label, {})[r["sequence"]] = r[measure]
+            colour[label] = CYCLE[names.index(r["tracker"]) % len(CYCLE)]
+    panels = [(s, {t: v[s] for t, v in values.items() if s in v}) for s in seqs]
+    if len(seqs) > 1:
+        panels.append((f"mean over {len(seqs)} sequences",
+                       {t: float(np.mean([v[s] for s in seqs])) for t, v in values.items()
+                        if all(s in v for s in seqs)}))
+    ncols = min(3, len(panels))
+    nrows = -(-len(panels) // ncols)
+    rows_per = max(len(p[1]) for p in panels)
+    fig = Figure(figsize=(3.6 * ncols, (0.24 * rows_per + 1.1) * nrows + 0.9))
+    axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False)).ravel()
+    for ax, (title, vals) in zip(axes, panels):
+        order = sorted(vals, key=lambda t: -vals[t])
+        y = np.arange(len(order))[::-1]
+        bars = ax.barh(y, [vals[t] for t in order], height=0.7,
+                       color=[colour[t] for t in order])
+        ax.bar_label(bars, fmt="%.2f", padding=2, fontsize=7)
+        ax.set_yticks(y, order, fontsize=8)
+        for label in ax.get_yticklabels():
+            if label.get_text().endswith(" (ours)"):
+                label.set_fontweight("bold")
+        ax.set(xlim=(0, 1.12), title=title)
+        ax.title.set_fontsize(9)
+        ax.tick_params(axis="x", labelsize=7)
+        ax.grid(axis="x", alpha=0.3)
+    for ax in axes[len(panels):]:
+        ax.set_visible(False)
+    seeds = max(r["seeds"] for r in ours)
+    fig.suptitle(f"{MEASURES[measure]}: published OTB runs and this bench's"
+                 f"{f' (mean of {seeds} seeds)' if seeds > 1 else ''}, frames 1..N as the "
+                 "OTB toolkit counts them", fontsize=9)
+    handles = [Patch(color=GREY, label="published (the OTB authors' runs)"),
+               Patch(color=CYCLE[0], label="ours (this bench)")]
+    fig.legend(handles=handles, loc="lower center", ncols=2, fontsize=8, frameon=False)
+    no_value = [t for t in TRACKERS if t not in values]
+    if no_value:
+        fig.text(0.01, 0.005, f"no {'AUC' if measure == 'auc' else measure} published for "
+                 f"{', '.join(no_value)} (toolkit scores only)", fontsize=6.5, color="0.4")
+    fig.tight_layout(rect=(0, 0.05, 1, 0.95))
+    return fig

@@ -91,6 +91,58 @@ class NoParams:
 class Tracker:
     """Base class of all trackbook trackers.
 
+    A tracker of your own subclasses it, sets ``name`` and ``Params``, implements ``_init``
+    and ``_update`` and is decorated with ``@trackbook.trackers.register`` (the appendix
+    "Write your own tracker", ``appendix_own_tracker.md``, works one through). The public
+    ``init``/``update`` are this class's and are not overridden: they check the input, seed
+    the generator and guard the output around the two methods below.
+
+    Writing a subclass
+    ------------------
+    name : str (class attribute)
+        The registry name, unique among the registered trackers (``"lab-color-pf"``):
+        ``trackers.create(name)``, ``trackbook bench --trackers name`` and the playground find
+        the class by it.
+    Params : frozen dataclass (class attribute)
+        The tunables, each field made with ``trackbook.params.param(default, lo, hi, step,
+        doc, ..., paper=..., why=...)``. ``Tracker(**params)`` checks every value against its
+        range and stores the instance as ``self.params`` (read-only); unknown names are
+        refused. Without tunables leave the default, an empty dataclass.
+    _init(frame, box) -> None
+        Called by ``init`` after the checks, once per clip. ``frame`` is an H x W x 3
+        ``uint8`` BGR array (as ``cv2.imread`` returns it); ``box`` a float array
+        ``(x, y, w, h)`` in pixels, already clipped to the frame, each side >= 1. Build the
+        model of the target here and reset every piece of state a previous clip may have
+        left: ``init`` can be called again on the same object. ``self.rng`` is a fresh
+        ``numpy.random.Generator`` seeded with ``seed`` at every ``init``; draw every random
+        number from it, never from ``np.random``, so the same seed and frames give the same
+        boxes. The return value is ignored; ``init`` sets ``bbox`` to ``box`` and ``ok`` to
+        True afterwards.
+    _update(frame) -> (ok, box)
+        Called by ``update`` once per frame after the first, with a frame checked to be
+        ``uint8`` BGR of the same shape as ``init``'s (``frame_index`` already counts it).
+        Return ``ok``, a bool, False while the tracker believes the target is gone (and only
+        then), and ``box``, four numbers ``(x, y, w, h)`` in pixels (any sequence or array).
+        A box that is NaN, infinite or has a side <= 0 is replaced by the last good box and
+        ``ok`` set to False, so return the last box rather than inventing one when lost.
+        Treat ``frame`` as read-only: it may be a view of the caller's data.
+    _drawn() -> dict
+        Optional. The :class:`TrackerState` fields this tracker can draw once started
+        (``particles``, ``weights``, ``search_window``, ``ellipse``, ``candidates``,
+        ``rays``), by name; return ``{**super()._drawn(), ...}``. ``state()`` adds them to
+        the box and ``ok``; the book's figures, the playground and ``trackbook track``'s
+        video draw whatever is there.
+    flat_range : int (class attribute, default 2)
+        A frame whose values span at most this many grey levels (all black, all white, one
+        grey) carries nothing to match; ``self._is_flat(frame)`` tests it, and a tracker
+        should report such a frame lost (``ok=False``, last box) rather than score it.
+
+    ``state()`` is public and not meant to be overridden: extend ``_drawn`` instead. For a
+    particle filter, subclass
+    :class:`trackbook.trackers.particle_filter.ParticleFilterTracker`, whose ``_update`` is
+    the whole SIR cycle and which asks for smaller hooks (``model``, ``predict``,
+    ``likelihood``, ...).
+
     Parameters
     ----------
     seed : int or None
@@ -187,19 +239,65 @@ class Tracker:
         return None
 
     def _drawn(self) -> dict:
-        """The :class:`TrackerState` fields this tracker has once started, by name; a subclass
-        returns ``{**super()._drawn(), ...}``."""
+        """The :class:`TrackerState` fields this tracker has once started, by name.
+
+        Returns
+        -------
+        dict
+            Field name -> value, e.g. ``{"particles": ..., "weights": ...}``; only called
+            after ``init``. A subclass returns ``{**super()._drawn(), ...}``.
+        """
         return {}
 
     def _is_flat(self, frame: np.ndarray) -> bool:
-        """Whether ``frame`` is constant up to ``flat_range`` grey levels (nothing to match)."""
+        """Whether ``frame`` is constant up to ``flat_range`` grey levels (nothing to match).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+
+        Returns
+        -------
+        bool
+            True when ``frame.max() - frame.min() <= flat_range``.
+        """
         return int(frame.max()) - int(frame.min()) <= self.flat_range
 
     # -- what subclasses implement ---------------------------------------------------------
     def _init(self, frame: np.ndarray, box: np.ndarray) -> None:  # pragma: no cover
+        """Take the model of the target from the first frame (a subclass implements it).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The first frame, BGR, checked by ``init``.
+        box : (4,) float array
+            The target's box ``(x, y, w, h)`` in pixels, clipped to the frame, sides >= 1.
+
+        Returns
+        -------
+        None
+            ``init`` then sets ``bbox`` to ``box`` and ``ok`` to True. ``self.rng`` has just
+            been re-seeded; reset here any state an earlier clip left.
+        """
         raise NotImplementedError
 
     def _update(self, frame: np.ndarray):  # pragma: no cover
+        """Track the target into the next frame (a subclass implements it).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The next frame, BGR, of the same shape as ``init``'s; read-only by convention.
+
+        Returns
+        -------
+        ok : bool
+            False while the tracker believes the target is gone, True otherwise.
+        box : sequence of 4 floats
+            ``(x, y, w, h)`` in pixels. A NaN, infinite or empty box is replaced by the last
+            good one with ``ok=False`` (see ``update``); while lost, return the last box.
+        """
         raise NotImplementedError
 
     def __repr__(self) -> str:

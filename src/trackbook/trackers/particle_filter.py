@@ -70,11 +70,22 @@ class ParticleFilterTracker(Tracker):
       gate, ``self._match = 1 - D^2`` of every particle),
     - ``box_to_state(box) -> (d,)`` and ``state_to_box(state) -> (x, y, w, h)``,
 
-    and may override ``on_lost()`` (called on a lost frame, e.g. to widen the spread) and
-    ``refine(frame, particles) -> particles`` (move the predicted particles before weighting,
-    e.g. uphill by mean-shift as Cho & Kang 2005 do; the default leaves them where the motion
-    model put them). The params dataclass must have ``n_particles`` and ``resampler`` (made with
-    :func:`resampler_param`).
+    and may override ``on_lost()`` (called at the end of every frame ``update`` reports
+    lost, whatever the reason, e.g. to forget velocities or count the lost frames that widen
+    the spread) and ``refine(frame, particles) -> particles`` (move the predicted particles
+    before weighting, e.g. uphill by mean-shift as Cho & Kang 2005 do; the default leaves them
+    where the motion model put them). Each hook's docstring states what it receives and must
+    return. The params dataclass must have ``n_particles`` and ``resampler`` (made with
+    :func:`resampler_param`); ``lost_below`` and ``lost_k`` (:func:`lost_below_param`,
+    :func:`lost_k_param`) switch the distance gate on.
+
+    Further hooks for trackers that need them: ``_scatter_reset(particles, idx)`` (clear what
+    scattered particles must not keep), ``_stands_out(frame, particles)`` (the gate's second
+    look), ``_drawn()`` (what ``state()`` shows; particles and weights here), and ``_init`` /
+    ``_update`` themselves, which a subclass may wrap (call ``super()`` and add to it, e.g. to
+    learn from the estimate) but should not replace. The class attributes below tune the lost
+    rule. The colour trackers add ``features(frame, boxes) -> dict`` (see
+    :class:`trackbook.trackers.color_pf.ColorPF`), from which their ``likelihood`` is computed.
 
     What the frame assumes
     ----------------------
@@ -107,8 +118,9 @@ class ParticleFilterTracker(Tracker):
     A frame whose grey levels span at most ``flat_range`` (a constant frame: all black, all
     white, one grey) carries no information at all -- no colour to compare, no gradient for a
     HOG or an edge -- so it is not scored: ``update`` returns ``ok=False``, keeps the last
-    estimate and calls ``on_lost()`` (which widens the search), instead of following the
-    least-bad particle. (The likelihood alone cannot tell: the HOG of a gradient-free patch is
+    estimate and calls ``on_lost()``, instead of following the least-bad particle. So does a
+    frame whose likelihoods are all zero or not finite (or sum to at most
+    ``min_total_likelihood``). (The likelihood alone cannot tell: the HOG of a gradient-free patch is
     a flat histogram that scores above a real but hard frame.)
 
     Second rule, the distance gate (trackers whose params have ``lost_below`` > 0): a frame is
@@ -165,6 +177,21 @@ class ParticleFilterTracker(Tracker):
     _probe_keeps = ("_similarities", "_report", "_rho", "_likelihoods")
 
     def _init(self, frame, box):
+        """Start the filter: ``model``, then ``initial_particles`` with uniform weights.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The first frame, BGR.
+        box : (4,) float array
+            The target's box ``(x, y, w, h)``, clipped to the frame.
+
+        Returns
+        -------
+        None
+            A subclass that overrides it calls ``super()._init(frame, box)`` and adds its own
+            state (``condensation-mean-shift`` remembers the frame for its optical flow).
+        """
         self._frame_wh = np.array([frame.shape[1], frame.shape[0]], dtype=float)
         self.model(frame, box)
         self._particles = np.asarray(self.initial_particles(frame, box), dtype=float)
@@ -179,6 +206,25 @@ class ParticleFilterTracker(Tracker):
         self._lost_in_a_row = 0
 
     def _update(self, frame):
+        """One SIR cycle: select, [scatter while lost], predict, refine, weigh, normalise,
+        estimate, and the lost rule.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame, BGR.
+
+        Returns
+        -------
+        ok : bool
+            False on a lost frame (then ``on_lost`` has been called).
+        box : (4,) array
+            ``state_to_box`` of the weighted-mean estimate, or of the last good estimate on
+            a lost frame.
+
+        A subclass may wrap it, ``ok, box = super()._update(frame)`` followed by its own
+        bookkeeping (learning from the estimate, a velocity), rather than replace it.
+        """
         name = self.params.resampler
         idx = check_indices(get_resampler(name)(self._weights, self.rng), len(self._weights),
                             name)
@@ -200,8 +246,10 @@ class ParticleFilterTracker(Tracker):
         self._lost_in_a_row = 0 if informative else self._lost_in_a_row + 1
         self._particles, self._likelihoods = particles, lik
         if not informative:
-            # Nothing in this frame looks like the target: keep the last estimate, spread the
-            # particles evenly (uniform weights) and let the subclass widen its search.
+            # Nothing in this frame looks like the target: keep the last estimate and let the
+            # subclass react (on_lost). The weights are uniform when the likelihoods said
+            # nothing, this frame's own when the gate called it lost; the next update resamples
+            # by them and, being lost, scatters part of the particles.
             self._weights = w
             self.lost = True
             self.on_lost()
@@ -213,7 +261,15 @@ class ParticleFilterTracker(Tracker):
 
     # read-only views for the book's drawings -------------------------------------------
     def _drawn(self) -> dict:
-        """The particles with their normalised weights."""
+        """The :class:`~trackbook.trackers.base.TrackerState` fields: the base's, plus the
+        particles and their normalised weights.
+
+        Returns
+        -------
+        dict
+            ``{**super()._drawn(), "particles": (N, d), "weights": (N,)}``; a subclass adds
+            its own fields the same way.
+        """
         return {**super()._drawn(), "particles": self._particles, "weights": self._weights}
 
     particles = readonly_attr("_particles")
@@ -235,7 +291,29 @@ class ParticleFilterTracker(Tracker):
         return m if np.isfinite(m) else 0.0
 
     def on_lost(self):
-        """Hook: called on a frame where every particle scored zero."""
+        """Hook: react to a lost frame (default: nothing).
+
+        ``_update`` calls it at the end of every frame it reports lost (``ok=False``): a flat
+        frame (see ``flat_range``), likelihoods that carry no information (all zero or not
+        finite, or a sum at most ``min_total_likelihood``), or a frame the distance gate calls
+        lost (see "Lost rule" in the class docstring). It is not called on frames that are
+        tracked.
+
+        When it is called, ``self.lost`` is True; ``self._particles`` holds this frame's
+        predicted (and refined) particles and may be edited in place; ``self._weights`` are
+        uniform (no information) or this frame's normalised likelihoods (gated out);
+        ``self.estimate`` is still the last good estimate, which ``update`` returns; and
+        ``self._lost_in_a_row`` counts this frame. The next ``update`` resamples by
+        ``self._weights``, scatters ``scatter_fraction`` of the particles over the frame and
+        calls ``predict`` with ``self.lost`` still True. ``ColorPF`` zeroes the particles'
+        velocities here; ``CentreParticleFilter`` counts the lost frames that widen its
+        spread.
+
+        Returns
+        -------
+        None
+            The return value is ignored.
+        """
 
     def _gated_out(self) -> bool:
         """The distance gate of the class docstring: True if this frame's best match is both
@@ -273,7 +351,23 @@ class ParticleFilterTracker(Tracker):
         """The gate's second look (see "Lost rule"): whether the best particle's match is at
         least ``contrast_floor`` and beats the median match of the ``probe_offsets`` boxes
         around it, of its own size, by at least ``gate_contrast``. Computed only on frames the
-        distance gate would call lost."""
+        distance gate would call lost.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame.
+        particles : (N, d) array
+            This frame's weighted particles; ``self._match`` holds their matches.
+
+        Returns
+        -------
+        bool
+            True keeps the frame (not lost). Override to return False for a tracker whose
+            features stand out on any textured background; the probes' ``likelihood`` call
+            must leave ``self._match`` and the attributes named in ``_probe_keeps`` as
+            they were (this method restores them).
+        """
         m = self._match
         i = int(np.nanargmax(m))
         best = float(m[i])
@@ -301,8 +395,8 @@ class ParticleFilterTracker(Tracker):
         whole frame (one particle per grid cell, so the frame is covered evenly at a cost
         bounded by N); of the others, half keep what the last frame's weights selected (so the
         search closes in on a good match over a few frames) and half restart at rest at the
-        last estimate (all of them after a frame with nothing to weigh, uniform weights). ``_scatter_reset`` clears
-        what else should not carry over."""
+        last estimate (all of them after a frame with nothing to weigh, uniform weights).
+        ``_scatter_reset`` clears what else should not carry over."""
         n = particles.shape[0]
         k = int(round(self.scatter_fraction * n))
         if k <= 0:
@@ -322,27 +416,143 @@ class ParticleFilterTracker(Tracker):
         return particles
 
     def _scatter_reset(self, particles, idx):
-        """Hook: clear the parts of scattered particles' states that should not carry over."""
+        """Hook: clear the parts of scattered particles' states that should not carry over
+        (default: nothing).
+
+        Parameters
+        ----------
+        particles : (N, d) array
+            The particles being scattered while lost; edit in place.
+        idx : (k,) int array
+            The rows just restarted on the grid over the frame (at the first box's state,
+            centre moved).
+
+        Returns
+        -------
+        None
+        """
 
     def refine(self, frame, particles):
-        """Hook: move the predicted particles before they are weighted (default: don't)."""
+        """Hook: move the predicted particles before they are weighted (default: don't).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame, BGR.
+        particles : (N, d) array
+            The particles ``predict`` returned.
+
+        Returns
+        -------
+        (N, d) array
+            The particles to weigh, same shape (``condensation-mean-shift`` climbs each one
+            uphill by mean-shift, Cho & Kang 2005).
+        """
         return particles
 
     # subclass interface ----------------------------------------------------------------
     def model(self, frame, box):  # pragma: no cover
+        """Take the reference of the target (required); ``_init`` calls it first.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The first frame, BGR.
+        box : (4,) float array
+            The target's box ``(x, y, w, h)``, clipped to the frame.
+
+        Returns
+        -------
+        None
+            Store the reference on ``self`` (e.g. the first frame's histogram) and reset any
+            per-clip state; ``initial_particles`` is called next.
+        """
         raise NotImplementedError
 
     def initial_particles(self, frame, box):  # pragma: no cover
+        """The particles of the first frame (required).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The first frame, BGR.
+        box : (4,) float array
+            The target's box ``(x, y, w, h)``.
+
+        Returns
+        -------
+        (N, d) array
+            N states (N usually ``self.params.n_particles``), columns 0-1 the centre (x, y):
+            the lost rule's scatter and the drawings rely on it. Draw any noise from
+            ``self.rng``. They start with uniform weights.
+        """
         raise NotImplementedError
 
     def predict(self, particles):  # pragma: no cover
+        """The motion model (required): move the selected particles one frame on.
+
+        Parameters
+        ----------
+        particles : (N, d) array
+            The particles the resampler selected (a fresh array; may be edited in place).
+            ``self.lost`` says whether the previous frame was lost.
+
+        Returns
+        -------
+        (N, d) array
+            The predicted states, same shape. Draw the noise from ``self.rng`` so the same
+            seed gives the same boxes.
+        """
         raise NotImplementedError
 
     def likelihood(self, frame, particles):  # pragma: no cover
+        """How well each particle matches the target in this frame (required).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame, BGR.
+        particles : (N, d) array
+            The predicted (and refined) particles.
+
+        Returns
+        -------
+        (N,) array
+            Unnormalised weights >= 0 (``update`` normalises them; all zero or not finite
+            means a lost frame). For the distance gate also set ``self._match`` to the
+            (N,) matches ``1 - D^2`` in [0, 1]; left NaN, the gate is off. It is also called
+            on the eight probe boxes of the gate's second look, so keep per-frame records
+            in attributes named in ``_probe_keeps``.
+        """
         raise NotImplementedError
 
     def box_to_state(self, box):  # pragma: no cover
+        """The state at rest of a box (required).
+
+        Parameters
+        ----------
+        box : (4,) array
+            ``(x, y, w, h)``.
+
+        Returns
+        -------
+        (d,) array
+            Centre (x, y) in columns 0-1; where the state has them, zero velocity and the
+            box's size.
+        """
         raise NotImplementedError
 
     def state_to_box(self, state):  # pragma: no cover
+        """The box of one state (required); the inverse of ``box_to_state`` on its image.
+
+        Parameters
+        ----------
+        state : (d,) array
+            One particle state or the weighted-mean estimate.
+
+        Returns
+        -------
+        (4,) array
+            ``(x, y, w, h)`` in pixels, what ``update`` returns.
+        """
         raise NotImplementedError
