@@ -156,6 +156,13 @@ def check_seed(seed) -> None:
                          "(or None for a fresh random run).")
 
 
+def positional_seed_error(call: str, what: str) -> TypeError:
+    """The error for a seed passed by position: ``what`` (``"create()"``) takes it as a
+    keyword, as in ``call`` (``"create('color-pf', seed=50)"``). A positional number after the
+    name used to be taken as the seed without a word, which hid a misplaced argument."""
+    return TypeError(f"{what} takes the seed as a keyword: {call}.")
+
+
 #: Frames an evaluation needs: frame 0 starts the tracker, frame 1 is the first one scored.
 MIN_FRAMES = 2
 
