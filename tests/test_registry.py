@@ -144,18 +144,18 @@ def test_a_syntax_error_names_file_and_line(tmp_path, clean_registry):
         plugins.load(str(f))
 
 
-def test_a_dotted_module_exiting_in_its_helper_names_the_helper(tmp_path, clean_registry,
+def test_a_dotted_module_exiting_in_a_file_it_imports_names_that_file(tmp_path, clean_registry,
                                                                 monkeypatch):
     pkg = tmp_path / "exiting_pkg"
     pkg.mkdir()
     (pkg / "__init__.py").write_text("")
-    (pkg / "helper.py").write_text("import sys\n\n\ndef setup():\n    sys.exit('no GPU')\n")
-    (pkg / "trk.py").write_text("from exiting_pkg.helper import setup\nsetup()\n")
+    (pkg / "gpu_setup.py").write_text("import sys\n\n\ndef setup():\n    sys.exit('no GPU')\n")
+    (pkg / "trk.py").write_text("from exiting_pkg.gpu_setup import setup\nsetup()\n")
     monkeypatch.syspath_prepend(str(tmp_path))
     try:
         with pytest.raises(PluginError) as e:
             plugins.load("exiting_pkg.trk")
-        assert f"{pkg / 'helper.py'}, line 5" in str(e.value)
+        assert f"{pkg / 'gpu_setup.py'}, line 5" in str(e.value)
         assert isinstance(e.value.__cause__, SystemExit)
     finally:
         for k in [k for k in sys.modules if k.startswith("exiting_pkg")]:
