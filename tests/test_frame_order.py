@@ -22,7 +22,7 @@ def _folder(root, names, *, grey=None):
     img = root / "img"
     img.mkdir(parents=True)
     for name, g in zip(names, grey):
-        ok, buf = cv2.imencode(".png", np.full((20, 24, 3), g, np.uint8))
+        _, buf = cv2.imencode(".png", np.full((20, 24, 3), g, np.uint8))
         (img / name).write_bytes(buf.tobytes())
     (root / "groundtruth.txt").write_text("".join(f"{g},1,5,5\n" for g in grey))
     return root

@@ -164,7 +164,7 @@ def load(spec: str) -> ModuleType:
         sys.modules[name] = module
         try:
             ispec.loader.exec_module(module)
-        except (Exception, SystemExit) as e:  # noqa: BLE001  whatever the user's file does
+        except (Exception, SystemExit) as e:  # whatever the user's file does
             sys.modules.pop(name, None)
             raise _plugin_error(f"tracker module {spec!r}", e, [path]) from e
     else:
@@ -182,7 +182,7 @@ def load(spec: str) -> ModuleType:
                                  "package.") from e
             # the module exists but imports one that does not: an error in the user's code
             raise _plugin_error(f"tracker module {spec!r}", e, _module_roots(spec)) from e
-        except (Exception, SystemExit) as e:  # noqa: BLE001
+        except (Exception, SystemExit) as e:
             raise _plugin_error(f"tracker module {spec!r}", e, _module_roots(spec)) from e
     _loaded[key] = module
     if not set(_registry.registered()) - before:
@@ -228,8 +228,7 @@ def load_entry_points() -> list[str]:
             obj = ep.load()
             if isinstance(obj, type) and issubclass(obj, Tracker):
                 _registry.register(obj)
-        except (Exception, SystemExit) as e:  # noqa: BLE001  one broken package must not
-            # hide the others
+        except (Exception, SystemExit) as e:  # one broken package must not hide the others
             err = _plugin_error(what, e, _module_roots(ep.value.split(":")[0].strip()))
             warnings.warn(str(err), stacklevel=2)
     return [n for n in _registry.registered() if n not in before]
