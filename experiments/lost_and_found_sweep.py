@@ -39,7 +39,7 @@ def sweep(name, clip_seeds=range(3), tracker_seeds=range(4)):
 
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    names = argv[0].split(",") if argv else trackers.available()
+    names = argv[0].split(",") if argv else trackers.available(reference=False)
     for name in names:
         worst_ok, rec = sweep(name)
         print(f"{name:24s} ok=True on absent frames: at most {worst_ok} of {N_ABSENT}; "

@@ -79,7 +79,7 @@ def test_a_tracker_in_a_file_runs_on_a_dask_local_cluster(tmp_path):
         # the worker is a fresh process: it knows the tracker only by loading the file
         with distributed.Client(cluster) as client:
             assert "user-still-dask" not in client.run(
-                lambda: trackers.available())[next(iter(client.scheduler_info()["workers"]))]
+                lambda: trackers.available(reference=False))[next(iter(client.scheduler_info()["workers"]))]
         rows = bench.run(["user-still-dask"], [str(a)], tmp_path / "o", progress=False,
                          reference=False, imports=[str(f)],
                          scheduler=cluster.scheduler_address)
@@ -134,7 +134,7 @@ def test_a_same_size_rewrite_of_a_bmp_frame_reruns(tmp_path):
 
 
 def test_preset_paper_runs_the_printed_values_under_its_own_key(tmp_path):
-    name = next(n for n in trackers.available()
+    name = next(n for n in trackers.available(reference=False)
                 if _params.paper_values(trackers.get(n).Params))
     paper = _params.paper_values(trackers.get(name).Params)
     book = bench.plan([name], "red-cube", max_frames=3, reference=False)

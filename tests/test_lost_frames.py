@@ -13,7 +13,7 @@ import pytest
 
 from trackbook import clips, trackers
 
-NAMES = trackers.available()
+NAMES = trackers.available(reference=False)
 
 
 @pytest.fixture(scope="module")

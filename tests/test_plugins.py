@@ -112,7 +112,7 @@ def test_entry_point_registers(tmp_path, clean_registry, monkeypatch):
                        "still-entry")
     monkeypatch.syspath_prepend(str(tmp_path))
     try:
-        assert "still-entry" not in _registry.available()
+        assert "still-entry" not in _registry.registered()
         # the first trackers.available() of a process loads the entry points
         monkeypatch.setattr(plugins, "_entry_points_done", False)
         assert "still-entry" in trackers.available()

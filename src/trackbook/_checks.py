@@ -7,6 +7,7 @@ assignment.
 
 from __future__ import annotations
 
+import datetime
 import errno
 import math
 import os
@@ -74,25 +75,165 @@ def _fmt(box) -> str:
     return "(" + ", ".join(f"{float(v):g}" for v in box) + ")"
 
 
+#: What an element of each numpy dtype kind is, in a message (kinds ``i``, ``u``, ``f`` are
+#: the real numbers a box accepts).
+_KIND_WORDS = {"b": "a boolean", "c": "a complex value", "m": "a time span (timedelta64)",
+               "M": "a date (datetime64)", "U": "text", "S": "bytes", "V": "a structured value"}
+#: How to fix an element of each kind of problem.
+_FIXES = {
+    "a boolean": "a box is pixel numbers, not True/False",
+    "a complex value": "pass the real parts (np.real(box)) if the imaginary parts are 0",
+    "a time span (timedelta64)": "a box is pixel coordinates, not a time",
+    "a date (datetime64)": "a box is pixel coordinates, not a date",
+    "a date": "a box is pixel coordinates, not a date",
+    "a time span": "a box is pixel coordinates, not a time",
+    "text": "convert it first, e.g. [float(v) for v in text.split(',')]",
+    "bytes": "decode and convert it first, e.g. [float(v) for v in data.decode().split(',')]",
+    "a masked array": "pass a plain array: box.filled(np.nan) where the mask means "
+                      "'unknown', or np.asarray(box) once nothing is masked",
+    "a masked value": "pass plain numbers (NaN where a value is unknown, if the caller "
+                      "allows it)",
+    "an integer too large for a float": "pass pixel coordinates (at most about 1e308)",
+}
+
+
+def _element_problem(v) -> str | None:
+    """Why scalar ``v`` is not a real number a box can hold (None: it is one)."""
+    if isinstance(v, np.ndarray) and v.ndim == 0 and not isinstance(v, np.ma.MaskedArray):
+        v = v[()]                   # a 0-d array: judge the numpy scalar it holds
+    if isinstance(v, np.ma.core.MaskedConstant):
+        return "a masked value"
+    if isinstance(v, (bool, np.bool_)):
+        return "a boolean"
+    if isinstance(v, (str, np.str_)):
+        return "text"
+    if isinstance(v, (bytes, bytearray, memoryview, np.bytes_)):
+        return "bytes"
+    if isinstance(v, (complex, np.complexfloating)):
+        return "a complex value"
+    if isinstance(v, np.datetime64):
+        return "a date (datetime64)"
+    if isinstance(v, np.timedelta64):
+        return "a time span (timedelta64)"
+    if isinstance(v, (datetime.date, datetime.time)):
+        return "a date"
+    if isinstance(v, datetime.timedelta):
+        return "a time span"
+    if isinstance(v, Real):
+        try:
+            float(v)
+        except OverflowError:        # 10**400: float() cannot hold it
+            return "an integer too large for a float"
+        return None
+    return "None" if v is None else f"a {type(v).__name__}"
+
+
+def _refuse(name: str, what: str, problem: str, value, where: str = "") -> ValueError:
+    fix = _FIXES.get(problem, "pass int or float values")
+    shown = " ".join(repr(value).split())
+    shown = shown if len(shown) <= 60 else shown[:57] + "..."
+    shown = "" if value is None else f" {shown}"
+    return ValueError(f"{name} must be {what}; got {problem}{shown}{where}; {fix}.")
+
+
+def _scalars(values, path=()):
+    """``(index path, element)`` of every element of nested lists/tuples, in order (an array
+    inside them is one element, checked by its dtype)."""
+    for i, v in enumerate(values):
+        if isinstance(v, (list, tuple)):
+            yield from _scalars(v, (*path, i))
+        else:
+            yield (*path, i), v
+
+
+def real_values(values, *, name: str, what: str = "numbers") -> np.ndarray:
+    """``values`` (a number, a sequence or nested sequences of numbers, or an array) as a float
+    array of the same shape, refusing whatever is not a real number: booleans, complex
+    values, dates and time spans, text and bytes, masked arrays, objects, and integers too
+    large for a float (which would otherwise raise ``OverflowError`` or be taken as 0/1, the
+    real part, or a count of nanoseconds). NaN and infinity pass: callers decide.
+
+    ``what`` says what ``values`` should be, for the message (``"four numbers (x, y, w, h),
+    finite and real"``).
+    """
+    if isinstance(values, np.ma.MaskedArray) and not isinstance(values,
+                                                                 np.ma.core.MaskedConstant):
+        raise _refuse(name, what, "a masked array", values)
+    if isinstance(values, (list, tuple)):
+        for path, v in _scalars(values):
+            if (isinstance(v, np.ndarray) and v.ndim
+                    and not isinstance(v, np.ma.core.MaskedConstant)):
+                real_values(v, name=name, what=what)
+                continue
+            problem = _element_problem(v)
+            if problem is not None:
+                where = (f" at position {path[0]}" if len(path) == 1
+                         else " at " + "".join(f"[{k}]" for k in path))
+                raise _refuse(name, what, problem, v, where)
+        try:
+            return np.asarray(values, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be {what}; got {values!r} (rows of different "
+                             "lengths?).") from None
+    if not isinstance(values, np.ndarray) or isinstance(values, np.ma.core.MaskedConstant):
+        problem = _element_problem(values)      # one scalar, or an iterable of another kind
+        if problem is not None and not hasattr(values, "__iter__"):
+            raise _refuse(name, what, problem, values)
+    arr = values if isinstance(values, np.ndarray) else np.asarray(values)
+    kind = arr.dtype.kind
+    if kind in "iuf":
+        return arr.astype(float, copy=False)
+    if kind == "O":
+        for v in arr.ravel():
+            if isinstance(v, np.ndarray) and v.ndim:
+                real_values(v, name=name, what=what)
+            elif _element_problem(v) is not None:
+                raise _refuse(name, what, _element_problem(v), v)
+        try:
+            return arr.astype(float, copy=False)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be {what}; got {values!r}.") from None
+    raise _refuse(name, what, _KIND_WORDS.get(kind, f"dtype {arr.dtype}"), values)
+
+
+#: What a box is, in messages.
+_BOX = "four numbers (x, y, w, h), finite and real"
+
+
 def as_box(bbox, *, name: str = "bbox") -> np.ndarray:
-    """Return ``bbox`` as a float array ``(x, y, w, h)`` with w, h > 0, else raise."""
-    if isinstance(bbox, (str, bytes)) or (
+    """Return ``bbox`` as a float array ``(x, y, w, h)`` with w, h > 0, else raise.
+
+    Raises
+    ------
+    ValueError
+        Not four values; a value that is not a real number (bool, complex, a date or time
+        span, text, bytes, a masked array, an int beyond float range); NaN or infinity; a
+        nested box; zero or negative width or height. The message names the problem and the
+        fix.
+    """
+    if isinstance(bbox, (str, np.str_, bytes, bytearray, memoryview, np.bytes_)) or (
             isinstance(bbox, (list, tuple)) and any(isinstance(v, (str, bytes)) for v in bbox)
     ) or (isinstance(bbox, np.ndarray) and bbox.dtype.kind in "USO"
           and any(isinstance(v, (str, bytes)) for v in bbox.ravel())):
-        raise ValueError(f"{name} must be four numbers (x, y, w, h), got text {bbox!r}; "
-                         "convert it first, e.g. [float(v) for v in text.split(',')].")
-    if (isinstance(bbox, (list, tuple)) and any(isinstance(v, (list, tuple, np.ndarray))
-                                                for v in bbox)) or np.ndim(bbox) > 1:
+        items = (bbox if isinstance(bbox, (list, tuple)) else
+                 bbox.ravel() if isinstance(bbox, np.ndarray) else [bbox])
+        what = "text" if any(isinstance(v, str) for v in items) else "bytes"
+        raise ValueError(f"{name} must be four numbers (x, y, w, h), got {what} {bbox!r}; "
+                         f"{_FIXES[what]}.")
+    if (isinstance(bbox, (list, tuple)) and any(
+            isinstance(v, (list, tuple)) or (isinstance(v, np.ndarray) and v.ndim)
+            for v in bbox)) or (isinstance(bbox, np.ndarray) and bbox.ndim > 1):
         raise ValueError(
             f"{name} {bbox!r} is nested; a box is four numbers (x, y, w, h) in one flat "
             "sequence. Two corners [[x1, y1], [x2, y2]] become (x1, y1, x2 - x1, y2 - y1).")
-    try:
-        box = np.asarray(bbox, dtype=float).reshape(-1)
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{name} must be four numbers (x, y, w, h), got {bbox!r}."
-        ) from None
+    if isinstance(bbox, (set, frozenset, dict)):
+        raise ValueError(f"{name} must be {_BOX}, in order; got a {type(bbox).__name__} "
+                         f"{bbox!r}, which has no order: pass a tuple or a list.")
+    box = real_values(bbox, name=name, what=_BOX)
+    if box.ndim > 1:
+        raise ValueError(f"{name} {bbox!r} is nested; a box is four numbers (x, y, w, h) in "
+                         "one flat sequence.")
+    box = box.reshape(-1)
     if box.shape != (4,):
         raise ValueError(
             f"{name} must be four numbers (x, y, w, h): top-left corner, width, height; "
@@ -156,6 +297,13 @@ def check_seed(seed) -> None:
                          "(or None for a fresh random run).")
 
 
+def positional_seed_error(call: str, what: str) -> TypeError:
+    """The error for a seed passed by position: ``what`` (``"create()"``) takes it as a
+    keyword, as in ``call`` (``"create('color-pf', seed=50)"``). A positional number after the
+    name used to be taken as the seed without a word, which hid a misplaced argument."""
+    return TypeError(f"{what} takes the seed as a keyword: {call}.")
+
+
 #: Frames an evaluation needs: frame 0 starts the tracker, frame 1 is the first one scored.
 MIN_FRAMES = 2
 
@@ -185,8 +333,10 @@ def check_finite_number(value, *, name: str) -> None:
 
 
 def check_boxes(arr, *, name: str) -> np.ndarray:
-    """Return ``arr`` as an N x 4 float array, else raise ``ValueError``."""
-    a = np.asarray(arr, dtype=float)
+    """Return ``arr`` as an N x 4 float array, else raise ``ValueError`` (NaN rows pass:
+    they mark frames without a box; values that are not real numbers are refused as in
+    :func:`real_values`)."""
+    a = real_values(arr, name=name, what="an N x 4 array of boxes (x, y, w, h), real numbers")
     if a.ndim == 1 and a.shape[0] == 4:
         a = a[None, :]
     if a.ndim != 2 or a.shape[1] != 4:

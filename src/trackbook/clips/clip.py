@@ -10,7 +10,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from .._checks import fs_error
+from .._checks import fs_error, real_values
 
 
 class CorruptFrameWarning(UserWarning):
@@ -196,7 +196,10 @@ class Clip:
     source: str = ""
 
     def __post_init__(self):
-        gt = np.asarray(self.groundtruth, dtype=float)
+        # a bool, complex, date or text array would otherwise become 0/1, its real part or
+        # nanoseconds without a word
+        gt = real_values(self.groundtruth, name=f"clip {self.name!r}: ground truth",
+                         what="one (x, y, w, h) row of real numbers per frame (NaN: no box)")
         if gt.ndim != 2 or gt.shape[1] != 4 or gt.shape[0] != len(self.frames):
             raise ValueError(
                 f"clip {self.name!r}: ground truth has shape {gt.shape} but there are "
@@ -206,6 +209,11 @@ class Clip:
         self.groundtruth = gt
         if not self.targets:
             self.targets = {"target": gt}
+        else:
+            self.targets = {k: real_values(v, name=f"clip {self.name!r}: target {k!r}",
+                                           what="one (x, y, w, h) row of real numbers per "
+                                                "frame (NaN: no box)")
+                            for k, v in self.targets.items()}
 
     def __len__(self) -> int:
         return len(self.frames)

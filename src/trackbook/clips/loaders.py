@@ -3,6 +3,8 @@
 An OTB sequence as downloaded from the benchmark is a folder with ``img/0001.jpg ...`` and
 ``groundtruth_rect.txt`` (or ``groundtruth.txt``), one box per line, separated by commas,
 tabs or spaces. VOT's 8-value polygons are turned into their axis-aligned bounding box.
+Image folders are read in natural (numeric) order: ``2.jpg`` comes before ``10.jpg``
+(see :func:`frame_order`).
 """
 
 from __future__ import annotations
@@ -25,6 +27,86 @@ GT_NAMES = ("groundtruth_rect.txt", "groundtruth.txt")
 _SEP = re.compile(r"[,\s]+")
 #: a number written with a decimal comma (``10,5``) inside a whitespace-separated line
 _DECIMAL_COMMA = re.compile(r"\d,\d")
+#: the numbers a ground-truth file may hold: ASCII decimal digits with an optional sign,
+#: fraction and exponent (``12``, ``-3.5``, ``.5``, ``1e3``)
+_NUMBER = re.compile(r"[+-]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][+-]?[0-9]+)?")
+#: "not known": ``nan`` in any case, with an optional sign (C's printf writes ``-nan``)
+_NAN = re.compile(r"[+-]?nan", re.IGNORECASE)
+_INF = re.compile(r"[+-]?inf(inity)?", re.IGNORECASE)
+#: the runs of ASCII digits that number the frames of an image folder
+_FRAME_NUMBER = re.compile(r"([0-9]+)")
+
+
+def _value(word: str) -> float:
+    """One ground-truth value, or ``ValueError`` whose message says what is wrong with it
+    (Python's ``float`` would take ``١٢``, ``１２`` and ``1_000`` without a word)."""
+    if _NUMBER.fullmatch(word) or _NAN.fullmatch(word) or _INF.fullmatch(word):
+        return float(word)
+    if any(c.isdigit() and not "0" <= c <= "9" for c in word):
+        raise ValueError(f"{word!r} has digits other than 0-9 (Arabic-Indic, fullwidth, ...); "
+                         "write the numbers with the digits 0-9")
+    if "_" in word and _float_or_none(word) is not None:
+        raise ValueError(f"{word!r} groups digits with '_'; write it without "
+                         f"({word.replace('_', '')})")
+    if re.fullmatch(r"[+-]?0[xX][0-9a-fA-F]+", word):
+        raise ValueError(f"{word!r} is hexadecimal; write decimal numbers ({int(word, 16)})")
+    raise ValueError(f"{word!r} is not a number")
+
+
+def _float_or_none(word: str):
+    """``float(word)``, or None when Python cannot read it either."""
+    try:
+        return float(word)
+    except ValueError:
+        return None
+
+
+def _pattern(stem: str) -> str:
+    """A frame name with its numbers hidden: ``img0001`` -> ``img#``."""
+    return _FRAME_NUMBER.sub("#", stem)
+
+
+def _natural_key(stem: str) -> tuple:
+    """``"img10"`` -> ``("img", 10, "")``: text and numbers alternate, numbers by value."""
+    parts = _FRAME_NUMBER.split(stem)
+    return tuple(int(p) if i % 2 else p for i, p in enumerate(parts))
+
+
+def frame_order(paths, folder) -> list[Path]:
+    """The image files of ``folder`` in natural (numeric) order: ``1.jpg, 2.jpg, ..., 10.jpg``.
+
+    Zero-padded names (``0001.jpg``) keep their order. Names are compared by their runs of
+    the digits 0-9 as numbers and by the text between them, so every frame must follow one
+    pattern: the same text, different numbers (``img0001.jpg``, ``img0002.jpg``, ...).
+
+    Raises
+    ------
+    ValueError
+        Two files with one frame number (``1.jpg`` and ``01.jpg``, or ``1.jpg`` and ``1.png``),
+        or names of several patterns (``a1.jpg`` and ``b1.jpg``, or a stray ``cover.jpg``)
+        whose order cannot be told; the message names the files.
+    """
+    paths = list(paths)
+    patterns: dict[str, list[Path]] = {}
+    for p in sorted(paths):
+        patterns.setdefault(_pattern(p.stem), []).append(p)
+    if len(patterns) > 1:
+        shown = ", ".join(f"{ps[0].name} ({len(ps)} like it)" if len(ps) > 1 else ps[0].name
+                          for ps in list(patterns.values())[:4])
+        raise ValueError(
+            f"image folder {folder}: the frames' names follow {len(patterns)} patterns "
+            f"({shown}), so their order is ambiguous; name every frame with one pattern and "
+            "its number (0001.jpg, 0002.jpg, ...) or move the other files out.")
+    frames: dict[tuple, Path] = {}
+    for p in sorted(paths):
+        key = _natural_key(p.stem)
+        if key in frames:
+            raise ValueError(
+                f"image folder {folder}: {frames[key].name} and {p.name} have the same frame "
+                "number, so their order is ambiguous; keep one of them (move or rename the "
+                "other).")
+        frames[key] = p
+    return [frames[k] for k in sorted(frames)]
 
 
 def read_groundtruth(path) -> np.ndarray:
@@ -34,6 +116,13 @@ def read_groundtruth(path) -> np.ndarray:
     a UTF-8 byte-order mark, and treats boxes of zero size (OTB's "target absent") as unknown.
     Infinite values and negative widths or heights are refused with the file and line: they
     are typing errors, not "target absent".
+
+    A value is a decimal number in the ASCII digits 0-9 with an optional sign, fraction and
+    exponent (``12``, ``-3.5``, ``.5``, ``1e3``), or ``nan`` in any case with an optional sign
+    (``NaN``, ``-nan``: unknown). Anything else is refused with the file, the line and what is
+    wrong, although Python's ``float`` reads some of it: other scripts' digits (``١٢``,
+    fullwidth ``１２``), digit groups (``1_000``), hexadecimal (``0x10``), and words such as
+    ``None`` or ``null``.
     """
     path = check_file(path, what="ground-truth file",
                       fix="pass the path of a text file with one x,y,w,h line per frame.")
@@ -63,10 +152,10 @@ def read_groundtruth(path) -> np.ndarray:
                 "(10.5 not 10,5), e.g. with sed 's/,/./g' when the fields are tab-separated.")
         parts = [p for p in _SEP.split(line) if p]
         try:
-            vals = [float(p) for p in parts]
-        except ValueError:
+            vals = [_value(p) for p in parts]
+        except ValueError as e:
             raise ValueError(
-                f"{path}, line {lineno}: {line!r} is not numbers; each line must be "
+                f"{path}, line {lineno}: {line!r} is not numbers: {e}; each line must be "
                 "x,y,w,h (commas, tabs or spaces) or an 8-value polygon."
             ) from None
         if any(math.isinf(v) for v in vals):
@@ -111,12 +200,16 @@ def _find_groundtruth(folder: Path) -> list[Path]:
 def load_folder(folder, name: str | None = None, fps: float = 30.0, groundtruth=None) -> Clip:
     """Load an OTB-style sequence folder (``img/*.jpg`` + ``groundtruth[_rect].txt``).
 
+    The images are read in natural (numeric) order, ``1.jpg, 2.jpg, ..., 10.jpg`` (zero-padded
+    names such as ``0001.jpg`` keep theirs), and line *i* of the ground truth is frame *i*.
+    Names that cannot be ordered unambiguously (``a1.jpg`` beside ``b1.jpg``, ``1.jpg``
+    beside ``01.jpg``) raise ``ValueError`` naming the files (see :func:`frame_order`).
     ``groundtruth`` names a ground-truth file to use instead of the folder's own.
     """
     folder = Path(folder)
     img_dir = folder / "img" if (folder / "img").is_dir() else folder
-    paths = sorted(p for p in list_dir(img_dir, what="image folder")
-                   if p.suffix.lower() in IMAGE_SUFFIXES)
+    paths = frame_order((p for p in list_dir(img_dir, what="image folder")
+                         if p.suffix.lower() in IMAGE_SUFFIXES), img_dir)
     if not paths:
         raise FileNotFoundError(
             f"no images in {img_dir}; an OTB sequence folder has img/0001.jpg, img/0002.jpg, ..."

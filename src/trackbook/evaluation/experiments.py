@@ -79,7 +79,7 @@ class Experiment:
     def grid(self) -> list[Config]:
         """The configurations, in order (MIL last when ``reference``)."""
         if self.configs is None:
-            names = [t for t in _trackers.available()
+            names = [t for t in _trackers.available(reference=False)
                      if self.trackers is None or t in self.trackers]
             out = [Config(t, t, preset=p) for t in names for p in self.presets]
         else:

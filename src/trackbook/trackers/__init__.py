@@ -1,7 +1,7 @@
 """Trackers: the registry, the shared base class and the papers' trackers.
 
 >>> from trackbook import trackers
->>> trackers.available()          # the eleven registered names  # doctest: +SKIP
+>>> trackers.available()          # every name create accepts, opencv-mil last  # doctest: +SKIP
 >>> t = trackers.create("color-hog-ipca", seed=0, n_particles=100)  # doctest: +SKIP
 >>> t.init(frame, (x, y, w, h)); ok, box = t.update(next_frame)     # doctest: +SKIP
 
@@ -13,9 +13,8 @@ from __future__ import annotations
 
 from .._checks import clip_box
 from . import plugins
-from . import registry as _registry
 from .base import Tracker, TrackerState
-from .factory import PRESETS, available, create, departures, get
+from .registry import PRESETS, available, create, departures, get, register
 from .multi import MultiTracker
 from .reference import REFERENCE
 
@@ -30,8 +29,6 @@ from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covaria
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
 
-
-register = _registry.register
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
            "clip_box", "create", "departures", "get", "plugins", "register"]

@@ -13,7 +13,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .._checks import check_box_in_frame, check_frame, check_seed
+from .._checks import check_box_in_frame, check_frame, check_seed, positional_seed_error
 from .._memory import keep_freed_memory
 from ..params import make_params
 
@@ -145,9 +145,9 @@ class Tracker:
 
     Parameters
     ----------
-    seed : int or None
+    seed : int or None, keyword only
         Seed of the tracker's own ``numpy.random.Generator``. Same seed and same frames give
-        the same boxes.
+        the same boxes. ``Tracker(50)`` raises ``TypeError``: write ``Tracker(seed=50)``.
     **params
         Values for the fields of the tracker's ``Params`` dataclass; the rest keep the
         book's defaults (``trackers.create(name, preset="paper")`` starts from the printed
@@ -171,7 +171,10 @@ class Tracker:
     #: grey) carries no information: trackers report it lost instead of scoring it.
     flat_range: ClassVar[int] = 2
 
-    def __init__(self, seed: int | None = 0, **params):
+    def __init__(self, *args, seed: int | None = 0, **params):
+        if args:
+            cls = type(self).__name__
+            raise positional_seed_error(f"{cls}(seed={args[0]!r})", f"{cls}()")
         check_seed(seed)
         self.seed = seed
         self._params = make_params(self.Params, params)

@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._checks import check_frame, clip_box
+from .._checks import check_frame, clip_box, positional_seed_error
 from ..params import make_params
-from .factory import create, get
+from .registry import create, get
 
 
 def target_seed(seed, k: int):
@@ -37,8 +37,8 @@ class MultiTracker:
 
     Parameters
     ----------
-    name : a registered tracker name (``trackers.available(reference=True)``)
-    seed : int or None; target ``k`` uses :func:`target_seed` ``(seed, k)``
+    name : a tracker name (``trackers.available()``)
+    seed : int or None, keyword only; target ``k`` uses :func:`target_seed` ``(seed, k)``
     **params : the trackers' params (the same for every target), checked here: a typo or a
         value out of range raises ``ValueError`` when the multi-tracker is made
 
@@ -48,7 +48,10 @@ class MultiTracker:
     boxes : list of the last boxes; oks : list of the last ``ok`` flags
     """
 
-    def __init__(self, name: str, seed: int | None = 0, **params):
+    def __init__(self, name: str, *args, seed: int | None = 0, **params):
+        if args:
+            raise positional_seed_error(f"MultiTracker({name!r}, seed={args[0]!r})",
+                                        "MultiTracker()")
         # fail early, with the list of names or the valid params, on a typo
         make_params(get(name).Params, dict(params))
         self.name, self.seed, self._params = name, seed, dict(params)

@@ -1,7 +1,7 @@
 """OpenCV's ``TrackerMIL`` behind the trackbook contract: the reference row of every table.
 
-It is not one of the papers' trackers, so it is not in ``trackers.available()``; ask for it as
-``trackers.create("opencv-mil")`` or list it with ``trackers.available(reference=True)``.
+It is not one of the papers' trackers: ``trackers.available()`` lists it last, after them, and
+``trackers.available(reference=False)`` leaves it out; ask for it as ``trackers.create("opencv-mil")``.
 """
 
 from __future__ import annotations
@@ -103,8 +103,8 @@ class OpenCVMIL(Tracker):
     #: Less than this fraction of the box in the frame: the target is leaving (lost).
     min_visible = 0.5
 
-    def __init__(self, seed: int | None = 0, **params):
-        super().__init__(seed=seed, **params)
+    def __init__(self, *args, seed: int | None = 0, **params):
+        super().__init__(*args, seed=seed, **params)    # the base refuses a positional seed
         self._proc = None
         self._dead = False
         _LIVE.add(self)
