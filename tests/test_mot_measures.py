@@ -164,8 +164,8 @@ def _ids_boxes(frame):
 SEEDS = list(range(8))
 
 
-@pytest.mark.parametrize("seed", SEEDS)
-def test_mota_motp_idf1_match_motmetrics(seed):
+@pytest.mark.parametrize("seed, threshold", [(s, 0.5) for s in SEEDS] + [(0, 0.3), (1, 0.7)])
+def test_mota_motp_idf1_match_motmetrics(seed, threshold):
     mm = pytest.importorskip("motmetrics")
     truth, hyps = random_run(seed)
     acc = mm.MOTAccumulator(auto_id=True)
@@ -173,20 +173,20 @@ def test_mota_motp_idf1_match_motmetrics(seed):
         gi, gb = _ids_boxes(g)
         hi, hb = _ids_boxes(h)
         # motmetrics' own iou_matrix calls a numpy function removed in numpy 2; its boxiou is
-        # fine, and the "forbid d > 0.5" step is the one line iou_matrix adds
+        # fine, and the "forbid d > 1 − threshold" step is the one line iou_matrix adds
         d = 1.0 - mm.distances.boxiou(gb[:, None], hb[None, :])
-        acc.update(gi, hi, np.where(d > 0.5, np.nan, d))
+        acc.update(gi, hi, np.where(d > 1.0 - threshold, np.nan, d))
     summary = mm.metrics.create().compute(
         acc, metrics=["mota", "motp", "idf1", "num_switches", "num_misses",
                       "num_false_positives"], name="run").iloc[0]
-    ours = clear_mot(truth, hyps)
+    ours = clear_mot(truth, hyps, threshold)
     assert summary["num_switches"] > 0 and summary["num_misses"] > 0  # the run exercises them
     assert ours.switches == summary["num_switches"]
     assert ours.misses == summary["num_misses"]
     assert ours.false_positives == summary["num_false_positives"]
     assert abs(ours.mota - summary["mota"]) < 1e-9
     assert abs(ours.motp - (1.0 - summary["motp"])) < 1e-9
-    assert abs(identity_scores(truth, hyps).idf1 - summary["idf1"]) < 1e-9
+    assert abs(identity_scores(truth, hyps, threshold).idf1 - summary["idf1"]) < 1e-9
 
 
 @pytest.mark.parametrize("seed", SEEDS)
@@ -212,3 +212,14 @@ def test_hota_matches_trackeval(seed):
     np.testing.assert_allclose(ours.deta_alpha, ref["DetA"], rtol=0, atol=1e-9)
     np.testing.assert_allclose(ours.assa_alpha, ref["AssA"], rtol=0, atol=1e-9)
     assert abs(ours.hota - ref["HOTA"].mean()) < 1e-9
+
+
+@pytest.mark.parametrize("seed", SEEDS[:3])
+def test_renaming_the_hypotheses_changes_no_score(seed):
+    # the measures compare ids only within a run: any one-to-one renaming leaves them as they
+    # were (ids of another type and order included)
+    truth, hyps = random_run(seed)
+    names = {}
+    renamed = [[(names.setdefault(i, f"h{-i * 7 % 1009}"), b) for i, b in f] for f in hyps]
+    assert len(set(names.values())) == len(names)
+    assert mot_scores(truth, renamed) == mot_scores(truth, hyps)
