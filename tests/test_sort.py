@@ -101,9 +101,9 @@ def crossing(n_frames=40, seed=0, noise=1.5):
     """Two 40 x 80 targets crossing: A rightwards at y = 100, B leftwards at y = 120."""
     rng = np.random.default_rng(seed)
     t = np.arange(n_frames, dtype=float)
-    a = np.c_[100 + 6 * t, np.full(n_frames, 100.0), np.full(n_frames, 40.0), np.full(n_frames, 80.0)]
-    b = np.c_[100 + 6 * t[::-1], np.full(n_frames, 120.0), np.full(n_frames, 40.0),
-              np.full(n_frames, 80.0)]
+    size = np.tile([40.0, 80.0], (n_frames, 1))
+    a = np.c_[100 + 6 * t, np.full(n_frames, 100.0), size]
+    b = np.c_[100 + 6 * t[::-1], np.full(n_frames, 120.0), size]
     truth = [np.array([np.r_[a[k], 1], np.r_[b[k], 2]]) for k in range(n_frames)]
     dets = [np.array([b[k], a[k]]) + rng.normal(0, noise, (2, 4)) for k in range(n_frames)]
     return truth, dets
@@ -131,7 +131,7 @@ def one_target(frames, n_frames):
 
 def test_a_target_away_longer_than_max_age_comes_back_with_a_new_id():
     sort = mot.Sort(max_age=2, min_hits=1)
-    frames = set(range(0, 10)) | set(range(13, 20))       # away for 3 frames > max_age
+    frames = set(range(10)) | set(range(13, 20))       # away for 3 frames > max_age
     out = [sort.update(d) for d in one_target(frames, 20)]
     assert {int(i) for t in out[:10] for i in t[:, 4]} == {1}
     assert {int(i) for t in out[13:] for i in t[:, 4]} == {2}
@@ -139,7 +139,7 @@ def test_a_target_away_longer_than_max_age_comes_back_with_a_new_id():
 
 def test_a_target_away_for_max_age_frames_keeps_its_id():
     sort = mot.Sort(max_age=2, min_hits=1)
-    frames = set(range(0, 10)) | set(range(12, 20))       # away for 2 frames = max_age
+    frames = set(range(10)) | set(range(12, 20))       # away for 2 frames = max_age
     out = [sort.update(d) for d in one_target(frames, 20)]
     assert {int(i) for t in out for i in t[:, 4]} == {1}
     assert all(len(out[k]) == 1 for k in range(12, 20))
