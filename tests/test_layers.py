@@ -8,7 +8,7 @@ package. Layers, bottom up:
    (helpers, data)
 1. ``clips``, ``features``, ``learning``
 2. ``filters``
-3. ``trackers``
+3. ``trackers``, ``mot``
 4. ``evaluation``, ``metrics``, ``results``
 5. ``viz``
 6. ``playground``
@@ -33,7 +33,7 @@ LAYERS = {
     "quotes": 0,
     "clips": 1, "features": 1, "learning": 1,
     "filters": 2,
-    "trackers": 3,
+    "trackers": 3, "mot": 3,
     "evaluation": 4, "metrics": 4, "results": 4,
     "viz": 5,
     "playground": 6,
