@@ -312,3 +312,27 @@ def test_kcf_through_every_protocol_is_deterministic():
     np.testing.assert_array_equal(r.boxes, runs[1].boxes)
     assert (r.accuracy, r.failures, P.eao([r])) == (runs[1].accuracy, runs[1].failures,
                                                     P.eao([runs[1]]))
+
+
+def test_a_real_failure_restarts_five_frames_later():
+    # mosse loses the target behind the panel of the ``occluder`` sample: the structure of
+    # the run, not its numbers, is checked (a failure, a restart 5 frames on, same twice).
+    runs = [P.evaluate_reset("mosse", "occluder", seed=0) for _ in range(2)]
+    r = runs[0]
+    assert r.n_failures >= 1
+    for f, s in zip(r.failures, r.inits[1:]):
+        assert s == f + 5
+        assert np.isnan(r.boxes[f + 1:s]).all()
+        np.testing.assert_array_equal(r.boxes[s], trackbook.clips.load("occluder").groundtruth[s])
+    assert r.failures == runs[1].failures
+    np.testing.assert_array_equal(r.boxes, runs[1].boxes)
+
+
+def test_reset_starts_on_the_first_known_box_and_eao_refuses_no_runs():
+    gt = gt_of(12)
+    gt[:3] = np.nan
+    segment, calls = scripted_segment()
+    run = P.reset_protocol(segment, gt)
+    assert run.inits == (3,) and calls[0][0] == 3
+    with pytest.raises(ValueError, match="list of ResetRun"):
+        P.eao([])

@@ -10,7 +10,7 @@ tracker through it (:func:`evaluate_tre`, :func:`evaluate_sre`, :func:`evaluate_
 References
 ----------
 Y. Wu, J. Lim, M.-H. Yang, "Online Object Tracking: A Benchmark", CVPR 2013 (``wu2013``):
-TRE and SRE, section 4.2, and the toolkit's ``splitSeqTRE.m``, ``shiftInitBB.m``,
+TRE and SRE (its robustness evaluation), and its toolkit's ``splitSeqTRE.m``, ``shiftInitBB.m``,
 ``perfPlot.m``.
 
 M. Kristan et al., "The Visual Object Tracking VOT2015 Challenge Results", ICCV workshops
@@ -53,7 +53,7 @@ def tre_starts(groundtruth, n_segments: int = 20, min_length: int = 20,
                exclude=()) -> np.ndarray:
     """The start frames of OTB's temporal robustness evaluation (TRE).
 
-    Wu et al. (2013, §4.2) run a tracker from 20 starting frames of a sequence, each
+    Wu et al. (2013) run a tracker from 20 starting frames of a sequence, each
     initialised on that frame's ground truth and run to the end of the sequence. The paper
     says only that the sequence is split into 20 segments; this follows the toolkit's
     ``splitSeqTRE.m``, which says which frames:
@@ -121,7 +121,7 @@ SRE_SHIFTS = ("left", "right", "up", "down", "top-left", "top-right", "bottom-le
 def sre_boxes(box) -> np.ndarray:
     """The 12 perturbed initial boxes of OTB's spatial robustness evaluation (SRE).
 
-    Wu et al. (2013, §4.2): "eight spatial shifts (4 center shifts and 4 corner shifts)
+    Wu et al. (2013): "eight spatial shifts (4 center shifts and 4 corner shifts)
     and 4 scale variations"; the shift is 10 % of the target size and the scale factors are
     0.8, 0.9, 1.1, 1.2. The paper leaves "corner shift" open; this follows the toolkit's
     ``shiftInitBB.m``: a corner shift moves *one corner* outwards by 10 % of the width and
@@ -141,7 +141,9 @@ def sre_boxes(box) -> np.ndarray:
     The toolkit rounds to whole pixels (``ceil`` for centre shifts, ``round`` otherwise, in
     1-based inclusive pixels); boxes here are continuous, so no rounding. Clamping to the
     image is left to the run (:func:`trackbook.evaluate` clips every initial box to the
-    frame, as the toolkit clamps it).
+    frame, as the toolkit clamps it). Some versions of the toolkit's ``calcSeqErrRobust.m``
+    divide a scaled run's boxes by its factor before scoring; the paper does not, nor does
+    this: a run is scored on the boxes the tracker gave.
 
     Returns
     -------
@@ -354,7 +356,7 @@ class ResetRun:
 def reset_protocol(segment, groundtruth, skip: int = 5, burnin: int = 10) -> ResetRun:
     """Apply VOT's reset-based protocol to the boxes of ``segment`` (no tracker needed).
 
-    The rule (Kristan et al. 2015; 2016 §4): the tracker starts on the first frame with a
+    The rule (Kristan et al. 2015, 2016): the tracker starts on the first frame with a
     known ground-truth box. A **failure** is a frame whose ground truth is known and whose
     box has no overlap with it, :math:`\\mathrm{IoU}_i = 0` (an invalid box counts as no
     overlap). After a failure at frame f the frames f + 1, ..., f + skip - 1 are skipped and
@@ -489,7 +491,7 @@ def evaluate_reset(name_or_tracker, clip, seed: int | None = 0, preset: str = "b
 def eao_curve(runs, n_max: int | None = None) -> np.ndarray:
     """The expected average overlap curve :math:`\\langle\\Phi_N\\rangle`, N = 0..n_max.
 
-    Kristan et al. (2015, §3; 2016): every initialisation of a reset run starts a fragment
+    Kristan et al. (2015, 2016): every initialisation of a reset run starts a fragment
     with overlaps :math:`\\phi_1, \\dots, \\phi_m` (the frames after the initialisation, up to
     a failure or the end; :meth:`ResetRun.fragments`). The average overlap of a fragment on a
     sequence of N frames is
@@ -500,10 +502,10 @@ def eao_curve(runs, n_max: int | None = None) -> np.ndarray:
     defined for a failed fragment at every N (a tracker that failed would have stayed lost)
     and for one that reached the end of the clip only for :math:`N \\le m`.
     :math:`\\langle\\Phi_N\\rangle` is the mean of :math:`\\Phi_N` over the fragments, of all
-    runs, where it is defined, each fragment weighing the same (the toolkit weighs
-    repetitions of a stochastic tracker down; pass one run per clip, or accept equal weights).
-    Overlaps are not burnt in here (as in the toolkit), and frames of unknown ground truth are
-    left out of a fragment's mean.
+    runs, where it is defined, each fragment weighing the same. This is the toolkit's
+    supervised EAO curve (fragments cut at the initialisations, zero-padded after a
+    failure, each of weight 1); like it, no burn-in applies here. Frames of unknown ground
+    truth are left out of a fragment's mean.
 
     Returns
     -------
@@ -539,10 +541,12 @@ def eao_curve(runs, n_max: int | None = None) -> np.ndarray:
 
 def eao(runs, n_range: tuple[int, int] | None = None) -> float:
     """The expected average overlap, :math:`\\hat\\Phi = \\operatorname{mean}_{N = N_{lo}}^{N_{hi}}
-    \\langle\\Phi_N\\rangle` (:func:`eao_curve`), Kristan et al. (2015, eq. 2; 2016).
+    \\langle\\Phi_N\\rangle` (:func:`eao_curve`), Kristan et al. (2015, 2016).
 
     The papers write :math:`\\frac{1}{N_{hi} - N_{lo}} \\sum_{N = N_{lo}}^{N_{hi}}`; this takes
-    the mean over the :math:`N_{hi} - N_{lo} + 1` lengths, as the toolkit does.
+    the mean over the :math:`N_{hi} - N_{lo} + 1` lengths of the range, as the toolkit does
+    (the printed normaliser would lift every score by
+    :math:`(N_{hi} - N_{lo} + 1) / (N_{hi} - N_{lo})`).
 
     VOT picks :math:`[N_{lo}, N_{hi}]` from its dataset's sequence lengths, the interval
     around the mode of their density holding half the mass (VOT2015: [108, 371]); pass that
@@ -555,8 +559,10 @@ def eao(runs, n_range: tuple[int, int] | None = None) -> float:
     the same.
     """
     runs = list(runs)
+    if not runs or not all(isinstance(r, ResetRun) for r in runs):
+        raise ValueError("eao needs a list of ResetRun (from evaluate_reset or reset_protocol).")
     if n_range is None:
-        lo, hi = 1, max(len(r) for r in runs) - 1 if runs else 0
+        lo, hi = 1, max(len(r) for r in runs) - 1
     else:
         lo, hi = (int(v) for v in n_range)
     if not 1 <= lo <= hi:
