@@ -363,9 +363,9 @@ def reset_protocol(segment, groundtruth, skip: int = 5, burnin: int = 10) -> Res
     the tracker is **re-initialised** on the ground truth of frame f + ``skip`` (VOT: 5), or
     of the first later frame whose ground truth is known; if there is none the run ends.
 
-    ``burnin`` (VOT: 10) is the number of frames after each initialisation, the first one
-    included, that :attr:`ResetRun.accuracy` leaves out: after an initialisation at s the
-    frames s + 1, ..., s + burnin. That is the papers' "ten frames after re-initialization";
+    ``burnin`` (VOT: 10) is the number of frames after every initialisation (the first one
+    too) that :attr:`ResetRun.accuracy` leaves out: after an initialisation at s the frames
+    s + 1, ..., s + burnin. That is the papers' "ten frames after re-initialization";
     the toolkit masks s, ..., s + burnin - 1 (its trajectory holds a marker on s), i.e. one
     tracked frame fewer: ``burnin=9`` here reproduces it.
 
@@ -471,7 +471,12 @@ def evaluate_reset(name_or_tracker, clip, seed: int | None = 0, preset: str = "b
 
     def segment(start, box):
         frame = frames.at(start)
-        tracker.init(frame, tuple(float(v) for v in clip_box(box, frame.shape)))
+        box = clip_box(box, frame.shape)
+        if type(tracker).__module__.startswith("cv2"):   # OpenCV's trackers take integers
+            x, y, w, h = np.rint(box).astype(int).tolist()
+            tracker.init(frame, (x, y, max(w, 1), max(h, 1)))
+        else:
+            tracker.init(frame, tuple(float(v) for v in box))
         i = start
         while True:
             i += 1
