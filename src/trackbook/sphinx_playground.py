@@ -27,7 +27,8 @@ import re
 import shutil
 from pathlib import Path
 
-from .playground.core import BOOK_ENV, STATIC_BASE, VIEWER_CSS, VIEWER_JS
+from .playground.data import VIEWER_CSS, VIEWER_JS
+from .playground.export import BOOK_ENV, STATIC_BASE
 from .playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 
 #: the folder of the built book that holds the playgrounds' files

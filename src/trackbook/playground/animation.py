@@ -7,7 +7,6 @@ after display, and in the HTML book it is embedded in the page like a playground
 
 from __future__ import annotations
 
-import os
 
 import anywidget
 import cv2
@@ -17,7 +16,8 @@ import traitlets as T
 from ..style import EST_COLOR, GT_COLOR, bgr
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
-from .core import BOOK_ENV, VIEWER_CSS, VIEWER_JS, page_html
+from .data import VIEWER_CSS, VIEWER_JS
+from .export import book_build, page_html
 
 GT_BGR = bgr(GT_COLOR)
 EST_BGR = bgr(EST_COLOR)
@@ -89,7 +89,7 @@ class Animation(anywidget.AnyWidget):
         return page_html(self.static_data, self._png(), "one step of the animation")
 
     def _repr_mimebundle_(self, **kwargs):
-        if os.environ.get(BOOK_ENV):
+        if book_build():
             return {"text/plain": "Animation", "text/html": self.static_html()}
         return super()._repr_mimebundle_(**kwargs)
 
