@@ -12,6 +12,7 @@ import numpy as np
 from .. import clips as _clips
 from .. import trackers as _trackers
 from .._checks import as_box, check_max_frames, clip_box
+from .._memory import keep_freed_memory
 from ..trackers.multi import target_seed
 from . import metrics
 
@@ -191,6 +192,9 @@ class Run:
 
     def __init__(self, runs, clip, max_frames: int | None = None, init_box=None,
                  on_frame=None, preset: str = "book", targets=None):
+        # glibc's thresholds raised once per process before the trackers allocate, so their
+        # per-frame temporaries reuse memory (``TRACKBOOK_KEEP_MEMORY=0``: off); see _memory
+        keep_freed_memory()
         self.clip = clip = _clips.load(clip)
         made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
         self.trackers = [t for t, _ in made]
