@@ -13,7 +13,6 @@ with every run precomputed: :mod:`trackbook.playground.export`.
 from __future__ import annotations
 
 import difflib
-import json
 import os
 
 import anywidget
@@ -28,14 +27,6 @@ from . import export
 from . import static as S
 from .data import VIEWER_CSS, VIEWER_JS
 from .live import LiveRun, running_loop, stream
-
-_RUN_CACHE: dict = {}
-
-
-def _cache_key(tracker, clip_name, n, seed, values, init_box):
-    return (tracker, clip_name, n, seed, json.dumps(values, sort_keys=True, default=str),
-            None if init_box is None else tuple(np.round(init_box, 2)))
-
 
 def _load_own(c):
     """A clip by name or path; an image folder without ground truth (your own frames) loads
@@ -330,7 +321,7 @@ class Playground(anywidget.AnyWidget):
             except ValueError as e:
                 run.close()
                 return self._refused(e)
-            return self._finish(run, box, run.payload())
+            return self._finish(run, run.payload())
         self.busy = True
 
         def send(payload):
@@ -338,7 +329,7 @@ class Playground(anywidget.AnyWidget):
                 self.run_data = payload
             else:
                 self._task = None
-                self._finish(run, box, payload)
+                self._finish(run, payload)
 
         self._task = loop.create_task(stream(run, send, self.frame, lambda: gen == self._gen,
                                              self._refused))
@@ -349,13 +340,10 @@ class Playground(anywidget.AnyWidget):
         self.error, self.busy, self._task = str(e), False, None
         return self.result
 
-    def _finish(self, run, box, payload):
+    def _finish(self, run, payload):
         self.error = ""
         self.result, self.states = run.result(), run.states
         self.runs += 1
-        # the book's precompute starts with this very run (same tracker, clip, values, frames)
-        _RUN_CACHE.setdefault(_cache_key(run.name, run.clip.name,
-                                         run.n_total, self.seed, self.values, box), payload)
         self.busy = False
         self.run_data = payload
         return self.result
