@@ -41,3 +41,16 @@ def test_reuse_refuses_a_run_of_another_length():
 
 def test_the_widget_class_has_no_page_code():
     assert not [a for a in vars(Playground) if a.startswith("static_")]
+
+
+def test_how_a_panel_displays_is_its_argument(monkeypatch):
+    """``static_page=`` decides; the book build's environment variable is only its default,
+    read when the panel is made (not each time it is displayed)."""
+    monkeypatch.delenv(export.BOOK_ENV, raising=False)
+    live = Playground(clips=["red-cube"], trackers=["mean-shift"], n_frames=3)
+    monkeypatch.setenv(export.BOOK_ENV, "1")
+    assert not live.static_page
+    assert "application/vnd.jupyter.widget-view+json" in live._repr_mimebundle_()[0]
+    assert Playground(clips=["red-cube"], trackers=["mean-shift"], n_frames=3).static_page
+    assert not Playground(clips=["red-cube"], trackers=["mean-shift"], n_frames=3,
+                          static_page=False).static_page

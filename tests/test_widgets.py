@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from trackbook.params import param
-from trackbook.playground import BOOK_ENV, VIEWER_JS, export, static
+from trackbook.playground import VIEWER_JS, export, static
 from trackbook.playground.static import OUT_ENV
 from trackbook.playground.data import MAX_PARTICLES, knob_spec, sample_values
 from trackbook.trackers import registry
@@ -140,7 +140,7 @@ def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monke
                     samples={"speed": [0.0, 8.0]})
     assert pg._esm == VIEWER_JS.read_text(encoding="utf-8")
     assert "application/vnd.jupyter.widget-view+json" in pg._repr_mimebundle_()[0]
-    monkeypatch.setenv(BOOK_ENV, "1")
+    pg.static_page = True               # as a chapter of the book's build makes it
     monkeypatch.setattr(static, "WORKERS", 1)
     bundle = pg._repr_mimebundle_()
     html = bundle["text/html"]
@@ -231,7 +231,7 @@ def test_animations_use_the_viewer(make, monkeypatch):
     if make == "mean_shift_climb":   # an accepted mean-shift step never lowers rho (eq. 13)
         rho = run["curve"]["values"]
         assert all(b >= a - 1e-4 for a, b in zip(rho, rho[1:])) and rho[-1] > rho[0]
-    monkeypatch.setenv(BOOK_ENV, "1")
+    a.static_page = True
     assert a._repr_mimebundle_()["text/html"].startswith('<div class="tb-playground"')
 
 

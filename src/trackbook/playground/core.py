@@ -79,6 +79,9 @@ class Playground(anywidget.AnyWidget):
     samples : ``{knob: [values]}``, the values the HTML book precomputes (default: a few around
         the default within the field's range, see :func:`trackbook.playground.data.sample_values`)
     box : (x, y, w, h) on the first frame, for a clip without ground truth
+    static_page : display as the HTML book's page (every run precomputed,
+        :mod:`trackbook.playground.export`) instead of the live widget; default: whether
+        this is a chapter of the book's build (:func:`~trackbook.playground.export.book_build`)
 
     Examples
     --------
@@ -103,7 +106,7 @@ class Playground(anywidget.AnyWidget):
     frame = T.Int(0).tag(sync=True)
 
     def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None,
-                 samples=None, box=None, **kwargs):
+                 samples=None, box=None, static_page: bool | None = None, **kwargs):
         clips = [clips] if isinstance(clips, (str, os.PathLike)) else list(clips)
         trackers = [trackers] if isinstance(trackers, str) else list(trackers)
         if not clips or not trackers:
@@ -129,6 +132,7 @@ class Playground(anywidget.AnyWidget):
             D.parse_values(t, {k: v for k, v in (values or {}).items() if k in fields})
         self.n_frames = n_frames
         self.seed = seed
+        self.static_page = export.book_build() if static_page is None else bool(static_page)
         self._initial = dict(values or {})
         self.samples = dict(samples or {})
         self.clip_objects = {}
@@ -358,9 +362,9 @@ class Playground(anywidget.AnyWidget):
         display(self)
 
     def _repr_mimebundle_(self, **kwargs):
-        if export.book_build():
+        if self.static_page:
             return {"text/plain": f"Playground({self.tracker} on {self.clip})",
-                    "text/html": export.static_html(self)}
+                    "text/html": export.static_html(self, files=True)}
         return super()._repr_mimebundle_(**kwargs)
 
     # -- what the HTML book's exporter reads ---------------------------------------------

@@ -24,7 +24,7 @@ from . import static as S
 from .data import VIEWER_CSS, VIEWER_JS
 
 #: the environment variable the book's build sets for the chapters' kernels (the one way to
-#: reach them): panels made there display as pages (:func:`book_build`)
+#: reach them): it is the default of a panel's ``static_page=`` argument (:func:`book_build`)
 BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
 #: what the Sphinx extension replaces with the page's path to ``_static/playground/``
 STATIC_BASE = "@@tb-static-playground@@"
@@ -43,14 +43,14 @@ def refuse_unknown_keywords(where: str, kwargs: dict) -> None:
                         "precomputed runs' cost is max_cost= (tracker-frames)")
 
 
-def page_html(payload: dict, png: bytes, alt: str) -> str:
+def page_html(payload: dict, png: bytes, alt: str, files: bool = False) -> str:
     """One fragment: root ``div.tb-playground``, the data as JSON in a ``<script>`` (no
     fetch, so ``file://`` works), the viewer module inline and ``png`` in a ``<noscript>``
     (print, no JavaScript). Files the data names (``payload["files"]``) are loaded from
-    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there. In the book
-    build (``TRACKBOOK_BOOK_BUILD``) inline runs and frames (an animation's) and the picture
+    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there. With
+    ``files`` (the book's pages) inline runs and frames (an animation's) and the picture
     become files too (:func:`trackbook.playground.static.to_files`): the page stays light."""
-    if book_build():
+    if files:
         payload = S.to_files(payload)
         src = STATIC_BASE + S.write_png(png)
     else:
@@ -136,14 +136,14 @@ def static_payload(pg, workers: int | None = None, **kwargs) -> dict:
             "initial": {"clip": list(pg.clip_objects)[0], "tracker": pg.config["trackers"][0]}}
 
 
-def static_html(pg, workers: int | None = None, **kwargs) -> str:
+def static_html(pg, workers: int | None = None, files: bool = False, **kwargs) -> str:
     """The panel as an HTML fragment: root ``div.tb-playground``, the configuration in a
     ``<script type="application/json">``, the viewer module inline and a PNG of the first
     run in ``<noscript>`` for print and no-JavaScript; the runs and frames are files
     beside the page, loaded when the reader picks them."""
     refuse_unknown_keywords("static_html", kwargs)
     return page_html(static_payload(pg, workers), static_png(pg),
-                     "the playground's first run: frames and IoU")
+                     "the playground's first run: frames and IoU", files=files)
 
 
 def static_png(pg) -> bytes:
