@@ -133,12 +133,35 @@ def _kind(field: dataclasses.Field):
     return type(field.default)
 
 
+def near_names(name: str, names) -> list[str]:
+    """The names a mistyped ``name`` may have meant, best first: close spellings
+    (:func:`difflib.get_close_matches`), then names sharing a run of its ``_``-separated words
+    (``sigma`` -> ``kernel_sigma``, ``kernel_sigma_x`` -> ``kernel_sigma``)."""
+    names = [str(n) for n in names]
+    out = difflib.get_close_matches(name, names, n=3)
+    words = [w for w in name.lower().split("_") if w]
+
+    def inside(a, b):       # a's words a contiguous run of b's
+        return bool(a) and any(b[i:i + len(a)] == a for i in range(len(b) - len(a) + 1))
+    for n in names:
+        other = [w for w in n.lower().split("_") if w]
+        if n not in out and (inside(words, other) or inside(other, words)):
+            out.append(n)
+    return out[:3]
+
+
+def _did_you_mean(name: str, names) -> str:
+    near = near_names(name, names)
+    if not near:
+        return ""
+    return " (did you mean " + " or ".join(repr(n) for n in near) + "?)"
+
+
 def _field(cls, name: str) -> dataclasses.Field:
     fields = {f.name: f for f in dataclasses.fields(cls)}
     if name not in fields:
         names = list(fields)
-        near = difflib.get_close_matches(str(name), names, n=1)
-        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        hint = _did_you_mean(str(name), names)
         raise ValueError(f"unknown parameter {name!r} for {cls.__qualname__}{hint}; "
                          f"valid names: {', '.join(names)}.")
     return fields[name]
@@ -272,8 +295,7 @@ def make_params(cls, values: dict):
     names = [f.name for f in dataclasses.fields(cls)]
     unknown = sorted(set(values) - set(names))
     if unknown:
-        hints = [f"{u!r} (did you mean {m[0]!r}?)" if (m := difflib.get_close_matches(
-            str(u), names, n=1)) else repr(u) for u in unknown]
+        hints = [repr(u) + _did_you_mean(str(u), names) for u in unknown]
         raise ValueError(
             f"unknown parameter(s) {', '.join(hints)} for {cls.__qualname__}; "
             f"valid names: {names}."
