@@ -50,7 +50,7 @@ import dataclasses
 import numpy as np
 
 from ..features.color import bhattacharyya_coefficient
-from ..filters.motion import similarity
+from ..filters.lee2012_models import similarity
 from ..learning.incremental_svd import IncrementalSVD
 from ..params import NOT_PRINTED, param
 from .color_hog_pf import ColorHogPF, ColorHogPFParams

@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 
 from ..features.hog import gray_patches, hog_of_patches
-from ..filters.motion import fuse, gaussian_likelihood, similarity, states_to_boxes
+from ..filters.lee2012_models import fuse, gaussian_likelihood, similarity, states_to_boxes
 from ..params import param
 from .color_pf import ColorPF, ColorPFParams
 from .registry import register

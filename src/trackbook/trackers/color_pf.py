@@ -28,8 +28,9 @@ import numpy as np
 
 from ..features.color import HSV_BINS, hsv_bin_index_u8, kernel_weights, weighted_histograms
 from ..features.patches import sample_patches
-from ..filters.motion import (VX, VY, W, H, box_to_state, clamp_states, gaussian_likelihood,
-                              predict_eq9, similarity, states_to_boxes)
+from ..filters.lee2012_models import (VX, VY, W, H, box_to_state, clamp_states,
+                                      gaussian_likelihood, predict_eq9, similarity,
+                                      states_to_boxes)
 from ..filters.particle import effective_sample_size
 from ..params import NOT_PRINTED, param
 from .particle_filter import (ParticleFilterTracker, lost_below_param, lost_k_param,

@@ -38,7 +38,7 @@ import numpy as np
 
 from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
                                    feature_dimension, feature_planes, forstner_distance)
-from ..features.motion import find_moving_region
+from ..features.frame_difference import find_moving_region
 from ..filters.kalman import constant_velocity
 from ..params import NOT_PRINTED, param
 from .base import Tracker
@@ -426,7 +426,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         ``init_size`` × ``init_size`` px (the paper's 24×24, Table 1) centred on the region's
         centre, measured on ``frame1``; the Kalman filter starts there with zero velocity.
 
-        ``kwargs`` go to :func:`~trackbook.features.motion.find_moving_region` (its
+        ``kwargs`` go to :func:`~trackbook.features.frame_difference.find_moving_region` (its
         ``threshold`` defaults to ``motion_threshold``). Returns the
         model box ``(x, y, w, h)`` (the tracker is then initialised on ``frame1``); raises
         ``ValueError`` if nothing moved.
