@@ -103,7 +103,7 @@ def _move(pg, declared):
     tracker's first), a value one sample away from its default, and the default; None
     without knobs."""
     from trackbook.playground import data as D
-    from trackbook.playground.core import _field_names, _params_cls
+    from trackbook.playground.data import field_names as _field_names, params_class as _params_cls
 
     fields = _field_names(pg.tracker)
     if not fields:

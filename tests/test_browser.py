@@ -283,7 +283,7 @@ def test_built_pages_offline_and_playgrounds_live(browser, scheme):
 def static_page(tmp_path_factory):
     """One small playground's static page (as the book shows it: its run and frame files
     copied beside it by the Sphinx extension), without a book build."""
-    from trackbook.playground.core import STATIC_BASE
+    from trackbook.playground.export import STATIC_BASE, static_html
     from trackbook.playground.static import OUT_ENV
     from trackbook.sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
@@ -295,7 +295,7 @@ def static_page(tmp_path_factory):
         pg = Playground(clips=["red-cube", "yellow-ball"], trackers=["color-pf", "mean-shift"],
                         params=["n_particles", "resampler"], n_frames=30,
                         samples={"n_particles": [10, 100, 300]})
-        body = pg.static_html(workers=1).replace(STATIC_BASE, STATIC_DIR + "/")
+        body = static_html(pg, workers=1).replace(STATIC_BASE, STATIC_DIR + "/")
         (d / "site").mkdir()
         (d / "site" / "index.html").write_text(
             '<!doctype html><html><head><meta charset="utf-8">'
@@ -410,7 +410,7 @@ def test_book_animation_loads_its_frames_and_runs_from_files(browser, tmp_path, 
     (its HTML stays small), and the viewer draws and steps through them as before."""
     from trackbook.playground import BOOK_ENV
     from trackbook.playground.animations import kalman_ball
-    from trackbook.playground.core import STATIC_BASE
+    from trackbook.playground.export import STATIC_BASE, static_html
     from trackbook.playground.static import OUT_ENV
     from trackbook.sphinx_playground import STATIC_DIR, copy_files
 

@@ -11,7 +11,7 @@ from trackbook import clips, evaluate, metrics, trackers
 from trackbook.features.covariance import (FEATURE_SETS, IntegralCovariance, feature_image,
                                            forstner_distance, generalized_eigenvalues,
                                            radial_template, region_covariance)
-from trackbook.features.motion import find_moving_region
+from trackbook.features.frame_difference import find_moving_region
 from trackbook.trackers.covariance import grid_boxes, n_windows
 
 FRAME = cv2.resize(np.random.default_rng(7).integers(0, 256, (24, 32, 3), dtype=np.uint8),

@@ -4,12 +4,12 @@ Every module's imports are read with :mod:`ast` (imports inside functions count 
 import still makes the lower layer depend on the higher one) and resolved to modules of the
 package. Layers, bottom up:
 
-0. ``_checks``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers``, ``quotes``
-   (helpers, data)
+0. ``_checks``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers`` (helpers, data)
 1. ``clips``, ``features``, ``learning``
 2. ``filters``
 3. ``trackers``, ``mot``
-4. ``evaluation``, ``metrics``, ``results``
+4. ``evaluation``, ``metrics``, ``results``, ``quotes`` (the register of passages, and which
+   trackers' params they back: it reads the trackers' declarations)
 5. ``viz``
 6. ``playground``
 7. ``widgets``, ``cli``, ``__main__``, ``exercises``, ``sphinx_*``
@@ -30,11 +30,10 @@ PACKAGE = SRC / "trackbook"
 
 LAYERS = {
     "_checks": 0, "_memory": 0, "_markdown": 0, "params": 0, "style": 0, "papers": 0,
-    "quotes": 0,
     "clips": 1, "features": 1, "learning": 1,
     "filters": 2,
     "trackers": 3, "mot": 3,
-    "evaluation": 4, "metrics": 4, "results": 4,
+    "evaluation": 4, "metrics": 4, "results": 4, "quotes": 4,
     "viz": 5,
     "playground": 6,
     "widgets": 7, "cli": 7, "_cli_output": 7, "__main__": 7, "exercises": 7,

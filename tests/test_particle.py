@@ -5,9 +5,9 @@ import pytest
 from scipy import stats
 
 from .conftest import moving_square_frames
-from trackbook.filters.motion import (EQ9_NOISE, box_to_state, clamp_states, fuse,
-                                      gaussian_likelihood, predict_eq9, similarity,
-                                      states_to_boxes)
+from trackbook.filters.lee2012_models import (EQ9_NOISE, box_to_state, clamp_states, fuse,
+                                              gaussian_likelihood, predict_eq9, similarity,
+                                              states_to_boxes)
 from trackbook.filters.particle import (RESAMPLERS, effective_sample_size, normalize_weights,
                                         weighted_mean)
 

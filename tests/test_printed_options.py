@@ -141,7 +141,7 @@ def test_three_states_of_a_preset_value():
     assert fields.state("color-hog-ipca", "exponent") == ("printed", "lee2012.likelihood_eq12")
     assert fields.state("color-hog-ipca", "window") == ("reading", "lee2012.window40")
     assert fields.state("color-hog-ipca", "forgetting") == ("not printed", None)
-    assert {fields.state(t, f)[0] for t, fs in fields.FIELDS.items() for f in fs} <= set(
+    assert {fields.state(t, f)[0] for t, fs in fields.table().items() for f in fs} <= set(
         fields.STATES)
 
 

@@ -71,7 +71,7 @@ def _paper_column(name):
 @pytest.mark.parametrize("name", ["color-pf", "color-hog-ipca", "kalman-covariance"])
 def test_departures_table_marks_readings_and_only_readings(name):
     from trackbook import trackers
-    from trackbook.quotes.fields import FIELDS
+    from .test_param_provenance import FIELDS   # the table the declarations replaced
 
     paper = _paper_column(name)
     for row in trackers.departures(name):

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from trackbook.params import param
-from trackbook.playground import BOOK_ENV, VIEWER_JS, static
+from trackbook.playground import VIEWER_JS, export, static
 from trackbook.playground.static import OUT_ENV
 from trackbook.playground.data import MAX_PARTICLES, knob_spec, sample_values
 from trackbook.trackers import registry
@@ -140,7 +140,7 @@ def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monke
                     samples={"speed": [0.0, 8.0]})
     assert pg._esm == VIEWER_JS.read_text(encoding="utf-8")
     assert "application/vnd.jupyter.widget-view+json" in pg._repr_mimebundle_()[0]
-    monkeypatch.setenv(BOOK_ENV, "1")
+    pg.static_page = True               # as a chapter of the book's build makes it
     monkeypatch.setattr(static, "WORKERS", 1)
     bundle = pg._repr_mimebundle_()
     html = bundle["text/html"]
@@ -183,7 +183,7 @@ def test_static_page_has_runs_for_every_knob(registered, tiny_folder, monkeypatc
     monkeypatch.setenv(OUT_ENV, str(tmp_path))
     pg = Playground(clips=[str(tiny_folder), "red-cube"], trackers=["test-slider", "mean-shift"],
                     params=["speed", "n_particles", "mode"], n_frames=8)
-    data = pg.static_payload(workers=1)
+    data = export.static_payload(pg, workers=1)
     knobs = {k["name"]: k for k in data["config"]["knobs"]["test-slider"]}
     assert knobs["speed"]["samples"] == [2.0, 4.0, 6.0]           # 0..8 by 2, default 4
     assert knobs["n_particles"]["samples"] == [10, 20, 30]
@@ -231,7 +231,7 @@ def test_animations_use_the_viewer(make, monkeypatch):
     if make == "mean_shift_climb":   # an accepted mean-shift step never lowers rho (eq. 13)
         rho = run["curve"]["values"]
         assert all(b >= a - 1e-4 for a, b in zip(rho, rho[1:])) and rho[-1] > rho[0]
-    monkeypatch.setenv(BOOK_ENV, "1")
+    a.static_page = True
     assert a._repr_mimebundle_()["text/html"].startswith('<div class="tb-playground"')
 
 
@@ -245,7 +245,7 @@ def test_the_viewer_takes_its_colours_from_python(monkeypatch, tmp_path):
     assert not re.search(r"#[0-9a-fA-F]{6}\b", js)      # no second list of colours in the JS
     pg = Playground(clips=["red-cube"], trackers=["mean-shift"], params=[], n_frames=3)
     assert pg.config["colors"] == style.VIEWER
-    assert pg.static_payload(workers=1)["config"]["colors"] == style.VIEWER
+    assert export.static_payload(pg, workers=1)["config"]["colors"] == style.VIEWER
     assert style.bgr(style.GT_COLOR) == (0x73, 0x9E, 0x00)   # "#009E73" read back to front
 
 

@@ -10,6 +10,7 @@
 from importlib.metadata import PackageNotFoundError, version
 
 from . import clips, metrics, trackers
+from ._memory import keep_freed_memory as tune_memory
 from .evaluation.runner import MultiResult, Result, evaluate
 
 try:
@@ -17,4 +18,5 @@ try:
 except PackageNotFoundError:  # running from a source tree without install
     __version__ = "0.0.0+unknown"
 
-__all__ = ["clips", "metrics", "trackers", "evaluate", "MultiResult", "Result", "__version__"]
+__all__ = ["clips", "metrics", "trackers", "evaluate", "MultiResult", "Result", "tune_memory",
+           "__version__"]

@@ -6,10 +6,11 @@ frozen=True)``, subclassing another tracker's params to extend them) whose field
 The metadata (allowed range, slider range, step, one-line doc) is what the widgets turn into
 sliders, so a new knob shows up in the book's playground without touching the widget code.
 
-Each field also records the printed value (``paper=``) and, where the book's default is
-not that value, why (``why=``); the passage behind a printed value, and whether the value is
-printed or a reading of an ambiguous passage, is in :mod:`trackbook.quotes.fields` (a value
-with no passage is ``NOT_PRINTED``). From these :func:`paper_values` builds the printed method
+Each field also records the printed value (``paper=``), where the book's default is not that
+value, why (``why=``), and the passage of the quote register behind a printed value: ``printed=``
+its key when the passage states the value, ``reading=`` when the value is the book's reading of
+an ambiguous or elided passage (:func:`provenance`; a value with no passage is
+``NOT_PRINTED``). From these :func:`paper_values` builds the printed method
 (``trackers.create(name, preset="paper")``) and :func:`departures` lists the book's departures
 (``trackers.departures(name)``): the chapters' departure tables are generated from them, so
 they cannot drift from the code.
@@ -48,7 +49,7 @@ _UNSET = object()
 def param(default: Any, lo: float | None = None, hi: float | None = None,
           step: float | None = None, doc: str = "", choices=None, *,
           paper: Any = _UNSET, why: str = "", paper_value: Any = _UNSET,
-          slider: tuple | None = None):
+          slider: tuple | None = None, printed: str | None = None, reading: str | None = None):
     """A dataclass field with a default and the metadata widgets need.
 
     Parameters
@@ -69,7 +70,13 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
     paper_value : the setting ``preset="paper"`` uses when ``paper`` is not a usable value
         (for :data:`NOT_PRINTED`, or a knob missing from the printed method, e.g. ``0`` for
         "off"); defaults to ``paper``, or to ``default`` when nothing is printed.
+    printed : the key of the quote (:mod:`trackbook.quotes`) that states the ``paper`` value.
+    reading : the key of the quote whose ambiguous or elided passage the ``paper`` value
+        reads (at most one of ``printed`` and ``reading``).
     """
+    if printed is not None and reading is not None:
+        raise ValueError(f"printed={printed!r} and reading={reading!r}: a value is either "
+                         "stated by its passage or read from it; give one key.")
     if slider is not None:
         if len(slider) != 2 or not slider[0] <= slider[1]:
             raise ValueError(f"slider={slider!r} must be a pair (a, b) with a <= b.")
@@ -77,10 +84,21 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
             raise ValueError(f"slider={slider!r} must lie within the allowed range {lo}..{hi}.")
     meta = {"lo": lo, "hi": hi, "step": step, "doc": doc, "choices": choices,
             "paper": paper, "why": why, "paper_value": paper_value,
-            "slider": tuple(slider) if slider is not None else (lo, hi)}
+            "slider": tuple(slider) if slider is not None else (lo, hi),
+            "quote": printed if printed is not None else reading,
+            "quote_state": "printed" if printed is not None else
+            "reading" if reading is not None else None}
     if isinstance(default, (list, dict, set)):
         raise TypeError("use tuples for sequence defaults so params stay immutable")
     return dataclasses.field(default=default, metadata=meta)
+
+
+def provenance(field: dataclasses.Field) -> tuple[str, str | None]:
+    """``(state, quote key)`` of the field's printed value: ``("printed", key)`` (its passage
+    states it), ``("reading", key)`` (the book's reading of its passage) or
+    ``("not printed", None)`` (no passage backs it)."""
+    key = field.metadata.get("quote")
+    return (field.metadata["quote_state"], key) if key else ("not printed", None)
 
 
 def choices_of(field: dataclasses.Field):
@@ -115,12 +133,35 @@ def _kind(field: dataclasses.Field):
     return type(field.default)
 
 
+def near_names(name: str, names) -> list[str]:
+    """The names a mistyped ``name`` may have meant, best first: close spellings
+    (:func:`difflib.get_close_matches`), then names sharing a run of its ``_``-separated words
+    (``sigma`` -> ``kernel_sigma``, ``kernel_sigma_x`` -> ``kernel_sigma``)."""
+    names = [str(n) for n in names]
+    out = difflib.get_close_matches(name, names, n=3)
+    words = [w for w in name.lower().split("_") if w]
+
+    def inside(a, b):       # a's words a contiguous run of b's
+        return bool(a) and any(b[i:i + len(a)] == a for i in range(len(b) - len(a) + 1))
+    for n in names:
+        other = [w for w in n.lower().split("_") if w]
+        if n not in out and (inside(words, other) or inside(other, words)):
+            out.append(n)
+    return out[:3]
+
+
+def _did_you_mean(name: str, names) -> str:
+    near = near_names(name, names)
+    if not near:
+        return ""
+    return " (did you mean " + " or ".join(repr(n) for n in near) + "?)"
+
+
 def _field(cls, name: str) -> dataclasses.Field:
     fields = {f.name: f for f in dataclasses.fields(cls)}
     if name not in fields:
         names = list(fields)
-        near = difflib.get_close_matches(str(name), names, n=1)
-        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        hint = _did_you_mean(str(name), names)
         raise ValueError(f"unknown parameter {name!r} for {cls.__qualname__}{hint}; "
                          f"valid names: {', '.join(names)}.")
     return fields[name]
@@ -254,8 +295,7 @@ def make_params(cls, values: dict):
     names = [f.name for f in dataclasses.fields(cls)]
     unknown = sorted(set(values) - set(names))
     if unknown:
-        hints = [f"{u!r} (did you mean {m[0]!r}?)" if (m := difflib.get_close_matches(
-            str(u), names, n=1)) else repr(u) for u in unknown]
+        hints = [repr(u) + _did_you_mean(str(u), names) for u in unknown]
         raise ValueError(
             f"unknown parameter(s) {', '.join(hints)} for {cls.__qualname__}; "
             f"valid names: {names}."
@@ -266,7 +306,8 @@ def make_params(cls, values: dict):
 
 
 def describe(cls) -> list[dict]:
-    """Rows ``{name, default, lo, hi, step, slider, doc, choices, paper, why, paper_value}`` for
+    """Rows ``{name, default, lo, hi, step, slider, doc, choices, paper, why, paper_value,
+    quote, quote_state}`` for
     tables and widgets: ``choices`` as they are now, and ``"not printed"`` where no value is
     printed (or where no ``paper_value`` is stated: ``preset="paper"`` then uses the
     one :func:`paper_value` gives)."""

@@ -1,7 +1,9 @@
 """Sphinx extension: the HTML book's playgrounds live, with no kernel and no network.
 
 * Sets ``TRACKBOOK_BOOK_BUILD=1`` before the chapters execute (the kernels inherit the
-  environment), so :class:`trackbook.playground.Playground` displays its static page, and
+  environment, the one way to reach them), so a :class:`trackbook.playground.Playground` or
+  animation made there defaults to ``static_page=True`` and displays the page
+  :mod:`trackbook.playground.export` writes, and
   ``TRACKBOOK_PLAYGROUND_DIR`` to ``<build dir>/.playground``: there the chapters' kernels
   write the playgrounds' run files and frame files (``files/``) and keep computed runs
   (``runs/``), so a rebuild reuses every run whose tracker code, clip and values did not change
@@ -27,7 +29,8 @@ import re
 import shutil
 from pathlib import Path
 
-from .playground.core import BOOK_ENV, STATIC_BASE, VIEWER_CSS, VIEWER_JS
+from .playground.data import VIEWER_CSS, VIEWER_JS
+from .playground.export import BOOK_ENV, STATIC_BASE
 from .playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 
 #: the folder of the built book that holds the playgrounds' files

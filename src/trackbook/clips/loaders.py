@@ -338,24 +338,35 @@ def load_path(path, **kw) -> Clip:
     raise FileNotFoundError(f"{p} does not exist.")
 
 
+#: the environment variable naming the folder of sequences loadable by name
+SEQUENCES_ENV = "TRACKBOOK_SEQUENCES"
+
+
+def sequences_root() -> Path | None:
+    """The folder :func:`find_sequences` reads by default, by one rule: ``$TRACKBOOK_SEQUENCES``
+    if set, else ``../shared/data/sequences`` beside the source checkout trackbook runs from
+    (the folder holding ``pyproject.toml`` above the package: the development data next to a
+    clone); None for an installed copy with no checkout around it. The working directory plays
+    no part."""
+    env = os.environ.get(SEQUENCES_ENV)
+    if env:
+        return Path(env).expanduser()
+    package = Path(__file__).resolve().parents[1]
+    for repo in (package.parent, package.parent.parent):    # flat or src layout
+        if (repo / "pyproject.toml").is_file():
+            return repo.parent / "shared" / "data" / "sequences"
+    return None
+
+
 def find_sequences(root=None) -> dict[str, Path]:
     """OTB-style sequence folders under ``root``, by name.
 
-    ``root`` defaults to ``$TRACKBOOK_SEQUENCES``, else the first ``shared/data/sequences``
-    found beside the current directory or one of its parents (the development data next to a
-    clone). Returns an empty dict when there is none, so callers can skip cleanly.
+    ``root`` defaults to :func:`sequences_root` (``$TRACKBOOK_SEQUENCES``, else
+    ``../shared/data/sequences`` beside the source checkout). Returns an empty dict when there
+    is none, so callers can skip cleanly.
     """
     if root is None:
-        env = os.environ.get("TRACKBOOK_SEQUENCES")
-        if env:
-            root = Path(env)
-        else:
-            here = Path.cwd().resolve()
-            for a in (here, *here.parents):
-                cand = a / "shared" / "data" / "sequences"
-                if cand.is_dir():
-                    root = cand
-                    break
+        root = sequences_root()
     if root is None or not Path(root).is_dir():
         return {}
     root = Path(root)

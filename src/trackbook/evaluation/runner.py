@@ -1,5 +1,6 @@
 """Run a tracker over a clip and score it: ``trackbook.evaluate`` (one target, or one tracker
-per target with ``targets=``), all through one loop."""
+per target with ``targets=``), all through one loop, :class:`Run`, which the Jupyter
+playground steps a few frames at a time."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import numpy as np
 from .. import clips as _clips
 from .. import trackers as _trackers
 from .._checks import as_box, check_max_frames, clip_box
+from .._memory import keep_freed_memory
 from ..trackers.multi import target_seed
 from . import metrics
 
@@ -145,21 +147,10 @@ def evaluate_many(runs, clip, max_frames: int | None = None, init_box=None, on_f
     exactly what :func:`evaluate` gives for each run alone (the trackers share nothing but the
     read-only frame). ``on_frame`` is called as ``on_frame(i, tracker, frame, box)`` for each.
     """
-    clip = _clips.load(clip)
-    made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
-    n = _n_frames(clip, max_frames)
-    frames = iter(clip.frames)
-    first = next(frames)
-    box0 = clip.groundtruth[0] if init_box is None else as_box(init_box, name="init_box")
-    if not np.all(np.isfinite(box0)):
-        raise ValueError(
-            f"clip {clip.name!r} has no ground-truth box on frame 0; give the target's first "
-            "box: init_box=(x, y, w, h) in Python, --box x,y,w,h on the command line (or a "
-            "<video stem>.groundtruth.txt file beside the video)."
-        )
-    box0 = clip_box(box0, first.shape)
-    return _lockstep(made, clip, n, first, frames, [box0] * len(made),
-                     [clip.groundtruth[:n]] * len(made), runs, on_frame)
+    run = Run(runs, clip, max_frames=max_frames, init_box=init_box, on_frame=on_frame,
+              preset=preset)
+    run.advance()
+    return run.results()
 
 
 def _n_frames(clip, max_frames) -> int:
@@ -171,53 +162,151 @@ def _n_frames(clip, max_frames) -> int:
     return n
 
 
-def _lockstep(made, clip, n, first, frames, starts, gts, runs, on_frame) -> list[Result]:
-    """The one evaluation loop: every tracker of ``made`` starts from its box of ``starts``
-    on ``first``, then each of the next ``n - 1`` frames of ``frames`` is given to every
-    tracker; tracker ``j`` is scored against ``gts[j]``."""
-    k = len(made)
-    boxes = np.full((k, n, 4), np.nan)
-    ok = np.zeros((k, n), dtype=bool)
-    ms = np.zeros((k, n))
-    extras: list[dict[str, list]] = [{} for _ in made]
-    for j, (tracker, _) in enumerate(made):
-        t0 = time.perf_counter()
-        _init_foreign(tracker, first, starts[j])
-        ms[j, 0] = (time.perf_counter() - t0) * 1e3
-        boxes[j, 0], ok[j, 0] = starts[j], True
-        if on_frame is not None:
-            on_frame(0, tracker, first, starts[j])
-    for i in range(1, n):
-        frame = next(frames)
-        for j, (tracker, _) in enumerate(made):
-            t0 = time.perf_counter()
-            good, box = tracker.update(frame)
-            ms[j, i] = (time.perf_counter() - t0) * 1e3
-            boxes[j, i], ok[j, i] = np.asarray(box, dtype=float), bool(good)
-            report = getattr(tracker, "frame_report", None)
-            if callable(report):
-                for key, v in report().items():
-                    extras[j].setdefault(key, [np.nan] * n)[i] = v
-            if on_frame is not None:
-                on_frame(i, tracker, frame, boxes[j, i])
+class Run:
+    """The one run loop: trackers over one clip in lockstep, one frame at a time.
 
-    results = []
-    for j, (tracker, tname) in enumerate(made):
-        close = getattr(tracker, "close", None)
-        if isinstance(runs[j][0], str) and callable(close):
-            close()  # a tracker we made: free e.g. opencv-mil's child process now
-        try:
-            scores = metrics.summary(boxes[j, 1:], gts[j][1:])
-        except ValueError:  # no ground truth (a user's video without annotation)
-            scores = {}
-        scores["ms_median"] = float(np.median(ms[j, 1:]))
-        scores["ms_mean"] = float(np.mean(ms[j, 1:]))
-        p = tracker.params if hasattr(tracker, "params") and dataclasses.is_dataclass(
-            getattr(tracker, "params", None)) else None
-        results.append(Result(tname, clip.name, boxes[j], ok[j], ms[j], scores,
-                              params=dataclasses.asdict(p) if p is not None else {},
-                              extras={key: np.asarray(v) for key, v in extras[j].items()}))
-    return results
+    :func:`evaluate` and :func:`evaluate_many` step a run to its end at once; the Jupyter
+    playground steps one a few frames at a time between knob changes. Either way each tracker
+    gets ``init`` on the first frame and ``update`` on each next one, so the boxes are the same.
+
+    Parameters
+    ----------
+    runs : list of ``(name_or_tracker, seed, params)``
+    clip : Clip or str or path, anything :func:`trackbook.clips.load` accepts
+    max_frames : int, optional; track only the first frames
+    init_box : (x, y, w, h), optional; every run's first box (default the first ground-truth
+        box, clipped to the frame)
+    on_frame : callable(i, tracker, frame, box), optional; called after every frame
+    preset : ``"book"`` or ``"paper"`` (trackers made by name)
+    targets : list of target names of ``clip.targets``, optional, one per run: run ``j``
+        starts from the first box of target ``j`` and is scored against that target
+        (not with ``init_box``)
+
+    Attributes
+    ----------
+    trackers : the trackers, in the order of ``runs``
+    n_total : frames to track; ``n_done`` : frames tracked so far
+    boxes : (k, n_total, 4), ``ok`` : (k, n_total), ``ms`` : (k, n_total) milliseconds of
+        ``init``/``update`` alone (decoding excluded), filled up to ``n_done``
+    """
+
+    def __init__(self, runs, clip, max_frames: int | None = None, init_box=None,
+                 on_frame=None, preset: str = "book", targets=None):
+        # glibc's thresholds raised once per process before the trackers allocate, so their
+        # per-frame temporaries reuse memory (``TRACKBOOK_KEEP_MEMORY=0``: off); see _memory
+        keep_freed_memory()
+        self.clip = clip = _clips.load(clip)
+        made = [_make(t, seed, dict(params or {}), preset) for t, seed, params in runs]
+        self.trackers = [t for t, _ in made]
+        self._names = [name for _, name in made]
+        self._ours = [isinstance(r[0], str) for r in runs]
+        self.n_total = n = _n_frames(clip, max_frames)
+        self._frames = iter(clip.frames)
+        self._frame = next(self._frames)
+        if targets is None:
+            box0 = clip.groundtruth[0] if init_box is None else as_box(init_box,
+                                                                        name="init_box")
+            if not np.all(np.isfinite(box0)):
+                raise ValueError(
+                    f"clip {clip.name!r} has no ground-truth box on frame 0; give the "
+                    "target's first box: init_box=(x, y, w, h) in Python, --box x,y,w,h on the "
+                    "command line (or a <video stem>.groundtruth.txt file beside the video)."
+                )
+            self._starts = [clip_box(box0, self._frame.shape)] * len(made)
+            self._gts = [clip.groundtruth[:n]] * len(made)
+        else:
+            self._starts = []
+            for t in targets:
+                b = np.asarray(clip.targets[t][0], dtype=float)
+                if not np.all(np.isfinite(b)):
+                    raise ValueError(f"target {t!r} of clip {clip.name!r} has no box on "
+                                     "frame 0.")
+                self._starts.append(clip_box(b, self._frame.shape))
+            self._gts = [np.asarray(clip.targets[t][:n], dtype=float) for t in targets]
+        k = len(made)
+        self.boxes = np.full((k, n, 4), np.nan)
+        self.ok = np.zeros((k, n), dtype=bool)
+        self.ms = np.zeros((k, n))
+        self._extras: list[dict[str, list]] = [{} for _ in made]
+        self._on_frame = on_frame
+        self.n_done = 0
+        self._closed = False
+
+    @property
+    def done(self) -> bool:
+        """Every frame is tracked."""
+        return self.n_done >= self.n_total
+
+    def step(self) -> int:
+        """Track the next frame with every tracker (``init`` on frame 0, ``update`` after);
+        return its index. The run frees its trackers after the last frame."""
+        if self.done:
+            raise ValueError(f"the run has tracked all its {self.n_total} frames.")
+        i = self.n_done
+        frame = self._frame if i == 0 else next(self._frames)
+        self._frame = None              # hold only the current frame
+        for j, tracker in enumerate(self.trackers):
+            t0 = time.perf_counter()
+            if i == 0:
+                _init_foreign(tracker, frame, self._starts[j])
+                self.ms[j, 0] = (time.perf_counter() - t0) * 1e3
+                self.boxes[j, 0], self.ok[j, 0] = self._starts[j], True
+            else:
+                good, box = tracker.update(frame)
+                self.ms[j, i] = (time.perf_counter() - t0) * 1e3
+                self.boxes[j, i], self.ok[j, i] = np.asarray(box, dtype=float), bool(good)
+                report = getattr(tracker, "frame_report", None)
+                if callable(report):
+                    for key, v in report().items():
+                        self._extras[j].setdefault(key, [np.nan] * self.n_total)[i] = v
+            if self._on_frame is not None:
+                self._on_frame(i, tracker, frame, self.boxes[j, i])
+        self.n_done = i + 1
+        if self.done:
+            self.close()
+        return i
+
+    def advance(self, until: int | None = None, seconds: float | None = None) -> None:
+        """Step until ``until`` frames are done (all if None) or ``seconds`` have passed
+        (at least one frame is tracked either way, unless the run is done)."""
+        stop = self.n_total if until is None else min(int(until), self.n_total)
+        t_end = None if seconds is None else time.perf_counter() + seconds
+        while not self.done:
+            self.step()
+            if self.n_done >= stop or (t_end is not None and time.perf_counter() >= t_end):
+                break
+
+    def close(self) -> None:
+        """Free what the trackers made by name hold (e.g. opencv-mil's child process); done
+        after the last frame, and by whoever stops a run midway."""
+        if self._closed:
+            return
+        self._closed = True
+        for tracker, ours in zip(self.trackers, self._ours):
+            close = getattr(tracker, "close", None)
+            if ours and callable(close):
+                close()
+
+    def results(self) -> list[Result]:
+        """The finished run: one :class:`Result` per tracker, in the order of ``runs``."""
+        if not self.done:
+            raise ValueError(f"the run has {self.n_done} of {self.n_total} frames; finish it "
+                             "(advance()) before asking for its result.")
+        results = []
+        for j, tracker in enumerate(self.trackers):
+            try:
+                scores = metrics.summary(self.boxes[j, 1:], self._gts[j][1:])
+            except ValueError:  # no ground truth (a user's video without annotation)
+                scores = {}
+            scores["ms_median"] = float(np.median(self.ms[j, 1:]))
+            scores["ms_mean"] = float(np.mean(self.ms[j, 1:]))
+            p = getattr(tracker, "params", None)
+            results.append(Result(
+                self._names[j], self.clip.name, self.boxes[j].copy(), self.ok[j].copy(),
+                self.ms[j].copy(), scores,
+                params=dataclasses.asdict(p) if dataclasses.is_dataclass(p) else {},
+                extras={key: np.asarray(v) for key, v in self._extras[j].items()}))
+        return results
 
 
 def _evaluate_targets(name, clip, seed, max_frames, init_box, on_frame, preset, targets,
@@ -240,18 +329,10 @@ def _evaluate_targets(name, clip, seed, max_frames, init_box, on_frame, preset, 
         raise ValueError(f"clip {clip.name!r} has no target(s) {unknown}; "
                          f"its targets are {list(clip.targets)}.")
     runs = [(name, target_seed(seed, k), dict(params)) for k in range(len(names))]
-    made = [_make(t, s, p, preset) for t, s, p in runs]
-    n = _n_frames(clip, max_frames)
-    frames = iter(clip.frames)
-    first = next(frames)
-    starts = []
-    for t in names:
-        b = np.asarray(clip.targets[t][0], dtype=float)
-        if not np.all(np.isfinite(b)):
-            raise ValueError(f"target {t!r} of clip {clip.name!r} has no box on frame 0.")
-        starts.append(clip_box(b, first.shape))
-    gts = [np.asarray(clip.targets[t][:n], dtype=float) for t in names]
-    results = _lockstep(made, clip, n, first, frames, starts, gts, runs, on_frame)
+    run = Run(runs, clip, max_frames=max_frames, on_frame=on_frame, preset=preset,
+              targets=names)
+    run.advance()
+    results = run.results()
     ms = np.sum([r.ms for r in results], axis=0)
     return MultiResult(name, clip.name, dict(zip(names, results)), ms,
                        {"ms_median": float(np.median(ms[1:])), "ms_mean": float(np.mean(ms[1:]))})

@@ -7,7 +7,6 @@ after display, and in the HTML book it is embedded in the page like a playground
 
 from __future__ import annotations
 
-import os
 
 import anywidget
 import cv2
@@ -17,7 +16,8 @@ import traitlets as T
 from ..style import EST_COLOR, GT_COLOR, bgr
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
-from .core import BOOK_ENV, VIEWER_CSS, VIEWER_JS, page_html
+from .data import VIEWER_CSS, VIEWER_JS
+from .export import book_build, page_html
 
 GT_BGR = bgr(GT_COLOR)
 EST_BGR = bgr(EST_COLOR)
@@ -48,14 +48,18 @@ def run_entry(label, boxes, *, captions=None, curve=None, curve_label="", curve_
 
 class Animation(anywidget.AnyWidget):
     """A step-by-step view: ``images`` (BGR arrays), ``index`` (step -> image), ``runs``
-    (``{label: run_entry(...)}``, a choice when several), ``gt`` per step (optional)."""
+    (``{label: run_entry(...)}``, a choice when several), ``gt`` per step (optional);
+    ``static_page`` displays it as the HTML book's page (default: whether this is a chapter of
+    the book's build, :func:`~trackbook.playground.export.book_build`)."""
 
     _esm = T.Unicode(VIEWER_JS.read_text(encoding="utf-8")).tag(sync=True)
     _css = T.Unicode(VIEWER_CSS.read_text(encoding="utf-8")).tag(sync=True)
     static_data = T.Dict().tag(sync=True)
 
-    def __init__(self, name, images, runs: dict, index=None, gt=None, note="", **kwargs):
+    def __init__(self, name, images, runs: dict, index=None, gt=None, note="",
+                 static_page: bool | None = None, **kwargs):
         super().__init__(**kwargs)
+        self.static_page = book_build() if static_page is None else bool(static_page)
         h, w = np.asarray(images[0]).shape[:2]
         n = len(next(iter(runs.values()))["boxes"])
         clip = {"name": name, "w": int(w), "h": int(h), "frames": [D.jpeg(i) for i in images],
@@ -85,12 +89,14 @@ class Animation(anywidget.AnyWidget):
                 cv2.rectangle(img, (x, y), (x + w, y + h), col, 2)
         return cv2.imencode(".png", img)[1].tobytes()
 
-    def static_html(self) -> str:
-        return page_html(self.static_data, self._png(), "one step of the animation")
+    def static_html(self, files: bool = False) -> str:
+        """The animation as a page fragment (``files``: its runs and frames as files beside
+        the page, as the book's pages have them)."""
+        return page_html(self.static_data, self._png(), "one step of the animation", files)
 
     def _repr_mimebundle_(self, **kwargs):
-        if os.environ.get(BOOK_ENV):
-            return {"text/plain": "Animation", "text/html": self.static_html()}
+        if self.static_page:
+            return {"text/plain": "Animation", "text/html": self.static_html(files=True)}
         return super()._repr_mimebundle_(**kwargs)
 
     def show(self):

@@ -3,58 +3,30 @@
 One JavaScript module (``viewer.js``, shipped in this package) draws everything on a canvas:
 the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve and the scores.
 
-* In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob change
-  re-runs the tracker in the kernel and sends only boxes and state, first up to the frame on
-  screen, then the rest of the clip in chunks that leave the kernel free (``live.py``); the
-  frames travel once as JPEG, so a frame step costs no Python.
-* In the HTML book (built with ``TRACKBOOK_BOOK_BUILD=1``, which ``trackbook.sphinx_playground``
-  sets) the same module runs from the page: for every clip and tracker, the runs at the
-  defaults and for a few values of each knob (one knob at a time) over whole clips and
-  several seeds are computed at build time (:mod:`trackbook.playground.static`) and written
-  as small files the page loads when the reader picks them, so it works with no kernel and
-  no network.
+In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob change re-runs
+the tracker in the kernel and sends only boxes and state, first up to the frame on screen, then
+the rest of the clip in chunks that leave the kernel free (``live.py``); the frames travel
+once as JPEG, so a frame step costs no Python. The HTML book shows the same panel as a page
+with every run precomputed: :mod:`trackbook.playground.export`.
 """
 
 from __future__ import annotations
 
-import base64
-import dataclasses
-import html
-import io
-import json
-import os
-from pathlib import Path
-
 import difflib
+import os
 
 import anywidget
 import numpy as np
 import traitlets as T
 
 from .. import clips as _clips
-from .. import params as _params
 from .. import trackers as _trackers
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
+from . import export
 from . import static as S
+from .data import VIEWER_CSS, VIEWER_JS
 from .live import LiveRun, running_loop, stream
-
-HERE = Path(__file__).parent
-VIEWER_JS = HERE / "viewer.js"
-VIEWER_CSS = HERE / "viewer.css"
-#: the environment variable that switches :meth:`Playground._repr_mimebundle_` to the static page
-BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
-#: most bytes a chapter page loads before the reader touches a playground (its HTML, the
-#: first clip's first frames and the first run)
-MAX_PAGE_BYTES = 1_500_000
-
-_RUN_CACHE: dict = {}
-
-
-def _cache_key(tracker, clip_name, n, seed, values, init_box):
-    return (tracker, clip_name, n, seed, json.dumps(values, sort_keys=True, default=str),
-            None if init_box is None else tuple(np.round(init_box, 2)))
-
 
 def _load_own(c):
     """A clip by name or path; an image folder without ground truth (your own frames) loads
@@ -77,16 +49,6 @@ def _load_own(c):
                     source=str(folder))
 
 
-def _params_cls(name):
-    cls = _trackers.get(name)
-    return cls if dataclasses.is_dataclass(getattr(cls, "Params", None)) else None
-
-
-def _field_names(tracker) -> list:
-    cls = _params_cls(tracker)
-    return [f.name for f in dataclasses.fields(cls.Params)] if cls else []
-
-
 class Refused(T.TraitError, ValueError):
     """A knob, tracker or clip the playground refuses: a ``ValueError`` (what the library
     raises for bad input) that is also a ``TraitError``, so traitlets rolls the trait back."""
@@ -98,60 +60,6 @@ def _refuse(what: str, value, choices) -> ValueError:
     hint = f" (did you mean {near[0]!r}?)" if near else ""
     return Refused(f"{what} {value!r} is not one of this playground's {what}s{hint}; "
                       f"choose from {list(choices)}.")
-
-
-def _refuse_unknown_keywords(where: str, kwargs: dict) -> None:
-    """The static runs' cost limit is ``max_cost`` (tracker-frames); any other keyword is
-    refused naming it (an older name of that limit included)."""
-    if kwargs:
-        raise TypeError(f"{where}() got {', '.join(map(repr, kwargs))}: the limit on the "
-                        "precomputed runs' cost is max_cost= (tracker-frames)")
-
-
-def _jsonable(v):
-    return list(v) if isinstance(v, tuple) else v
-
-
-def parse_values(tracker, values: dict) -> dict:
-    """``values`` for ``tracker``'s params through the one parser
-    (:func:`trackbook.params.parse`, then the params' own checks of combinations), as the
-    ``values`` trait stores them (tuples as lists); raises ``ValueError`` naming the knob."""
-    cls = _params_cls(tracker)
-    if cls is None:
-        if values:
-            raise ValueError(f"tracker {tracker!r} has no params; it takes no knob "
-                             f"(got {sorted(values)}).")
-        return {}
-    if not isinstance(values, dict):
-        raise TypeError(f"values must be a dict {{knob: value}}, got {type(values).__name__}.")
-    out = {k: _params.parse(cls.Params, k, v) for k, v in values.items()}
-    _params.make_params(cls.Params, out)       # combinations (e.g. low < high) checked too
-    return {k: _jsonable(v) for k, v in out.items()}
-
-
-#: what the Sphinx extension replaces with the page's path to ``_static/playground/``
-STATIC_BASE = "@@tb-static-playground@@"
-
-
-def page_html(payload: dict, png: bytes, alt: str) -> str:
-    """One fragment: root ``div.tb-playground``, the data as JSON in a ``<script>`` (no
-    fetch, so ``file://`` works), the viewer module inline and ``png`` in a ``<noscript>``
-    (print, no JavaScript). Files the data names (``payload["files"]``) are loaded from
-    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there. In the book
-    build (``TRACKBOOK_BOOK_BUILD``) inline runs and frames (an animation's) and the picture
-    become files too (:func:`trackbook.playground.static.to_files`): the page stays light."""
-    if os.environ.get(BOOK_ENV):
-        payload = S.to_files(payload)
-        src = STATIC_BASE + S.write_png(png)
-    else:
-        src = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
-    data = json.dumps(payload, separators=(",", ":")).replace("</", "<\\/")
-    js = VIEWER_JS.read_text(encoding="utf-8").replace("</script", "<\\/script")
-    css = VIEWER_CSS.read_text(encoding="utf-8")
-    return (f'<div class="tb-playground" data-tb-static="1" data-tb-base="{STATIC_BASE}">'
-            f'<script type="application/json" class="tb-data">{data}</script>'
-            f'<noscript><img alt="{html.escape(alt)}" src="{src}">'
-            f'</noscript></div><style>{css}</style><script type="module">{js}</script>')
 
 
 class Playground(anywidget.AnyWidget):
@@ -171,6 +79,9 @@ class Playground(anywidget.AnyWidget):
     samples : ``{knob: [values]}``, the values the HTML book precomputes (default: a few around
         the default within the field's range, see :func:`trackbook.playground.data.sample_values`)
     box : (x, y, w, h) on the first frame, for a clip without ground truth
+    static_page : display as the HTML book's page (every run precomputed,
+        :mod:`trackbook.playground.export`) instead of the live widget; default: whether
+        this is a chapter of the book's build (:func:`~trackbook.playground.export.book_build`)
 
     Examples
     --------
@@ -195,7 +106,7 @@ class Playground(anywidget.AnyWidget):
     frame = T.Int(0).tag(sync=True)
 
     def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None,
-                 samples=None, box=None, **kwargs):
+                 samples=None, box=None, static_page: bool | None = None, **kwargs):
         clips = [clips] if isinstance(clips, (str, os.PathLike)) else list(clips)
         trackers = [trackers] if isinstance(trackers, str) else list(trackers)
         if not clips or not trackers:
@@ -204,7 +115,7 @@ class Playground(anywidget.AnyWidget):
         for t in trackers:
             _trackers.get(t)  # fail early, with the list of names
         params = [params] if isinstance(params, str) else list(params)
-        known = sorted({n for t in trackers for n in _field_names(t)})
+        known = sorted({n for t in trackers for n in D.field_names(t)})
         for name in params:     # a typo is refused, not silently dropped
             if name not in known:
                 raise _refuse("param", name, known)
@@ -217,15 +128,16 @@ class Playground(anywidget.AnyWidget):
             if name not in known:
                 raise _refuse("param", name, known)
         for t in trackers:     # each given value through the parser, for the trackers having it
-            fields = _field_names(t)
-            parse_values(t, {k: v for k, v in (values or {}).items() if k in fields})
+            fields = D.field_names(t)
+            D.parse_values(t, {k: v for k, v in (values or {}).items() if k in fields})
         self.n_frames = n_frames
         self.seed = seed
+        self.static_page = export.book_build() if static_page is None else bool(static_page)
         self._initial = dict(values or {})
-        self._samples = dict(samples or {})
-        self._clips = {}
+        self.samples = dict(samples or {})
+        self.clip_objects = {}
         for c in clips:
-            self._clips[str(c)] = _load_own(c)
+            self.clip_objects[str(c)] = _load_own(c)
         for name in (values or {}):     # a knob given a value is a knob
             if name not in self.param_names:
                 self.param_names.append(name)
@@ -236,11 +148,11 @@ class Playground(anywidget.AnyWidget):
         self._task = None
         self._sync = False
         super().__init__(**kwargs)
-        self.config = self._config(list(self._clips), trackers)
+        self.config = self._config(list(self.clip_objects), trackers)
         with self.hold_sync():
             self.tracker = trackers[0]
-            self.clip = list(self._clips)[0]
-            self.values = self._defaults(self.tracker)
+            self.clip = list(self.clip_objects)[0]
+            self.values = self.defaults(self.tracker)
             if box is not None:
                 self.init_box = [float(v) for v in box]
         self._send_clip()
@@ -260,14 +172,14 @@ class Playground(anywidget.AnyWidget):
     @T.validate("clip")
     def _valid_clip(self, proposal):
         c = proposal["value"]
-        if c not in self._clips:
-            raise _refuse("clip", c, list(self._clips))
+        if c not in self.clip_objects:
+            raise _refuse("clip", c, list(self.clip_objects))
         return c
 
     @T.validate("values")
     def _valid_values(self, proposal):
         try:
-            return parse_values(self.tracker, dict(proposal["value"]))
+            return D.parse_values(self.tracker, dict(proposal["value"]))
         except (ValueError, TypeError) as e:
             raise Refused(str(e)) from None
 
@@ -283,34 +195,36 @@ class Playground(anywidget.AnyWidget):
 
     # -- configuration -------------------------------------------------------------------
     def _knobs(self, tracker):
-        cls = _params_cls(tracker)
+        cls = D.params_class(tracker)
         out = []
         for name in self.param_names:
             spec = D.knob_spec(cls, name, self._initial.get(name)) if cls else None
             if spec is not None:
                 spec["samples"] = [list(v) if isinstance(v, tuple) else v
-                                   for v in self._samples.get(name, D.sample_values(spec))]
+                                   for v in self.samples.get(name, D.sample_values(spec))]
                 if spec["default"] not in spec["samples"]:   # the default is always a stop
                     spec["samples"].append(spec["default"])
                 out.append(spec)
         return out
 
     def _config(self, clip_names, trackers):
-        return {"clips": [{"key": k, "name": self._clips[k].name} for k in clip_names],
+        return {"clips": [{"key": k, "name": self.clip_objects[k].name} for k in clip_names],
                 "trackers": trackers,
                 "knobs": {t: self._knobs(t) for t in trackers},
                 "n_frames": self.n_frames, "colors": VIEWER_COLORS}
 
-    def _defaults(self, tracker):
+    def defaults(self, tracker) -> dict:
+        """``{knob: default value}`` of ``tracker``'s knobs on this panel."""
         return {k["name"]: k["default"] for k in self.config["knobs"][tracker]}
 
-    def _n(self, clip, cap=None):
+    def n_of(self, clip, cap=None) -> int:
+        """Frames tracked on ``clip`` (``n_frames`` or the whole clip, at most ``cap``)."""
         n = len(clip) if self.n_frames is None else min(int(self.n_frames), len(clip))
         return n if cap is None else min(n, cap)
 
     def _send_clip(self):
-        clip = self._clips[self.clip]
-        self.clip_data = D.clip_payload(clip, self._n(clip))
+        clip = self.clip_objects[self.clip]
+        self.clip_data = D.clip_payload(clip, self.n_of(clip))
 
     # -- events (the slider path: JS sets a trait, Python re-runs) -----------------------
     def _on_clip(self, change):
@@ -319,7 +233,7 @@ class Playground(anywidget.AnyWidget):
         self._run()
 
     def _on_tracker(self, change):
-        self.values = self._defaults(change["new"])   # triggers _on_change -> _run
+        self.values = self.defaults(change["new"])   # triggers _on_change -> _run
 
     def _on_change(self, change):
         if change["name"] == "values":
@@ -331,7 +245,7 @@ class Playground(anywidget.AnyWidget):
         extra = [k for k in names if k not in self.param_names]
         if extra:
             self.param_names.extend(extra)
-            self.config = self._config(list(self._clips), self._trackers_list)
+            self.config = self._config(list(self.clip_objects), self._trackers_list)
 
     def set(self, **knobs):
         """Re-run with these knob values (others unchanged) and return the new result,
@@ -343,7 +257,7 @@ class Playground(anywidget.AnyWidget):
         knob, and the playground keeps its values and the run it shows. The run is whole when
         ``set`` returns, in Jupyter too (a knob moved in the viewer streams instead).
         """
-        new = parse_values(self.tracker, {**self.values, **knobs})
+        new = D.parse_values(self.tracker, {**self.values, **knobs})
         self._adopt(knobs)      # now a knob of the panel too
         old, old_error = dict(self.values), self.error
         self.error = ""
@@ -372,7 +286,9 @@ class Playground(anywidget.AnyWidget):
         return {k: tuple(v) if isinstance(v, list) else v for k, v in self.values.items()}
 
     # -- work ----------------------------------------------------------------------------
-    def _init_box(self, clip):
+    def first_box(self, clip):
+        """The box a run on ``clip`` starts from: the dragged one, None for the first
+        ground-truth box, or False when there is neither (wait for the student's box)."""
         if self.init_box:
             return self.init_box
         g = np.asarray(clip.groundtruth[0], dtype=float)
@@ -391,15 +307,15 @@ class Playground(anywidget.AnyWidget):
         if self._task is not None:
             self._task.cancel()
             self._task = None
-        clip = self._clips[self.clip]
-        box = self._init_box(clip)
+        clip = self.clip_objects[self.clip]
+        box = self.first_box(clip)
         if box is False:      # your own video: wait for the box the student drags
             self.busy = False
             self.run_data = {"clip": clip.name, "tracker": self.tracker, "waiting": True}
             self.result = None
             return None
         try:
-            run = LiveRun(self.tracker, clip, self.params(), self._n(clip), self.seed, box)
+            run = LiveRun(self.tracker, clip, self.params(), self.n_of(clip), self.seed, box)
         except ValueError as e:
             return self._refused(e)
         loop = None if sync else running_loop()
@@ -409,7 +325,7 @@ class Playground(anywidget.AnyWidget):
             except ValueError as e:
                 run.close()
                 return self._refused(e)
-            return self._finish(run, box, run.payload())
+            return self._finish(run, run.payload())
         self.busy = True
 
         def send(payload):
@@ -417,7 +333,7 @@ class Playground(anywidget.AnyWidget):
                 self.run_data = payload
             else:
                 self._task = None
-                self._finish(run, box, payload)
+                self._finish(run, payload)
 
         self._task = loop.create_task(stream(run, send, self.frame, lambda: gen == self._gen,
                                              self._refused))
@@ -428,13 +344,10 @@ class Playground(anywidget.AnyWidget):
         self.error, self.busy, self._task = str(e), False, None
         return self.result
 
-    def _finish(self, run, box, payload):
+    def _finish(self, run, payload):
         self.error = ""
         self.result, self.states = run.result(), run.states
         self.runs += 1
-        # the book's precompute starts with this very run (same tracker, clip, values, frames)
-        _RUN_CACHE.setdefault(_cache_key(run.name, run.clip.name,
-                                         run.n_total, self.seed, self.values, box), payload)
         self.busy = False
         self.run_data = payload
         return self.result
@@ -449,12 +362,12 @@ class Playground(anywidget.AnyWidget):
         display(self)
 
     def _repr_mimebundle_(self, **kwargs):
-        if os.environ.get(BOOK_ENV):
+        if self.static_page:
             return {"text/plain": f"Playground({self.tracker} on {self.clip})",
-                    "text/html": self.static_html()}
+                    "text/html": export.static_html(self, files=True)}
         return super()._repr_mimebundle_(**kwargs)
 
-    # -- the HTML book -------------------------------------------------------------------
+    # -- what the HTML book's exporter reads ---------------------------------------------
     def reuse(self, runs: dict) -> "Playground":
         """Take runs the chapter already made (``{clip: Result}`` of
         :func:`trackbook.evaluate` at this playground's seed, first tracker, defaults and whole
@@ -462,134 +375,17 @@ class Playground(anywidget.AnyWidget):
         shown, not the tracker's state. Returns the playground (``pg.reuse(runs).show()``)."""
         t = self.config["trackers"][0]
         for key, r in runs.items():
-            clip = self._clips.get(str(key))
-            if clip is None or r.tracker != t or len(r.boxes) != self._n(clip):
+            clip = self.clip_objects.get(str(key))
+            if clip is None or r.tracker != t or len(r.boxes) != self.n_of(clip):
                 raise ValueError(f"reuse: {key!r} is not a whole-clip run of {t} on one of "
-                                 f"this playground's clips ({list(self._clips)}).")
-            p = D.result_payload(r, clip, self._defaults(t), [], self._n(clip), t)
-            self._reused[S.Runner.known_key(t, str(key), self._defaults(t), self._n(clip),
-                                            self.seed)] = {
-                "seed": self.seed, "boxes": p["boxes"], "iou": p["iou"],
-                "auc": float(r.scores.get("auc", float("nan"))), "payload": p}
+                                 f"this playground's clips ({list(self.clip_objects)}).")
+            self.reused[str(key)] = r
         return self
 
     @property
-    def _reused(self) -> dict:
+    def reused(self) -> dict:
+        """``{clip key: Result}`` given to :meth:`reuse` (runs of the first tracker at its
+        defaults over the whole clip)."""
         if "_reused_runs" not in self.__dict__:
             self.__dict__["_reused_runs"] = {}
         return self.__dict__["_reused_runs"]
-
-    def static_knobs(self, tracker) -> list:
-        """The knobs of ``tracker`` as the HTML book offers them: each knob's default, the
-        printed value where there is one (:func:`~trackbook.playground.data.paper_sample`)
-        and about two others (:func:`~trackbook.playground.data.static_samples`), or the
-        values given in ``samples=``."""
-        cls = _params_cls(tracker)
-        out = []
-        for k in self.config["knobs"][tracker]:
-            if k["name"] in self._samples:
-                out.append({**k, "samples": list(k["samples"])})
-                continue
-            paper = D.paper_sample(cls, k["name"])
-            try:
-                if paper is not None:
-                    parse_values(tracker, {k["name"]: paper})
-            except (ValueError, TypeError):
-                paper = None
-            out.append({**k, "samples": D.static_samples(k, paper), "paper": paper})
-        return out
-
-    def static_runs(self, workers: int | None = None, **kwargs) -> dict:
-        """``{run key: file name}`` of every run the HTML book offers (see
-        :func:`trackbook.playground.static.book_files`): every clip x tracker at its defaults
-        and each knob at each of its :meth:`static_knobs` samples, over the seeds."""
-        _refuse_unknown_keywords("static_runs", kwargs)
-        known = dict(self._reused)
-        if self.result is not None and len(self.result.boxes) == self._n(self._clips[self.clip]):
-            t, c = self.tracker, self.clip      # the run the Jupyter half has just made
-            p = D.result_payload(self.result, self._clips[c], dict(self.values), self.states,
-                                 self._n(self._clips[c]), t)
-            known.setdefault(S.Runner.known_key(t, c, self.values, self._n(self._clips[c]),
-                                                self.seed),
-                             {"seed": self.seed, "boxes": p["boxes"], "iou": p["iou"],
-                              "auc": float(self.result.scores.get("auc", float("nan"))),
-                              "payload": p})
-        trackers = self.config["trackers"]
-        return S.book_files(self._clips, trackers, {t: self.static_knobs(t) for t in trackers},
-                           {t: self._defaults(t) for t in trackers},
-                           {c: self._n(clip) for c, clip in self._clips.items()},
-                           {c: self._init_box(clip) for c, clip in self._clips.items()},
-                           self.seed, known, S.WORKERS if workers is None else workers)
-
-    def static_payload(self, workers: int | None = None, **kwargs) -> dict:
-        """What the page holds: the configuration, each clip's ground truth and the names of
-        its frame files, the name of every run file; the files themselves are written to
-        :func:`trackbook.playground.static.store`."""
-        _refuse_unknown_keywords("static_payload", kwargs)
-        runs = self.static_runs(workers)
-        clips = {}
-        for c, clip in self._clips.items():
-            n = self._n(clip)
-            info = {k: v for k, v in D.clip_payload(clip, 0).items() if k != "frames"}
-            gt = np.asarray(clip.groundtruth[:n], dtype=float)
-            info.update(n=n, per=S.CHUNK_FRAMES, chunks=S.write_frames(clip, n),
-                        gt=[[round(float(v), 1) for v in b] if np.isfinite(b).all() else None
-                            for b in gt] if np.isfinite(gt).all(axis=1).any() else None)
-            clips[c] = info
-        config = {**self.config, "knobs": {t: self.static_knobs(t)
-                                           for t in self.config["trackers"]}}
-        return {"kind": "playground", "config": config, "clips": clips, "files": runs,
-                "initial": {"clip": list(self._clips)[0], "tracker": self.config["trackers"][0]}}
-
-    def static_html(self, workers: int | None = None, **kwargs) -> str:
-        """The panel as an HTML fragment: root ``div.tb-playground``, the configuration in a
-        ``<script type="application/json">``, the viewer module inline and a PNG of the first
-        run in ``<noscript>`` for print and no-JavaScript; the runs and frames are files
-        beside the page, loaded when the reader picks them."""
-        _refuse_unknown_keywords("static_html", kwargs)
-        return page_html(self.static_payload(workers), self._static_png(),
-                         "the playground's first run: frames and IoU")
-
-    def _static_png(self) -> bytes:
-        import matplotlib.pyplot as plt
-
-        fig = self.static_figure()
-        buf = io.BytesIO()
-        fig.savefig(buf, format="png", dpi=60)
-        plt.close(fig)
-        return buf.getvalue()
-
-    def static_figure(self, frames=None):
-        """A static picture of the current run (three frames and the IoU curve): the
-        fallback for print and browsers without JavaScript."""
-        import matplotlib.pyplot as plt
-
-        from ..evaluation import metrics
-        from ..viz.core import EST_COLOR, draw_box, draw_particles, show_frame
-
-        clip = self._clips[self.clip]
-        r = self.result
-        if r is None:
-            fig, ax = plt.subplots(figsize=(3, 2.4))
-            show_frame(clip.frames[0], ax=ax, title="drag the target's box (Jupyter)")
-            return fig
-        n = len(r.boxes)
-        frames = frames or [n // 4, n // 2, n - 1]
-        fig, axes = plt.subplots(1, len(frames) + 1, figsize=(3.0 * (len(frames) + 1), 2.6))
-        for ax, i in zip(axes, frames):
-            show_frame(clip.frames[i], ax=ax, gt=clip.groundtruth[i], title=f"frame {i}")
-            st = self.states[i] if i < len(self.states) else {}
-            if "particles" in st:
-                draw_particles(ax, st["particles"], st.get("weights"), max_size=20)
-            draw_box(ax, r.boxes[i], EST_COLOR, "estimate")
-        gt = clip.groundtruth[:n]
-        if np.isfinite(gt[1:]).all(axis=1).any():
-            axes[-1].plot(metrics.iou(r.boxes, gt), color=EST_COLOR, lw=1)
-            axes[-1].set(xlabel="frame", ylabel="IoU", ylim=(0, 1.02))
-        else:
-            axes[-1].plot(np.asarray(r.ok, float), color=EST_COLOR, lw=1)
-            axes[-1].set(xlabel="frame", ylabel="tracker ok", ylim=(-0.02, 1.02))
-        axes[-1].grid(alpha=0.3)
-        fig.suptitle(html.unescape(D.scores_text(r)), fontsize=9)
-        fig.tight_layout()
-        return fig

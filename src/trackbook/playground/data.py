@@ -12,13 +12,19 @@ from __future__ import annotations
 import base64
 import dataclasses
 import math
+from pathlib import Path
 
 import cv2
 import numpy as np
 
 from .. import params as _params
+from .. import trackers as _trackers
 from ..evaluation import metrics
 from ..evaluation.runner import evaluate
+
+#: the viewer module (and its style sheet) that draws every panel, in Jupyter and in the book
+VIEWER_JS = Path(__file__).parent / "viewer.js"
+VIEWER_CSS = Path(__file__).parent / "viewer.css"
 
 #: most particles sent per frame: enough to see the cloud, small enough to ship many runs
 MAX_PARTICLES = 40
@@ -315,3 +321,36 @@ def static_samples(spec: dict, paper=None, others: int = 2) -> list:
             if side and len(picks) < others:
                 picks.append(side.pop(0))
     return sorted(keep + picks, key=key)
+
+
+def params_class(name):
+    """The tracker class of ``name`` when its params are a dataclass (knobs), else None."""
+    cls = _trackers.get(name)
+    return cls if dataclasses.is_dataclass(getattr(cls, "Params", None)) else None
+
+
+def field_names(tracker) -> list:
+    """The names of ``tracker``'s params (its knobs), in declaration order."""
+    cls = params_class(tracker)
+    return [f.name for f in dataclasses.fields(cls.Params)] if cls else []
+
+
+def _jsonable(v):
+    return list(v) if isinstance(v, tuple) else v
+
+
+def parse_values(tracker, values: dict) -> dict:
+    """``values`` for ``tracker``'s params through the one parser
+    (:func:`trackbook.params.parse`, then the params' own checks of combinations), as the
+    ``values`` trait stores them (tuples as lists); raises ``ValueError`` naming the knob."""
+    cls = params_class(tracker)
+    if cls is None:
+        if values:
+            raise ValueError(f"tracker {tracker!r} has no params; it takes no knob "
+                             f"(got {sorted(values)}).")
+        return {}
+    if not isinstance(values, dict):
+        raise TypeError(f"values must be a dict {{knob: value}}, got {type(values).__name__}.")
+    out = {k: _params.parse(cls.Params, k, v) for k, v in values.items()}
+    _params.make_params(cls.Params, out)       # combinations (e.g. low < high) checked too
+    return {k: _jsonable(v) for k, v in out.items()}

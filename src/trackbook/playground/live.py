@@ -1,24 +1,18 @@
 """The Jupyter playground's run, frame by frame: a knob change answers with the frames up to
 the one on screen, then the rest of the clip streams in chunks while the kernel stays free.
 
-A :class:`LiveRun` steps one tracker through a clip exactly as
-:func:`trackbook.evaluation.evaluate` does (``init`` on the first frame, then ``update`` on
-each next one, the same tracker made by name with the same seed), so its finished boxes are
-``evaluate``'s boxes; it only lets the caller stop between frames and look at what is done.
-:func:`stream` drives one on the kernel's event loop.
+A :class:`LiveRun` is the evaluation's own run loop (:class:`trackbook.evaluation.runner.Run`)
+over one tracker, stepped a few frames at a time, so its finished boxes are
+:func:`~trackbook.evaluation.evaluate`'s boxes; it adds what the viewer draws of the tracker's
+state after each frame. :func:`stream` drives one on the kernel's event loop.
 """
 
 from __future__ import annotations
 
 import asyncio
-import dataclasses
 import time
 
-import numpy as np
-
-from .._checks import as_box, clip_box
-from ..evaluation import metrics
-from ..evaluation.runner import Result, _init_foreign, _make, _n_frames
+from ..evaluation.runner import Result, Run
 from . import data as D
 
 #: longest stretch of tracking between two yields to the kernel's loop (seconds): a slider
@@ -53,42 +47,28 @@ class LiveRun:
                  init_box=None):
         self.name, self.clip, self.seed = tracker, clip, seed
         self.values = dict(values)
-        self.n_total = _n_frames(clip, n)
-        self.tracker = _make(tracker, seed, dict(values))[0]
-        self._frames = iter(clip.frames)
-        self._first = next(self._frames)
-        box0 = clip.groundtruth[0] if init_box is None else as_box(init_box, name="init_box")
-        if not np.all(np.isfinite(box0)):
-            raise ValueError(f"clip {clip.name!r} has no ground-truth box on frame 0; give "
-                             "the target's first box (init_box=(x, y, w, h)).")
-        self._box0 = clip_box(box0, self._first.shape)
-        self.boxes = np.full((self.n_total, 4), np.nan)
-        self.ok = np.zeros(self.n_total, dtype=bool)
-        self.ms = np.zeros(self.n_total)
         self.states: list[dict] = []
-        self.n_done = 0
+        self._run = Run([(tracker, seed, dict(values))], clip, max_frames=n, init_box=init_box,
+                        on_frame=self._keep_state)
+        self.tracker = self._run.trackers[0]
+        self.n_total = self._run.n_total
+
+    def _keep_state(self, i, tracker, frame, box) -> None:
+        # inside the loop's step, before the run frees the tracker after its last frame
+        self.states.append(D.snapshot(tracker.state()))
+
+    @property
+    def n_done(self) -> int:
+        return self._run.n_done
 
     @property
     def done(self) -> bool:
-        return self.n_done >= self.n_total
+        return self._run.done
 
     def step(self) -> None:
-        """Track one more frame (``init`` on frame 0, ``update`` after), as the evaluation
-        loop does, and keep what the viewer draws of the tracker's state."""
-        i = self.n_done
-        t0 = time.perf_counter()
-        if i == 0:
-            _init_foreign(self.tracker, self._first, self._box0)
-            self.boxes[0], self.ok[0] = self._box0, True
-            self._first = None          # hold only the current frame
-        else:
-            good, box = self.tracker.update(next(self._frames))
-            self.boxes[i], self.ok[i] = np.asarray(box, dtype=float), bool(good)
-        self.ms[i] = (time.perf_counter() - t0) * 1e3
-        self.states.append(D.snapshot(self.tracker.state()))
-        self.n_done = i + 1
-        if self.done:
-            self.close()
+        """Track one more frame through the run loop, keeping what the viewer draws of the
+        tracker's state."""
+        self._run.step()
 
     def advance(self, until: int | None = None, seconds: float | None = None) -> None:
         """Step until ``until`` frames are done (all if None) or ``seconds`` have passed
@@ -101,29 +81,14 @@ class LiveRun:
                 break
 
     def close(self) -> None:
-        """Free what the tracker holds (e.g. opencv-mil's child process), as ``evaluate``
-        does after its loop; a stale run cancelled midway is closed too."""
-        close = getattr(self.tracker, "close", None)
-        if callable(close):
-            close()
+        """Free what the tracker holds (e.g. opencv-mil's child process); the run does it
+        after its last frame, and a stale run cancelled midway is closed here."""
+        self._run.close()
 
     def result(self) -> Result:
         """The finished run as :func:`trackbook.evaluation.evaluate` returns it (same boxes,
         ``ok`` flags and scores; the milliseconds are this run's own)."""
-        if not self.done:
-            raise ValueError(f"the run has {self.n_done} of {self.n_total} frames; finish it "
-                             "(advance()) before asking for its result.")
-        gt = self.clip.groundtruth[:self.n_total]
-        try:
-            scores = metrics.summary(self.boxes[1:], gt[1:])
-        except ValueError:      # no ground truth (a user's video without annotation)
-            scores = {}
-        scores["ms_median"] = float(np.median(self.ms[1:]))
-        scores["ms_mean"] = float(np.mean(self.ms[1:]))
-        p = getattr(self.tracker, "params", None)
-        return Result(self.name, self.clip.name, self.boxes.copy(), self.ok.copy(),
-                      self.ms.copy(), scores,
-                      params=dataclasses.asdict(p) if dataclasses.is_dataclass(p) else {})
+        return self._run.results()[0]
 
     def payload(self) -> dict:
         """What the viewer draws: the run payload of :mod:`trackbook.playground.data` for the
@@ -133,8 +98,8 @@ class LiveRun:
             scores = D.scores_text(self.result())
         else:
             scores = f"{self.name} on {self.clip.name}: running\u2026 {k}/{self.n_total} frames"
-        return D.payload(self.clip, self.name, self.values, self.boxes[:k], self.ok[:k],
-                         scores, self.states[:k], self.n_total)
+        return D.payload(self.clip, self.name, self.values, self._run.boxes[0, :k],
+                         self._run.ok[0, :k], scores, self.states[:k], self.n_total)
 
 
 def running_loop():

@@ -18,6 +18,7 @@ of frames, so a rebuild reuses every run whose inputs did not change.
 from __future__ import annotations
 
 import concurrent.futures as cf
+import functools
 import hashlib
 import importlib.util
 import json
@@ -166,13 +167,11 @@ def to_files(payload: dict, per: int = CHUNK_FRAMES, folder=None) -> dict:
 
 
 # ----------------------------------------------------------------------------- the runs
-_WORKER_CLIPS: dict = {}
-
-
+@functools.lru_cache(maxsize=4)
 def _clip(key):
-    if key not in _WORKER_CLIPS:
-        _WORKER_CLIPS[key] = _clips.load(key)
-    return _WORKER_CLIPS[key]
+    # a worker runs many knob values of the same few clips: load each once, and keep only
+    # the last few (a process that precomputes many pages does not hold every clip)
+    return _clips.load(key)
 
 
 def run_seeds(tracker: str, clip, values: dict, n: int, seeds, init_box=None,

@@ -5,106 +5,56 @@ A value of the paper preset is in one of three states (:data:`STATES`, :func:`st
 elided and the value is the book's reading of it, quoted) or ``"not printed"`` (no passage: the
 field records ``paper=NOT_PRINTED`` and the preset uses the book's stated setting).
 
-``FIELDS[tracker][field] = (key, state)``: ``key`` names the quote of the register,
-``state`` is ``"printed"`` or ``"reading"``. A field with ``paper=NOT_PRINTED`` has no entry. ``UNSUPPORTED`` lists the ``paper=`` values that no passage
-backs, with the reason; the params that record them are to be corrected.
+The passage is declared on the param itself, ``param(..., printed="lee2012.t40", paper=40)``
+or ``reading=`` (:func:`trackbook.params.provenance`); this module reads the declarations of
+the registered trackers. ``UNSUPPORTED`` lists the ``paper=`` values that no passage backs,
+with the reason; the params that record them are to be corrected.
 """
 
 from __future__ import annotations
 
-_LEE2012_COLOR = {
-    "n_particles": ("lee2012.n100", "printed"),
-    "sigma_color": ("lee2012.sigma04", "printed"),
-    "size_noise": ("lee2012.motion_noise", "printed"),
-    "vx_noise": ("lee2012.motion_noise", "printed"),
-    "vy_noise": ("lee2012.motion_noise", "printed"),
-    "resampler": ("lee2012.resample_cumulative", "printed"),
-    "init": ("lee2012.init_whole_frame", "printed"),
-}
-_LEE2012_HOG = {
-    **_LEE2012_COLOR,
-    "alpha": ("lee2012.alpha01", "printed"),
-    "sigma_hog": ("lee2012.sigma04", "printed"),
-}
-_LEE2012_IPCA = {
-    **_LEE2012_HOG,
-    "T": ("lee2012.t40", "printed"),
-    "learn_threshold": ("lee2012.unfiltered_accumulation", "printed"),
-    "gate_k": ("lee2012.unfiltered_accumulation", "printed"),
-    "learn_every": ("lee2012.accumulate_every_frame", "printed"),
-    # eq. 12-13 reconstruct z with U U^T alone: no anchor to the first frame, no mean
-    # subtracted, the histogram itself as z; the garbled print makes each a reading
-    # eq. 12-13 print D, not D^2, in the exponent
-    "exponent": ("lee2012.likelihood_eq12", "printed"),
-    # A = {I_1 ... I_n}, n = 40, m = 1, old features removed: a window of the last 40 is a
-    # reading (which feature leaves is not printed)
-    "window": ("lee2012.window40", "reading"),
-    "anchor": ("lee2012.likelihood_eq12", "reading"),
-    "centre": ("lee2012.likelihood_eq12", "reading"),
-    "feature_map": ("lee2012.likelihood_eq12", "reading"),
-}
-_LEE2015 = {
-    # eq. 2 is printed with an ellipsis after I_x: the rest of f is the book's completion
-    "features": ("lee2015.features_eq2", "reading"),
-}
+import dataclasses
 
-FIELDS: dict[str, dict[str, tuple[str, str]]] = {
-    "color-pf": _LEE2012_COLOR,
-    "color-hog-pf": _LEE2012_HOG,
-    "color-hog-ipca": _LEE2012_IPCA,
-    "edge-ray-pf": {
-        "n_particles": ("kim2016.max999", "printed"),
-        "ratio_low": ("kim2016.ratio_window", "printed"),
-        "ratio_high": ("kim2016.ratio_window", "printed"),
-    },
-    "covariance": {
-        **_LEE2015,
-        "fallback": ("lee2015.whole_frame_search", "printed"),
-    },
-    "kalman-covariance": {
-        **_LEE2015,
-        "fallback": ("lee2015.research_in_window", "reading"),
-        "q": ("lee2015.q_identity", "printed"),
-        "r": ("lee2015.r_identity", "printed"),
-        # the 24 x 24 region is printed for the search-rate measurement, not for a model window
-        "init_size": ("lee2015.window24", "reading"),
-    },
-    "mean-shift": {
-        "bandwidth": ("cho2005.bandwidth_eq3", "printed"),
-    },
-    "condensation": {
-        "bandwidth": ("cho2005.bandwidth_eq3", "printed"),
-        "n_particles": ("cho2005.condensation_n100", "printed"),
-        "resampler": ("cho2005.condensation_sampling", "reading"),
-    },
-    "condensation-mean-shift": {
-        "bandwidth": ("cho2005.bandwidth_eq3", "printed"),
-        "n_particles": ("cho2005.proposed_n5", "printed"),
-        "resampler": ("cho2005.condensation_sampling", "reading"),
-        # eq. 12-13 move each candidate once (y1 = y0 + y^n); no iteration count is printed
-        "max_iter": ("cho2005.likelihood_rises_eq13", "reading"),
-        "use_motion": ("cho2005.motion_vector", "printed"),
-        # eq. 8 is one least-squares problem over the region: one level, one solve, as read
-        "flow_levels": ("cho2005.flow_eq8", "reading"),
-        "flow_iterations": ("cho2005.flow_eq8", "reading"),
-    },
-}
+from .. import params as _params
+from .. import trackers as _trackers
 
 #: ``(tracker, field)``: ``paper=`` values that no passage backs.
 UNSUPPORTED: dict[tuple[str, str], str] = {}
-
-
-def backing(tracker: str, field: str) -> tuple[str, str] | None:
-    """``(quote key, "printed" | "reading")`` behind ``tracker``'s ``field``, or None."""
-    return FIELDS.get(tracker, {}).get(field)
-
 
 #: The three honest states of a value of the paper preset.
 STATES = ("printed", "reading", "not printed")
 
 
+def _field(tracker: str, field: str) -> dataclasses.Field | None:
+    P = getattr(_trackers.get(tracker), "Params", None)
+    if not dataclasses.is_dataclass(P):
+        return None
+    return next((f for f in dataclasses.fields(P) if f.name == field), None)
+
+
 def state(tracker: str, field: str) -> tuple[str, str | None]:
     """``(state, quote key)`` of ``tracker``'s ``field`` in the paper preset: ``("printed",
     key)``, ``("reading", key)`` or ``("not printed", None)`` (see :data:`STATES`)."""
-    found = backing(tracker, field)
-    return found[::-1] if found else ("not printed", None)
+    f = _field(tracker, field)
+    return ("not printed", None) if f is None else _params.provenance(f)
+
+
+def backing(tracker: str, field: str) -> tuple[str, str] | None:
+    """``(quote key, "printed" | "reading")`` behind ``tracker``'s ``field``, or None."""
+    st, key = state(tracker, field)
+    return None if key is None else (key, st)
+
+
+def table() -> dict[str, dict[str, tuple[str, str]]]:
+    """``{tracker: {field: (quote key, state)}}`` of every registered tracker's backed
+    fields (trackers with none are left out)."""
+    out = {}
+    for name in _trackers.available():
+        P = getattr(_trackers.get(name), "Params", None)
+        if not dataclasses.is_dataclass(P):
+            continue
+        found = {f.name: backing(name, f.name) for f in dataclasses.fields(P)}
+        found = {k: v for k, v in found.items() if v is not None}
+        if found:
+            out[name] = found
+    return out

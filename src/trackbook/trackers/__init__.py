@@ -23,7 +23,8 @@ from .reference import REFERENCE
 from . import color_pf  # noqa: E402,F401  lee2012: color-pf (02_particle_filters)
 from . import color_hog_pf  # noqa: E402,F401  lee2012: color-hog-pf (03_hog)
 from . import color_hog_ipca  # noqa: E402,F401  lee2012: color-hog-ipca (04_incremental_svd)
-from . import hsi_hog_pf  # noqa: E402,F401  kim2016: hsi-color-pf, hog-pf
+from . import hsi_color_pf  # noqa: E402,F401  kim2016: hsi-color-pf
+from . import hog_pf  # noqa: E402,F401  kim2016: hog-pf
 from . import edge_ray  # noqa: E402,F401  kim2016: edge-ray-pf
 from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covariance
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift

@@ -14,7 +14,6 @@ from typing import ClassVar
 import numpy as np
 
 from .._checks import check_box_in_frame, check_frame, check_seed, positional_seed_error
-from .._memory import keep_freed_memory
 from ..params import make_params
 
 
@@ -178,7 +177,6 @@ class Tracker:
         check_seed(seed)
         self.seed = seed
         self._params = make_params(self.Params, params)
-        keep_freed_memory()     # per-frame temporaries reuse memory instead of page-faulting
         self.rng = np.random.default_rng(seed)
         self._shape = None
         self.bbox = None

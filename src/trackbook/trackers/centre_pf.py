@@ -25,7 +25,8 @@ class CentrePFParams:
     # Kim et al. (2016), section 3 before eq. 2: "at most 999 particles" (the seed text has no
     # page numbers; the comments name the passage).
     n_particles: int = param(
-        300, 1, 999, 1, "N, number of particles (Kim et al. 2016: up to 999)", paper=999,
+        300, 1, 999, 1, "N, number of particles (Kim et al. 2016: up to 999)",
+        printed="kim2016.max999", paper=999,
         why="300 keeps a chapter's clips within seconds; 999 is the most the paper gives its "
         "proposed filter [quote: kim2016.max999]")
     sigma: float = param(

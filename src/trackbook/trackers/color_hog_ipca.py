@@ -50,7 +50,7 @@ import dataclasses
 import numpy as np
 
 from ..features.color import bhattacharyya_coefficient
-from ..filters.motion import similarity
+from ..filters.lee2012_models import similarity
 from ..learning.incremental_svd import IncrementalSVD
 from ..params import NOT_PRINTED, param
 from .color_hog_pf import ColorHogPF, ColorHogPFParams
@@ -99,7 +99,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
 
     # T = 40: end of section II ("T = 40"), n = 40 in section IV.
     T: int = param(40, 2, 200, 1, "frames collected before the first SVD (section II, V)",
-                   paper=40)
+                   printed="lee2012.t40", paper=40)
     # Not printed: no number of basis vectors (the 16 of the paper is the patch width
     # [quote: lee2012.resize16x24]).
     K: int = param(2, 1, 64, 1, "basis vectors kept by the incremental SVD (eq. 6-7)",
@@ -124,24 +124,26 @@ class ColorHogIPCAParams(ColorHogPFParams):
     window: int = param(0, 0, 400, 1,
                         "learning window n: the subspace of the last n feature vectors "
                         "(section IV, A = {I_1 ... I_n}); 0 = keep every frame, faded by "
-                        "the forgetting factor", paper=40,
+                        "the forgetting factor", reading="lee2012.window40", paper=40,
                         why="the book keeps every frame and fades old ones (forgetting 0.95), "
                         "chosen with the anchor on the seven public sequences we tuned on (lab "
                         "notes); the window is the paper preset")
     # Eq. 12-13 put D, not D^2, in the exponent [quote: lee2012.likelihood_eq12]
     exponent: str = param("D2", doc="the subspace likelihood exp(-e / 2 sigma^2) after T: "
                           "e = 'D' as eq. 12-13 print it, or 'D2' = D^2 as eq. 10-11, with "
-                          "D = ||z - U U^T z||", choices=("D2", "D"), paper="D",
+                          "D = ||z - U U^T z||", choices=("D2", "D"),
+                          printed="lee2012.likelihood_eq12", paper="D",
                           why="with D^2 the subspace term has the scale of eq. 10-11's "
                           "D^2 = 1 - rho, so sigma means the same before and after T "
                           "(04_incremental_svd)")
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
-                                   "(0 = every frame, the paper preset)", paper=0.0)
+                                   "(0 = every frame, the paper preset)",
+                                   printed="lee2012.unfiltered_accumulation", paper=0.0)
     anchor: float = param(0.7, 0.0, 1.0, 0.05,
                           "beta: after T the distance is beta D^2(h, h_ref) + (1 - beta) "
                           "D^2_subspace (0 = subspace only, the paper's eq. 12-13)",
-                          paper=0.0,
+                          reading="lee2012.likelihood_eq12", paper=0.0,
                           why="the book's addition: the first frame keeps pulling drifted "
                           "subspaces back; 0.7 chosen on the seven public sequences we tuned "
                           "on (04_incremental_svd, lab notes)")
@@ -149,7 +151,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           "relative gate: learn a frame only if its energy -log(similarity) is "
                           "<= median + k * MAD of the last accepted frames (0 = off, the paper "
                           "preset)",
-                          paper=0.0)
+                          printed="lee2012.unfiltered_accumulation", paper=0.0)
     gate_on: str = param("model", doc="what the relative gate measures: 'model' = the fused "
                          "similarity under the current likelihood, 'reference' = the fused "
                          "Bhattacharyya similarity to the first frame", choices=("model", "reference"),
@@ -161,14 +163,15 @@ class ColorHogIPCAParams(ColorHogPFParams):
                              why="the book's addition; only used when gate_k > 0 (off in the "
                              "paper preset)")
     learn_every: int = param(1, 1, 20, 1, "learn every k-th frame only (1 = every frame)",
-                             paper=1)
+                             printed="lee2012.accumulate_every_frame", paper=1)
     centre: bool = param(False, doc="learn mean-centred features (Ross et al.) instead of the "
-                         "raw z of eq. 12-13 (the paper)", paper=False)
+                         "raw z of eq. 12-13 (the paper)",
+                         reading="lee2012.likelihood_eq12", paper=False)
     # The paper learns the features themselves, read as the raw histograms (section IV
     # [quote: lee2012.window40], eq. 12-13 of section V [quote: lee2012.likelihood_eq12]).
     feature_map: str = param("sqrt", doc="learned feature z: 'sqrt' = sqrt(histogram) "
                              "(unit norm), 'raw' = the histogram itself", choices=("sqrt", "raw"),
-                             paper="raw",
+                             reading="lee2012.likelihood_eq12", paper="raw",
                              why="on raw histograms (norm ~0.1) every reconstruction error is "
                              "~0.01 and every particle weighs the same; sqrt(h) has unit norm "
                              "(04_incremental_svd)")

@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 
 from ..features.hog import gray_patches, hog_of_patches
-from ..filters.motion import fuse, gaussian_likelihood, similarity, states_to_boxes
+from ..filters.lee2012_models import fuse, gaussian_likelihood, similarity, states_to_boxes
 from ..params import param
 from .color_pf import ColorPF, ColorPFParams
 from .registry import register
@@ -32,10 +32,10 @@ class ColorHogPFParams(ColorPFParams):
 
     # alpha = 0.1: section V, the sentence after eq. 14 ("alpha = 0.1").
     alpha: float = param(0.1, 0.0, 1.0, 0.05, "alpha of eq. 14: weight of colour vs HOG",
-                         paper=0.1)
+                         printed="lee2012.alpha01", paper=0.1)
     # sigma_hog = 0.4: section V, after eq. 12-13 ("all sigma ... 0.4").
     sigma_hog: float = param(0.2, 0.02, 1.0, 0.02, "sigma_hog of eq. 11 and 13",
-                             paper=0.4,
+                             printed="lee2012.sigma04", paper=0.4,
                              why="same reason as sigma_color: at 0.4 the HOG weights are nearly "
                              "flat; 0.2 scored higher on the seven public sequences we tuned on "
                              "(03_hog)")

@@ -28,8 +28,9 @@ import numpy as np
 
 from ..features.color import HSV_BINS, hsv_bin_index_u8, kernel_weights, weighted_histograms
 from ..features.patches import sample_patches
-from ..filters.motion import (VX, VY, W, H, box_to_state, clamp_states, gaussian_likelihood,
-                              predict_eq9, similarity, states_to_boxes)
+from ..filters.lee2012_models import (VX, VY, W, H, box_to_state, clamp_states,
+                                      gaussian_likelihood, predict_eq9, similarity,
+                                      states_to_boxes)
 from ..filters.particle import effective_sample_size
 from ..params import NOT_PRINTED, param
 from .particle_filter import (ParticleFilterTracker, lost_below_param, lost_k_param,
@@ -60,30 +61,31 @@ class ColorPFParams:
     # N = 100: section V, the sentence after the pseudocode.
     n_particles: int = param(100, 1, 100_000, 10, "N, number of particles (section V)",
                              slider=(10, 1000),
-                             paper=100)
+                             printed="lee2012.n100", paper=100)
     # sigma_color = 0.4: section V, the sentence after eq. 12-13 ("all sigma ... 0.4").
     sigma_color: float = param(0.2, 0.02, 1.0, 0.02, "sigma_color of eq. 10 (and 12): width of "
-                               "the colour likelihood", paper=0.4,
+                               "the colour likelihood", printed="lee2012.sigma04", paper=0.4,
                                why="at 0.4 a perfect match and a poor one (D^2 = 0.3) differ by "
                                "a factor 0.4 only: the weights are nearly flat; 0.2 scored best "
                                "of 0.1, 0.2, 0.4 on the seven public sequences we tuned on "
                                "(02_particle_filters)")
     # gamma_width, gamma_height ~ U(-2.5, 2.5): section V, the paragraph after eq. 9.
     size_noise: float = param(2.5, 0.0, 10.0, 0.5, "gamma_w, gamma_h ~ U(-a, a) of eq. 9 (px)",
-                              paper=2.5)
+                              printed="lee2012.motion_noise", paper=2.5)
     # gamma_xdot ~ U(-6.5, 6.5): section V, the paragraph after eq. 9.
     vx_noise: float = param(6.5, 0.0, 20.0, 0.5, "gamma_xdot ~ U(-a, a) of eq. 9 (px/frame)",
-                            paper=6.5)
+                            printed="lee2012.motion_noise", paper=6.5)
     # gamma_ydot ~ U(-2.5, 2.5): section V, the paragraph after eq. 9.
     vy_noise: float = param(2.5, 0.0, 20.0, 0.5, "gamma_ydot ~ U(-a, a) of eq. 9 (px/frame)",
-                            paper=2.5)
+                            printed="lee2012.motion_noise", paper=2.5)
     # Pseudocode of section V: one r ~ U[0, 1] per particle, smallest i with c_i >= r.
     resampler: str = resampler_param("SIR selection step (the pseudocode's is multinomial: one "
-                                     "uniform draw per particle)", paper="multinomial")
+                                     "uniform draw per particle)",
+                                     printed="lee2012.resample_cumulative", paper="multinomial")
     # Pseudocode, t = 0 (and section II): particles spread uniformly over the whole image.
     init: str = param("box", doc="t = 0 particles: 'box' within a quarter box of the given "
                       "box; 'frame' uniform over the frame with the given box size (the paper)",
-                      choices=("frame", "box"), paper="frame",
+                      choices=("frame", "box"), printed="lee2012.init_whole_frame", paper="frame",
                       why="the tracker is given the first box; a whole-frame start throws it "
                       "away and lets look-alikes win the first frames; 'box' scored higher on "
                       "the seven public sequences we tuned on (02_particle_filters)")

@@ -97,7 +97,8 @@ class EllipseColourParams:
     bandwidth: str = param("ellipse", doc="radius r of the kernel k(r) = 1 - r^2 of eq. 3 and "
                            "10 on the ellipse's pixels: 'ellipse' = ||((x - y_x) / Hx, (y - y_y) / "
                            "Hy)||, 'diagonal' = ||y - x_i|| / a with a = sqrt(Hx^2 + Hy^2) as "
-                           "printed", choices=BANDWIDTHS, paper="diagonal",
+                           "printed", choices=BANDWIDTHS,
+                           printed="cho2005.bandwidth_eq3", paper="diagonal",
                            why="Comaniciu et al. (2003)'s normalised ellipse: the weight falls to 0 "
                                "at the ellipse's edge in every direction; with the printed a the "
                                "edge pixels keep Hy^2/a^2 to Hx^2/a^2 (1/2 on a circle), a kernel "
@@ -120,7 +121,8 @@ class CondensationParams(EllipseColourParams):
 
     # Cho & Kang 2005 §5.1
     n_particles: int = param(100, 1, 100_000, 1, "N, number of candidates (100 in Cho & Kang "
-                             "2005 §5.1, after Nummiaro)", paper=100, slider=(1, 2000))
+                             "2005 §5.1, after Nummiaro)",
+                             printed="cho2005.condensation_n100", paper=100, slider=(1, 2000))
     noise_position: float = param(0.15, 0.0, 2.0, 0.01,
                                   "std of w_x, w_y of eq. 9, in half-axes (the noise of A)",
                                   paper=NOT_PRINTED,
@@ -140,7 +142,8 @@ class CondensationParams(EllipseColourParams):
                                    "size (0) because the colour likelihood lets it shrink "
                                    "(08_mean_shift)")
     # §3.2 step ①: sample from the weighted set
-    resampler: str = resampler_param("factored sampling (step ①)", paper="multinomial")
+    resampler: str = resampler_param("factored sampling (step ①)",
+                                     reading="cho2005.condensation_sampling", paper="multinomial")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -149,11 +152,11 @@ class CondensationMeanShiftParams(CondensationParams):
     with 5 candidates, plus the mean-shift of every candidate and the motion vector."""
 
     n_particles: int = param(5, 1, 100_000, 1, "N, number of candidates (5 in Cho & Kang 2005 "
-                             "§5.1)", paper=5, slider=(1, 500))
+                             "§5.1)", printed="cho2005.proposed_n5", paper=5, slider=(1, 500))
     # §4, eq. 12-13: one mean-shift step moves each candidate, printed once per candidate.
     max_iter: int = param(10, 0, 100, 1, "mean-shift iterations per candidate at most "
                           "(eq. 12-13)",
-                          paper=1,
+                          reading="cho2005.likelihood_rises_eq13", paper=1,
                           why="eq. 12-13 print one shift per candidate, read as one iteration "
                               "(the paper preset) [quote: cho2005.likelihood_rises_eq13]; the "
                               "book repeats "
@@ -164,16 +167,17 @@ class CondensationMeanShiftParams(CondensationParams):
                        "pixels", paper=NOT_PRINTED,
                        why="step ⑥ of §3.3 names epsilon without a value; half a pixel")
     use_motion: bool = param(True, doc="seed the prediction with the motion vector (p, q) of "
-                             "eq. 8", paper=True)  # §4, eq. 5-9
+                             "eq. 8", printed="cho2005.motion_vector", paper=True)  # §4, eq. 5-9
     flow_levels: int = param(3, 1, 6, 1, "pyramid levels of the motion vector (1 = one "
                              "solve, the paper preset's reading of eq. 8)",
+                             reading="cho2005.flow_eq8",
                              paper=1,  # eq. 5-8: one least-squares solve on the frame pair
                              why="one solve cannot measure motions over ~1 px; a 3-level "
                                  "pyramid measures the sample clips' 2-6 px steps (lab notes)")
     flow_iterations: int = param(1, 1, 20, 1, "solves per pyramid level (1 = one solve, "
                                  "the paper preset's reading of eq. 8; more re-warp and solve "
                                  "for the remainder)",
-                                 paper=1)  # eq. 8: one solve
+                                 reading="cho2005.flow_eq8", paper=1)  # eq. 8: one solve
 
 
 @dataclasses.dataclass(frozen=True)

@@ -38,7 +38,7 @@ import numpy as np
 
 from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
                                    feature_dimension, feature_planes, forstner_distance)
-from ..features.motion import find_moving_region
+from ..features.frame_difference import find_moving_region
 from ..filters.kalman import constant_velocity
 from ..params import NOT_PRINTED, param
 from .base import Tracker
@@ -55,6 +55,7 @@ class CovarianceParams:
         "xyI|Ix||Iy|", doc="feature vector f_k: eq. 2 with |Ix|, |Iy| (default), eq. 2 as "
         "printed ('xyIIxIy'), eq. 3 ('rI|Ix||Iy|') or colour ('xyRGB|Ix||Iy|')",
         choices=FEATURE_SETS,
+        reading="lee2015.features_eq2",
         paper="xyIIxIy",   # sec. 2.1, eq. 2: f_k = [x y I(x,y) I_x(x,y) ...], signed gradients
         why="|Ix|, |Iy| as in Tuzel et al. (2006): a dark-on-light and a light-on-dark edge "
             "give the same feature (07_region_covariance)")
@@ -77,6 +78,7 @@ class CovarianceParams:
         "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
         "frame ('frame') or nowhere else, keeping the prediction ('window')",
         choices=("frame", "window"),
+        printed="lee2015.whole_frame_search",
         paper="frame")     # sec. 3, Fig. 3, frame 160: covariance alone searches the whole frame
     global_stride: int = param(
         4, 1, 16, 1, doc="stride of the coarse whole-frame search (refined at `stride` "
@@ -100,13 +102,14 @@ class KalmanCovarianceParams(CovarianceParams):
         "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
         "frame ('frame') or only the next, larger Kalman window ('window')",
         choices=("frame", "window"),
+        reading="lee2015.research_in_window",
         paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
         why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
             "the yellow ball again after its first bounce; 'window' is the paper's")
     q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
-                     paper=1.0)   # sec. 2.2: Q = I_4 printed
+                     printed="lee2015.q_identity", paper=1.0)   # sec. 2.2: Q = I_4 printed
     r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
-                     paper=1.0)   # sec. 2.2: R = I_2 printed
+                     printed="lee2015.r_identity", paper=1.0)   # sec. 2.2: R = I_2 printed
     p0: float = param(
         1.0, 0.01, 1000.0, 1.0, doc="P₀ = p0·I, the initial state covariance",
         paper=NOT_PRINTED,   # sec. 2.2 prints F, H, Q, R but no P_0
@@ -141,7 +144,7 @@ class KalmanCovarianceParams(CovarianceParams):
     init_size: int = param(
         24, 4, 128, 1, doc="side (px) of the model window centred on the moving region "
         "when initialising without a box (`init_from_motion`)",
-        paper=24)   # sec. 3, Table 1: "tracked with a 24x24 area"
+        reading="lee2015.window24", paper=24)   # sec. 3, Table 1: "tracked with a 24x24 area"
 
 
 def n_windows(frame_shape, size, stride: int) -> int:
@@ -441,7 +444,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         ``init_size`` × ``init_size`` px (the paper's 24×24, Table 1) centred on the region's
         centre, measured on ``frame1``; the Kalman filter starts there with zero velocity.
 
-        ``kwargs`` go to :func:`~trackbook.features.motion.find_moving_region` (its
+        ``kwargs`` go to :func:`~trackbook.features.frame_difference.find_moving_region` (its
         ``threshold`` defaults to ``motion_threshold``). Returns the
         model box ``(x, y, w, h)`` (the tracker is then initialised on ``frame1``); raises
         ``ValueError`` if nothing moved.

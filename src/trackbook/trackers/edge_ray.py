@@ -34,9 +34,9 @@ from .registry import register
 class EdgeRayParams(CentrePFParams):
     # Kim et al. (2016), section 3.2 after eq. 5: "the range of Ratio is set to 0.8-1.2".
     ratio_low: float = param(0.8, 0.1, 1.0, 0.05, "lower bound of the Ratio window (eq. 5)",
-                             paper=0.8)
+                             printed="kim2016.ratio_window", paper=0.8)
     ratio_high: float = param(1.2, 1.0, 5.0, 0.05, "upper bound of the Ratio window (eq. 5)",
-                              paper=1.2)
+                              printed="kim2016.ratio_window", paper=1.2)
     canny_low: float = param(
         50.0, 0.0, 500.0, 5.0, "Canny low hysteresis threshold", paper=NOT_PRINTED,
         why="no edge detector or threshold is printed; the book uses Canny (1986) "

@@ -18,11 +18,10 @@ def departures_table(name) -> str:
     """
     from .. import trackers
     from ..quotes import TEXT_REFERENCE
-    from ..quotes.fields import FIELDS
+    from ..quotes.fields import state
 
-    backed = FIELDS.get(name, {})
     rows = [{**r, "paper": f"{r['paper']} (a reading)"}
-            if backed.get(r["param"], (None, None))[1] == "reading" else r
+            if state(name, r["param"])[0] == "reading" else r
             for r in trackers.departures(name)]
     # the quote references of a why are for the source's reader; the chapter beside the table
     # shows the passages themselves
