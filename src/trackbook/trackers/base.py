@@ -234,9 +234,14 @@ class Tracker:
         return dataclasses.replace(st, confidence=conf, **self._drawn())
 
     def _last_confidence(self) -> float | None:
-        """Hook: the tracker's own confidence in the last estimate, larger is surer (None: the
-        tracker has none). Returns a number the last ``update`` stored, never computes one, so
-        ``state()`` costs nothing and changes nothing."""
+        """Hook: the tracker's own confidence in the last estimate.
+
+        Returns
+        -------
+        float or None
+            Larger is surer; None when the tracker has none. A number the last ``update``
+            stored, never one computed here, so ``state()`` costs nothing and changes nothing.
+        """
         return None
 
     def _drawn(self) -> dict:

@@ -284,9 +284,15 @@ class ParticleFilterTracker(Tracker):
         return float(np.nanmax(m)) if m.size and np.isfinite(m).any() else float("nan")
 
     def _last_confidence(self) -> float:
-        """``TrackerState.confidence``: the best particle's match of the last frame,
-        max_i (1 - D^2_i) (:attr:`best_match`, the number the distance gate reads); 0, the
-        lowest match, on a constant frame, which is not scored."""
+        """The confidence ``state()`` reports: the best particle's match of the last frame.
+
+        Returns
+        -------
+        float
+            max_i (1 - D^2_i) (:attr:`best_match`, the number the distance gate reads), in
+            [0, 1]; 0, the lowest match, on a constant frame, which is not scored. Read from
+            what the last ``update`` stored, so calling it changes nothing.
+        """
         m = self.best_match
         return m if np.isfinite(m) else 0.0
 
