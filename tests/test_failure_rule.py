@@ -189,12 +189,16 @@ def _level(q):
     return 10.0 - q * S
 
 
-def test_counted_on_target_leaves_grace_frames_after_an_absence():
+def test_counted_on_target_leaves_grace_frames_after_an_absence_or_a_miss():
     absent = np.array([0, 0, 1, 1, 0, 0, 0, 0], bool)
     on = np.ones(8, bool)
     np.testing.assert_array_equal(counted_on_target(absent, on, 2),
                                   [1, 1, 0, 0, 0, 0, 1, 1])
     np.testing.assert_array_equal(counted_on_target(absent, on, 0), ~absent)
+    # the tracker off the target (not absent) for a frame: found again, the same grace
+    on = np.array([1, 1, 0, 1, 1, 1, 1], bool)
+    np.testing.assert_array_equal(counted_on_target(np.zeros(7, bool), on, 2),
+                                  [1, 1, 0, 0, 0, 1, 1])
 
 
 def test_detection_rates_by_hand():

@@ -58,15 +58,16 @@ def test_absent_frames_show_nothing_of_the_target(kind):
     # an independent check: the same scene drawn without its target has the same pixels on
     # the absent frames, and differs on every present frame
     for s in SEEDS:
-        with_t, _, _, absent, _ = fs._render(kind, s)
+        with_t, _, _, absent, share, _ = fs._render(kind, s)
         without, *_ = fs._render(kind, s, target=False)
         same = np.all(with_t == without, axis=(1, 2, 3))
         np.testing.assert_array_equal(same, absent)
+        np.testing.assert_array_equal(share == 0, absent)
 
 
 def test_a_faded_target_is_absent_only_in_the_dark():
     for s in SEEDS:
-        with_t, _, _, absent, plan = fs._render("fade", s)
+        with_t, _, _, absent, _, plan = fs._render("fade", s)
         without, *_ = fs._render("fade", s, target=False)
         assert absent.any()
         np.testing.assert_array_equal(absent, plan.gain < fs.FADE_ABSENT)
@@ -102,6 +103,19 @@ def test_the_lookalike_appears_while_the_target_is_covered():
         if shown.any():                                      # elsewhere, not on the target
             from trackbook.evaluation.metrics import iou
             assert np.all(iou(alike[shown], clip.groundtruth[shown]) < 0.5)
+
+
+def test_the_share_in_view():
+    for kind in ("exit", "occlusion"):
+        for s in SEEDS:
+            sc = fs.render_scene(kind, s)
+            v = sc.visible
+            assert np.all((v >= 0) & (v <= 1)) and np.all((v == 0) == sc.absent)
+            assert np.all(v[:12] > 0.9)                     # in full view first
+            first = np.flatnonzero(sc.absent)[0]
+            assert 0 < v[first - 1] < 0.9                   # it goes gradually
+            clip, absent = fs.failure_scene(kind, s)
+            np.testing.assert_array_equal(clip.frames.array, sc.clip.frames.array)
 
 
 def test_the_calibration_set():

@@ -59,12 +59,25 @@ _START = 12                  # frames of the target in full view before any even
 
 @dataclasses.dataclass(frozen=True)
 class FailureScene:
-    """One scene of a calibration set: its kind and seed, the clip, the absent frames."""
+    """One calibration scene.
+
+    Attributes
+    ----------
+    kind : str
+    seed : int
+    clip : Clip
+    absent : ndarray of bool
+        Frames with no part of the target in view.
+    visible : ndarray of float
+        Share of the target's area in view per frame (0 where absent; a target half out of
+        the frame or half covered shows 0.5).
+    """
 
     kind: str
     seed: int
     clip: Clip
     absent: np.ndarray
+    visible: np.ndarray
 
 
 # ------------------------------------------------------------------ random ingredients
@@ -288,6 +301,8 @@ def _render(kind: str, seed: int, size=None, frames=None, target: bool = True):
     gt = np.full((p.n, 4), np.nan)
     alike = np.full((p.n, 4), np.nan)
     absent = np.zeros(p.n, bool)
+    share = np.zeros(p.n)
+    area = float((p.target.alpha >= 0.5).sum())
     for i in range(p.n):
         noise = (noise_rng.normal(0.0, p.noise, (h, w, 3)).astype(np.float32)
                  if p.noise > 0 else None)
@@ -297,6 +312,7 @@ def _render(kind: str, seed: int, size=None, frames=None, target: bool = True):
         lit = p.gain[i] >= FADE_ABSENT
         absent[i] = not (target and p.shown[i] and seen and lit)
         if not absent[i]:
+            share[i] = min(seen / (area * p.scale[i] ** 2), 1.0)
             x0, y0 = max(box[0], 0.0), max(box[1], 0.0)
             x1, y1 = min(box[0] + box[2], w), min(box[1] + box[3], h)
             gt[i] = (x0, y0, x1 - x0, y1 - y0)
@@ -304,29 +320,31 @@ def _render(kind: str, seed: int, size=None, frames=None, target: bool = True):
         if i in p.blur:
             img = cv2.filter2D(img, -1, p.blur[i], borderType=cv2.BORDER_REFLECT)
         out[i] = expose(img, p.gain[i], noise=noise)
-    return out, gt, alike, absent, p
+    return out, gt, alike, absent, share, p
 
 
 def _compose(p: _Plan, i: int, draw_target: bool):
     """Composite frame ``i`` (float, before light): returns the image, the target's box,
-    whether any of it is in view, and the lookalike's box (NaN if not drawn)."""
+    how many of its pixels are in view, and the lookalike's box (NaN if not drawn)."""
     canvas = Canvas(p.backgrounds[p.bg_index[i]])
     abox = np.full(4, np.nan)
     if p.alike is not None and np.all(np.isfinite(p.alike_centre[i])):
         ap = canvas.paste(p.alike, p.alike_centre[i])
         if canvas.visible(ap).any():
             abox = ap.box
-    box, seen = np.full(4, np.nan), False
+    box, seen = np.full(4, np.nan), 0
     tp = canvas.paste(p.target, p.centre[i], scale=p.scale[i]) if draw_target else None
     if p.occluder is not None:
         canvas.paste(p.occluder, p.occ_centre[i])
     if tp is not None:
-        box, seen = tp.box, bool(canvas.visible(tp).any())
+        box, seen = tp.box, int(canvas.visible(tp).sum())
     return canvas.img, box, seen, abox
 
 
 def failure_scene(kind: str, seed: int, size=None, frames: int | None = None):
-    """One randomised calibration scene of ``kind`` drawn from ``seed``.
+    """One randomised calibration scene of ``kind`` drawn from ``seed``: ``(clip, absent)``.
+
+    :func:`render_scene` gives the same scene with the share of the target in view.
 
     Parameters
     ----------
@@ -348,21 +366,31 @@ def failure_scene(kind: str, seed: int, size=None, frames: int | None = None):
     absent : ndarray of bool
         The frames with no part of the target in view.
     """
+    sc = render_scene(kind, seed, size, frames)
+    return sc.clip, sc.absent
+
+
+def _check(kind, seed, size, frames) -> None:
     if kind not in KINDS:
         raise ValueError(f"unknown failure scene kind {kind!r}; kinds: {', '.join(KINDS)}.")
     check_seed(seed)
     if seed is None:
         raise ValueError("failure_scene needs an integer seed (0, 1, ...): a scene is "
                          "drawn from it, and the same seed gives the same frames.")
-    if frames is not None and (isinstance(frames, bool) or not isinstance(frames, (int, np.integer))
-                               or frames < 40):
+    if frames is not None and (isinstance(frames, bool) or frames < 40
+                               or not isinstance(frames, (int, np.integer))):
         raise ValueError(f"frames = {frames!r}: give a whole number >= 40 (12 frames before "
                          "the event, the event, 12 frames after it).")
     if size is not None:
         w, h = (int(v) for v in size)
         if w < 96 or h < 72:
             raise ValueError(f"size = {tuple(size)}: give (w, h) of at least (96, 72).")
-    frames_, gt, alike, absent, _ = _render(kind, int(seed), size, frames)
+
+
+def render_scene(kind: str, seed: int, size=None, frames: int | None = None) -> FailureScene:
+    """The scene of :func:`failure_scene` as a :class:`FailureScene` (with ``visible``)."""
+    _check(kind, seed, size, frames)
+    frames_, gt, alike, absent, share, _ = _render(kind, int(seed), size, frames)
     targets = {"target": gt}
     if kind == "lookalike":
         targets["lookalike"] = alike
@@ -370,7 +398,8 @@ def failure_scene(kind: str, seed: int, size=None, frames: int | None = None):
                 description=f"calibration scene: {kind}", attributes=_ATTRIBUTES[kind],
                 source="generated")
     absent.setflags(write=False)
-    return clip, absent
+    share.setflags(write=False)
+    return FailureScene(kind, int(seed), clip, absent, share)
 
 
 class CalibrationSet(Sequence):
@@ -402,8 +431,7 @@ class CalibrationSet(Sequence):
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
         kind, s = self.specs[i]
-        clip, absent = failure_scene(kind, s)
-        return FailureScene(kind, s, clip, absent)
+        return render_scene(kind, s)
 
     def __repr__(self) -> str:
         return (f"CalibrationSet(seed={self.seed}, per_kind={self.per_kind}, "
@@ -420,4 +448,4 @@ def calibration_set(seed: int = 0, per_kind: int = 6, kinds=KINDS) -> Calibratio
 
 
 __all__ = ["CalibrationSet", "FADE_ABSENT", "FailureScene", "KINDS", "calibration_set",
-           "failure_scene"]
+           "failure_scene", "render_scene"]

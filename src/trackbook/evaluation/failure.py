@@ -21,8 +21,9 @@ from scipy.stats import rankdata
 
 from ..trackers.failure import FailureDetector, FailureParams
 
-#: Default grid of ``k_lost`` (in spreads below the reference).
-K_LOST_GRID = tuple(np.round(np.arange(0.5, 12.01, 0.5), 2))
+#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse
+#: (a very steady confidence has a small spread, so a real drop is many spreads deep).
+K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21)])
 #: Default ratios ``k_found / k_lost`` tried for each ``k_lost``.
 FOUND_RATIOS = (0.25, 0.5, 0.75, 1.0)
 
@@ -97,16 +98,18 @@ def _runs(series) -> list[np.ndarray]:
 
 
 def counted_on_target(absent, on_target, grace: int) -> np.ndarray:
-    """On-target frames a false loss is charged on: ``on_target`` and not absent, except the
-    ``grace`` frames right after an absent frame (a rule that needs ``m`` frames to trust a
-    return is not charged for them)."""
+    """On-target frames a false loss is charged on: on target (and not absent) on this frame
+    and on the ``grace`` frames before it (frames before the first count as on target: the
+    run starts on the given box). A rule that needs ``m`` frames in a row to trust the
+    target is not charged for them after the target comes back or the tracker finds it
+    again."""
     absent = np.asarray(absent, bool)
     on = np.asarray(on_target, bool) & ~absent
-    if grace > 0 and absent.any():
-        # frames i with an absent frame among i - grace .. i - 1
-        recent = np.convolve(absent.astype(int), np.ones(grace, int))[:absent.size]
-        recent = np.r_[0, recent[:-1]]
-        on &= recent == 0
+    if grace > 0:
+        off = (~on).astype(int)
+        # frames i with a frame not on target among i - grace .. i - 1
+        recent = np.convolve(off, np.ones(grace, int))[:off.size]
+        on &= np.r_[0, recent[:-1]] == 0
     return on
 
 
@@ -137,8 +140,9 @@ def detection_rates(series, absent, on_target, params: FailureParams,
         Frames where the tracker is on the target (e.g. IoU > 0.5 with the ground truth).
     params : FailureParams
     grace : int, optional
-        Frames after each absence not charged as false losses (default ``params.m``: the
-        rule needs ``m`` frames to trust the return).
+        Frames at the start of every stretch on target not charged as false losses (default
+        ``params.m``: the rule needs ``m`` frames to trust a return); see
+        :func:`counted_on_target`.
 
     Returns
     -------
