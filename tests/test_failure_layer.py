@@ -13,6 +13,7 @@ import pytest
 
 from trackbook import trackers
 from trackbook.clips.failure_scenes import KINDS, calibration_set
+from trackbook.evaluation.failure import load_calibration
 from trackbook.trackers.failure import FailureParams
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -119,7 +120,7 @@ def test_the_script_calibrates_writes_and_prints(fakes, tmp_path, capsys):
     (row,) = doc["rows"]
     assert row["tracker"] == "test-template"
     p = FailureParams(**{k: row[k] for k in ("k_lost", "k_found", "m", "window", "warmup")})
-    assert p.k_found <= p.k_lost
+    assert p.k_found <= p.k_lost and load_calibration(out) == {"test-template": p}
     assert 0 <= row["absent_lost"] <= 1 and 0 <= row["false_lost"] <= 1
     assert set(row["per_kind"]) == set(KINDS) and row["per_kind"]["blur"]["n_absent"] == 0
     # matching the patch anywhere: the best correlation is higher on target than without it
@@ -141,5 +142,7 @@ def test_the_script_says_when_a_tracker_has_no_confidence(fakes, tmp_path, capsy
     assert err.startswith("error: tracker 'test-mute' reports no confidence") and \
         "'confidence'" in err
     assert not out.exists()
+    with pytest.raises(FileNotFoundError, match="experiments/calibrate_failure.py"):
+        load_calibration(out)
     assert mod.main(["--trackers", "no-such", "--out", str(out)]) == 2
     assert "unknown tracker(s) no-such" in capsys.readouterr().err

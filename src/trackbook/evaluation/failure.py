@@ -15,6 +15,8 @@ The rule itself lives in :mod:`trackbook.trackers.failure` (the trackers will us
 from __future__ import annotations
 
 import dataclasses
+import json
+from pathlib import Path
 
 import numpy as np
 from scipy.stats import rankdata
@@ -254,5 +256,38 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
                        feasible and r["absent_lost"] >= target, r["n_absent"], r["n_on"])
 
 
-__all__ = ["Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID", "FOUND_RATIOS",
-           "calibrate", "counted_on_target", "detection_rates", "roc_auc", "roc_curve"]
+#: The file the calibration script writes (package data beside the other results).
+CALIBRATION_FILE = "failure_calibration.json"
+
+
+def load_calibration(path=None) -> dict:
+    """``{tracker name: FailureParams}`` from a calibration file.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        The JSON file ``experiments/calibrate_failure.py`` wrote; default the committed one,
+        ``trackbook/results/failure_calibration.json``.
+
+    Raises
+    ------
+    FileNotFoundError
+        When there is no such file, naming the command that makes it.
+    """
+    if path is None:
+        from .. import results
+
+        path = results.HERE / CALIBRATION_FILE
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no calibration file {path}; make it with: python "
+                                "experiments/calibrate_failure.py (--out FILE to write "
+                                "elsewhere).")
+    fields = [f.name for f in dataclasses.fields(FailureParams)]
+    rows = json.loads(path.read_text(encoding="utf-8"))["rows"]
+    return {r["tracker"]: FailureParams(**{k: r[k] for k in fields}) for r in rows}
+
+
+__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID", "FOUND_RATIOS",
+           "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
+           "roc_curve"]
