@@ -95,7 +95,7 @@ def record(names, scenes, seed: int = 0, log=None) -> dict:
         conf = np.full((len(made), len(sc.clip)), np.nan)
         index = {id(t): j for j, t in enumerate(made)}
 
-        def hook(i, tracker, frame, box):
+        def hook(i, tracker, frame, box, conf=conf, index=index):
             if i > 0:
                 conf[index[id(tracker)], i] = confidence_of(tracker)
 

@@ -116,6 +116,7 @@ def test_the_share_in_view():
             assert 0 < v[first - 1] < 0.9                   # it goes gradually
             clip, absent = fs.failure_scene(kind, s)
             np.testing.assert_array_equal(clip.frames.array, sc.clip.frames.array)
+            np.testing.assert_array_equal(absent, sc.absent)
 
 
 def test_the_calibration_set():
