@@ -1,0 +1,253 @@
+"""Calibrate the failure rule for every tracker on the calibration scenes.
+
+Every tracker of ``trackbook.trackers.available()`` (and OpenCV's ``opencv-mil`` unless
+``--no-mil``: about 100 ms a frame) runs over ``trackbook.clips.calibration_set`` (seven kinds
+of disappearance: leaving the frame, an occluder, a camera cut, a fade to black, shrinking
+away, heavy blur, a look-alike while the target is covered). For every frame after the first
+the script records the tracker's own confidence (``tracker.state().confidence``), the IoU
+with the ground truth and whether the target is absent; then
+``trackbook.evaluation.failure.calibrate`` chooses each tracker's thresholds of the rule
+(``trackbook.trackers.failure.FailureDetector``): flag at least 95 % of the absent frames
+while flagging at most 1 % of the frames on target (IoU > 0.5, at least half of the target
+in view, not the first 3 frames after a return: the rule needs 3 frames to trust it) lost.
+
+It writes ``src/trackbook/results/failure_calibration.json`` (tracker -> thresholds,
+achieved rates, ROC AUC of the confidence; the set's seed and size; the library version and
+``git describe``) and prints a table tracker x kind: share of absent frames flagged / share
+of on-target frames flagged (false losses) / ROC AUC of the confidence.
+
+    PYTHONPATH=src python experiments/calibrate_failure.py [--quick] [--no-mil]
+        [--per-kind N] [--seed S] [--trackers a,b] [--out FILE] [--force]
+
+``--quick`` uses 2 scenes per kind (a smoke test); the default is 6. One scene per kind (about
+380 frames) takes about 3 minutes for the thirteen trackers on one core, 40 s of it
+``opencv-mil``: ``--quick`` about 7 minutes, the default about 20.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import trackbook
+from trackbook import trackers
+from trackbook.clips.failure_scenes import KINDS, calibration_set
+from trackbook.evaluation.runner import evaluate_many
+from trackbook.evaluation.failure import calibrate, detection_rates, roc_auc
+from trackbook.evaluation.metrics import iou as box_iou
+
+ROOT = Path(__file__).resolve().parents[1]
+OUT = ROOT / "src" / "trackbook" / "results" / "failure_calibration.json"
+ON_TARGET_IOU = 0.5
+MIN_VISIBLE = 0.5
+
+
+class NoConfidence(RuntimeError):
+    """A tracker's state has no ``confidence``."""
+
+
+@dataclasses.dataclass
+class Run:
+    """One tracker on one scene, frames 1..N-1 (frame 0 is the given box)."""
+
+    kind: str
+    confidence: np.ndarray
+    iou: np.ndarray
+    absent: np.ndarray
+    visible: np.ndarray
+
+    @property
+    def on_target(self) -> np.ndarray:
+        """Frames the rule should call ok: the box on the target (IoU > 0.5) and at least
+        half of the target in view (a target mostly out of the frame or behind a panel may
+        well be called lost)."""
+        return ~self.absent & (self.iou > ON_TARGET_IOU) & (self.visible >= MIN_VISIBLE)
+
+
+def confidence_of(tracker) -> float:
+    """``tracker.state().confidence`` as a float (None -> NaN), or :class:`NoConfidence`."""
+    st = tracker.state()
+    if not hasattr(st, "confidence"):
+        name = getattr(tracker, "name", type(tracker).__name__)
+        hint = " (or leave it out with --no-mil)" if name == "opencv-mil" else ""
+        raise NoConfidence(
+            f"tracker {name!r} reports no confidence: its state() has no 'confidence' field; "
+            f"the failure rule is calibrated on TrackerState.confidence, so add it to the "
+            f"tracker first{hint}.")
+    c = st.confidence
+    return math.nan if c is None else float(c)
+
+
+def record(names, scenes, seed: int = 0, log=None) -> dict:
+    """``{tracker: [Run per scene]}``: every tracker over every scene, in lockstep per scene."""
+    out = {n: [] for n in names}
+    for k, sc in enumerate(scenes):
+        t0 = time.perf_counter()
+        made = [trackers.create(n, seed=seed) for n in names]
+        conf = np.full((len(made), len(sc.clip)), np.nan)
+        index = {id(t): j for j, t in enumerate(made)}
+
+        def hook(i, tracker, frame, box, conf=conf, index=index):
+            if i > 0:
+                conf[index[id(tracker)], i] = confidence_of(tracker)
+
+        try:
+            results = evaluate_many([(t, None, {}) for t in made], sc.clip, on_frame=hook)
+        finally:
+            for t in made:
+                close = getattr(t, "close", None)
+                if callable(close):
+                    close()
+        for j, (n, r) in enumerate(zip(names, results)):
+            iou = np.nan_to_num(box_iou(r.boxes, sc.clip.groundtruth), nan=0.0)
+            out[n].append(Run(sc.kind, conf[j, 1:], iou[1:], np.asarray(sc.absent)[1:],
+                              np.asarray(sc.visible)[1:]))
+        if log:
+            log(f"scene {k + 1}/{len(scenes)} ({sc.kind}, {len(sc.clip)} frames): "
+                f"{time.perf_counter() - t0:.1f} s")
+    return out
+
+
+def _auc(runs) -> float:
+    on = [r.confidence[r.on_target] for r in runs]
+    off = [r.confidence[r.absent] for r in runs]
+    on, off = np.concatenate(on or [[]]), np.concatenate(off or [[]])
+    return roc_auc(on, off) if on.size and off.size else math.nan
+
+
+def _rates(runs, params) -> dict:
+    return detection_rates([r.confidence for r in runs], [r.absent for r in runs],
+                           [r.on_target for r in runs], params)
+
+
+def summarise(name: str, runs, **options) -> dict:
+    """The JSON row of one tracker: chosen thresholds, achieved rates, ROC AUC, per kind."""
+    cal = calibrate([r.confidence for r in runs], [r.absent for r in runs],
+                    [r.on_target for r in runs], **options)
+    per_kind = {}
+    for kind in dict.fromkeys(r.kind for r in runs):
+        sub = [r for r in runs if r.kind == kind]
+        rates = _rates(sub, cal.params)
+        per_kind[kind] = {"absent_lost": rates["absent_lost"], "false_lost": rates["false_lost"],
+                          "n_absent": rates["n_absent"], "n_on": rates["n_on"],
+                          "roc_auc": _auc(sub)}
+    return {"tracker": name, **dataclasses.asdict(cal.params),
+            "absent_lost": cal.absent_lost, "false_lost": cal.false_lost,
+            "feasible": cal.feasible, "meets_target": cal.meets_target,
+            "n_absent": cal.n_absent, "n_on": cal.n_on, "roc_auc": _auc(runs),
+            "per_kind": per_kind}
+
+
+def _cell(v, fmt="{:.2f}") -> str:
+    return "-" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
+
+
+def table(rows, kinds) -> str:
+    """Markdown: tracker x kind, each cell ``absent flagged / false losses / ROC AUC``."""
+    head = ["tracker", "k_lost / k_found"] + list(kinds) + ["all"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for r in rows:
+        cells = [r["tracker"], f"{r['k_lost']:g} / {r['k_found']:g}"]
+        for k in kinds:
+            p = r["per_kind"].get(k, {})
+            cells.append(f"{_cell(p.get('absent_lost'))} / {_cell(p.get('false_lost'), '{:.3f}')}"
+                         f" / {_cell(p.get('roc_auc'))}")
+        cells.append(f"{_cell(r['absent_lost'])} / {_cell(r['false_lost'], '{:.3f}')} / "
+                     f"{_cell(r['roc_auc'])}")
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def git_describe() -> str:
+    try:
+        return subprocess.run(["git", "describe", "--always", "--dirty", "--tags"], cwd=ROOT,
+                              capture_output=True, text=True, check=True,
+                              timeout=30).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def _json_safe(x):
+    if isinstance(x, float) and not math.isfinite(x):
+        return None
+    if isinstance(x, dict):
+        return {k: _json_safe(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_json_safe(v) for v in x]
+    if isinstance(x, (np.floating, np.integer, np.bool_)):
+        return _json_safe(x.item())
+    return x
+
+
+def parse(argv):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--quick", action="store_true", help="2 scenes per kind (a smoke test)")
+    ap.add_argument("--per-kind", type=int, default=None, help="scenes per kind (default 6)")
+    ap.add_argument("--seed", type=int, default=0, help="the calibration set's seed")
+    ap.add_argument("--trackers", default=None, help="comma-separated names (default: all)")
+    ap.add_argument("--no-mil", action="store_true", help="leave out opencv-mil (slow)")
+    ap.add_argument("--out", default=str(OUT), help="the JSON file to write")
+    ap.add_argument("--force", action="store_true", help="overwrite --out if it exists")
+    return ap.parse_args(argv)
+
+
+def main(argv=None) -> int:
+    a = parse(sys.argv[1:] if argv is None else argv)
+    per_kind = a.per_kind if a.per_kind is not None else (2 if a.quick else 6)
+    if per_kind < 1 or a.seed < 0:
+        print("error: --per-kind must be >= 1 and --seed >= 0.", file=sys.stderr)
+        return 2
+    if a.trackers:
+        names = [n.strip() for n in a.trackers.split(",") if n.strip()]
+        known = trackers.available(reference=True)
+        unknown = [n for n in names if n not in known]
+        if unknown:
+            print(f"error: unknown tracker(s) {', '.join(unknown)}; known: {', '.join(known)}.",
+                  file=sys.stderr)
+            return 2
+    else:
+        names = trackers.available(reference=not a.no_mil)
+    if a.no_mil:
+        names = [n for n in names if n != "opencv-mil"]
+    out = Path(a.out)
+    if out.exists() and not a.force:
+        print(f"error: {out} exists; pass --force to overwrite it.", file=sys.stderr)
+        return 2
+    scenes = calibration_set(seed=a.seed, per_kind=per_kind)
+
+    def log(msg):
+        print(msg, file=sys.stderr, flush=True)
+
+    try:
+        runs = record(names, scenes, log=log)
+    except NoConfidence as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    options = {"m": 3, "window": 30, "warmup": 5, "target": 0.95, "max_false": 0.01}
+    rows = [summarise(n, runs[n], **options) for n in names]
+    doc = {"name": "failure_calibration",
+           "description": "thresholds of the failure rule per tracker, calibrated on the "
+                          "calibration scenes (trackbook.clips.calibration_set)",
+           "command": "python experiments/calibrate_failure.py"
+                      + (" --quick" if a.quick else "") + (" --no-mil" if a.no_mil else ""),
+           "seed": a.seed, "per_kind": per_kind, "scenes": len(scenes), "kinds": list(KINDS),
+           "frames": int(sum(len(r.confidence) for r in runs[names[0]])) if names else 0,
+           "on_target_iou": ON_TARGET_IOU, "on_target_min_visible": MIN_VISIBLE, **options,
+           "version": trackbook.__version__, "git": git_describe(), "rows": rows}
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(_json_safe(doc), indent=1) + "\n")
+    print(table(rows, KINDS))
+    log(f"wrote {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,293 @@
+"""How well a tracker's confidence tells "on target" from "target absent", and the thresholds
+of the failure rule chosen on calibration runs.
+
+* :func:`roc_curve`, :func:`roc_auc` - the confidence as a score, frame by frame: on-target
+  frames are the positives, target-absent frames the negatives;
+* :func:`detection_rates` - what :class:`~trackbook.trackers.failure.FailureDetector` does on
+  whole runs: the share of absent frames it flags lost, and of on-target frames it flags
+  lost by mistake;
+* :func:`calibrate` - the thresholds (:class:`~trackbook.trackers.failure.FailureParams`)
+  of one tracker, chosen on its calibration runs by a stated objective.
+
+The rule itself lives in :mod:`trackbook.trackers.failure` (the trackers will use it).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+from scipy.stats import rankdata
+
+from ..trackers.failure import FailureDetector, FailureParams
+
+#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse
+#: (a very steady confidence has a small spread, so a real drop is many spreads deep).
+K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21)])
+#: Default ratios ``k_found / k_lost`` tried for each ``k_lost``.
+FOUND_RATIOS = (0.25, 0.5, 0.75, 1.0)
+
+
+def _scores(values, name: str) -> np.ndarray:
+    v = np.asarray(values, float).ravel()
+    if v.size == 0:
+        raise ValueError(f"{name} is empty: the ROC needs at least one confidence of each "
+                         "class (frames on target and frames with the target absent).")
+    return np.where(np.isnan(v), -np.inf, v)
+
+
+def roc_curve(confidence_present, confidence_absent):
+    """ROC of the confidence as a test of "on target" (positive) against "target absent".
+
+    A frame is called on target at threshold ``t`` when its confidence is ``>= t``.
+
+    Parameters
+    ----------
+    confidence_present : array_like
+        Confidences of frames where the tracker is on the target (e.g. IoU > 0.5).
+    confidence_absent : array_like
+        Confidences of frames where no part of the target is in view. NaN (no score) counts
+        as ``-inf`` in both: below every threshold.
+
+    Returns
+    -------
+    fpr : ndarray
+        Share of absent frames called on target, per threshold (non-decreasing, from 0).
+    tpr : ndarray
+        Share of on-target frames called on target, per threshold.
+    thresholds : ndarray
+        ``+inf`` (nothing called on target), then the distinct confidences, decreasing.
+
+    Notes
+    -----
+    The same points as ``sklearn.metrics.roc_curve(y, c, drop_intermediate=False)`` with
+    ``y = 1`` on target, 0 absent.
+    """
+    pos = _scores(confidence_present, "confidence_present")
+    neg = _scores(confidence_absent, "confidence_absent")
+    c = np.concatenate([pos, neg])
+    y = np.concatenate([np.ones(pos.size, bool), np.zeros(neg.size, bool)])
+    order = np.argsort(-c, kind="mergesort")
+    c, y = c[order], y[order]
+    # the last index of each run of equal confidences: all of a tie switch together
+    last = np.r_[np.flatnonzero(np.diff(c) != 0), c.size - 1]
+    tp = np.cumsum(y)[last]
+    fp = (last + 1) - tp
+    return (np.r_[0.0, fp / neg.size], np.r_[0.0, tp / pos.size], np.r_[np.inf, c[last]])
+
+
+def roc_auc(confidence_present, confidence_absent) -> float:
+    """Area under :func:`roc_curve`: P(c_on > c_absent) + P(c_on = c_absent) / 2.
+
+    Computed from average ranks (the Mann-Whitney statistic), so ties count one half.
+    0.5 is chance; 1 separates the classes perfectly.
+    """
+    pos = _scores(confidence_present, "confidence_present")
+    neg = _scores(confidence_absent, "confidence_absent")
+    ranks = rankdata(np.concatenate([pos, neg]))      # average ranks over ties
+    u = ranks[:pos.size].sum() - pos.size * (pos.size + 1) / 2.0
+    return float(u / (pos.size * neg.size))
+
+
+def _runs(series) -> list[np.ndarray]:
+    """One array per run: a list of 1-D series, or one 1-D series."""
+    if (isinstance(series, np.ndarray) and series.ndim == 1) or (
+            len(series) and np.ndim(series[0]) == 0):
+        series = [series]
+    return [np.asarray(s).ravel() for s in series]
+
+
+def counted_on_target(absent, on_target, grace: int) -> np.ndarray:
+    """On-target frames a false loss is charged on: on target (and not absent) on this frame
+    and on the ``grace`` frames before it (frames before the first count as on target: the
+    run starts on the given box). A rule that needs ``m`` frames in a row to trust the
+    target is not charged for them after the target comes back or the tracker finds it
+    again."""
+    absent = np.asarray(absent, bool)
+    on = np.asarray(on_target, bool) & ~absent
+    if grace > 0:
+        off = (~on).astype(int)
+        # frames i with a frame not on target among i - grace .. i - 1
+        recent = np.convolve(off, np.ones(grace, int))[:off.size]
+        on &= np.r_[0, recent[:-1]] == 0
+    return on
+
+
+def _check(series, absent, on_target):
+    s, a, o = _runs(series), _runs(absent), _runs(on_target)
+    if not (len(s) == len(a) == len(o)):
+        raise ValueError(f"{len(s)} confidence series, {len(a)} absent masks and {len(o)} "
+                         "on_target masks: give one of each per run.")
+    for j, (x, y, z) in enumerate(zip(s, a, o)):
+        if not (x.size == y.size == z.size):
+            raise ValueError(f"run {j}: {x.size} confidences, {y.size} absent flags and "
+                             f"{z.size} on_target flags; give one of each per frame.")
+    return ([x.astype(float) for x in s], [y.astype(bool) for y in a],
+            [z.astype(bool) for z in o])
+
+
+def detection_rates(series, absent, on_target, params: FailureParams,
+                    grace: int | None = None) -> dict:
+    """What the failure rule does on whole runs.
+
+    Parameters
+    ----------
+    series : list of 1-D arrays (or one array)
+        The confidence of every frame the rule judges, one array per run.
+    absent : list of bool arrays
+        Frames where no part of the target is in view.
+    on_target : list of bool arrays
+        Frames where the tracker is on the target (e.g. IoU > 0.5 with the ground truth).
+    params : FailureParams
+    grace : int, optional
+        Frames at the start of every stretch on target not charged as false losses (default
+        ``params.m``: the rule needs ``m`` frames to trust a return); see
+        :func:`counted_on_target`.
+
+    Returns
+    -------
+    dict
+        ``absent_lost`` (share of absent frames judged lost), ``false_lost`` (share of charged
+        on-target frames judged lost), ``n_absent``, ``n_on`` (their counts), ``n_absent_lost``
+        and ``n_false_lost``. A share over no frames is NaN.
+    """
+    s, a, o = _check(series, absent, on_target)
+    grace = params.m if grace is None else int(grace)
+    det = FailureDetector(params)
+    n_abs = n_abs_lost = n_on = n_false = 0
+    for x, ab, on in zip(s, a, o):
+        lost = ~det.run(x)
+        on = counted_on_target(ab, on, grace)
+        n_abs += int(ab.sum())
+        n_abs_lost += int((lost & ab).sum())
+        n_on += int(on.sum())
+        n_false += int((lost & on).sum())
+    return {"absent_lost": n_abs_lost / n_abs if n_abs else float("nan"),
+            "false_lost": n_false / n_on if n_on else float("nan"),
+            "n_absent": n_abs, "n_on": n_on, "n_absent_lost": n_abs_lost,
+            "n_false_lost": n_false}
+
+
+@dataclasses.dataclass(frozen=True)
+class Calibration:
+    """The thresholds :func:`calibrate` chose and what they achieve on the calibration runs.
+
+    Attributes
+    ----------
+    params : FailureParams
+    absent_lost, false_lost : float
+        The rates of :func:`detection_rates` with ``params``.
+    feasible : bool
+        Whether ``false_lost <= max_false`` (else ``params`` are the fewest false losses).
+    meets_target : bool
+        Whether also ``absent_lost >= target``.
+    n_absent, n_on : int
+        Frames the rates are over.
+    """
+
+    params: FailureParams
+    absent_lost: float
+    false_lost: float
+    feasible: bool
+    meets_target: bool
+    n_absent: int
+    n_on: int
+
+
+def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: float = 0.01,
+              k_lost_grid=K_LOST_GRID, found_ratios=FOUND_RATIOS, m: int = 3,
+              window: int = 30, warmup: int = 5, grace: int | None = None) -> Calibration:
+    """Choose ``k_lost`` and ``k_found`` for one tracker from its calibration runs.
+
+    The rule is stateful (a loss freezes the reference; recovery takes ``m`` frames), so it
+    is judged on whole runs with per-frame labels, not on two pools of values.
+
+    Objective, over the grid ``k_lost in k_lost_grid``, ``k_found = ratio * k_lost`` for
+    ``ratio in found_ratios``:
+
+    1. constraint: false losses ``<= max_false`` (on-target frames judged lost);
+    2. maximise ``min(absent_lost, target)``: flag the absent frames, but detection beyond
+       the target buys nothing;
+    3. then the fewest false losses; 4. then the most absent frames flagged;
+    5. then the largest ``k_lost`` (the farthest from the on-target noise), then the
+       smallest ``k_found`` (the widest hysteresis band: the least flapping).
+
+    When no grid point meets the constraint, the fewest false losses win (then 2-5), and
+    the result says ``feasible=False``.
+
+    Parameters
+    ----------
+    series, absent, on_target
+        As for :func:`detection_rates`: one confidence array and two bool masks per run.
+    target : float
+        The share of absent frames to flag (0.95).
+    max_false : float
+        The most on-target frames that may be flagged lost (0.01).
+    k_lost_grid, found_ratios
+        The candidates.
+    m, window, warmup
+        Fixed :class:`FailureParams` fields.
+    grace : int, optional
+        See :func:`detection_rates` (default ``m``).
+
+    Returns
+    -------
+    Calibration
+    """
+    s, a, o = _check(series, absent, on_target)
+    if not any(x.any() for x in a) or not any(x.any() for x in o):
+        raise ValueError("calibrate needs runs with absent frames and runs with on-target "
+                         "frames; the calibration set's scenes give both.")
+    best, best_key = None, None
+    for k in sorted({float(v) for v in k_lost_grid}):
+        for ratio in sorted({float(v) for v in found_ratios}):
+            p = FailureParams(k_lost=k, k_found=ratio * k, m=m, window=window, warmup=warmup)
+            r = detection_rates(s, a, o, p, grace=grace)
+            fa, fl = r["absent_lost"], r["false_lost"]
+            ok = fl <= max_false
+            key = (ok, 0.0 if ok else -fl, min(fa, target), -fl, fa, k, -p.k_found)
+            if best_key is None or key > best_key:
+                best, best_key = (p, r), key
+    p, r = best
+    feasible = r["false_lost"] <= max_false
+    return Calibration(p, r["absent_lost"], r["false_lost"], feasible,
+                       feasible and r["absent_lost"] >= target, r["n_absent"], r["n_on"])
+
+
+#: The file the calibration script writes (package data beside the other results).
+CALIBRATION_FILE = "failure_calibration.json"
+
+
+def load_calibration(path=None) -> dict:
+    """``{tracker name: FailureParams}`` from a calibration file.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        The JSON file ``experiments/calibrate_failure.py`` wrote; default the committed one,
+        ``trackbook/results/failure_calibration.json``.
+
+    Raises
+    ------
+    FileNotFoundError
+        When there is no such file, naming the command that makes it.
+    """
+    if path is None:
+        from .. import results
+
+        path = results.HERE / CALIBRATION_FILE
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no calibration file {path}; make it with: python "
+                                "experiments/calibrate_failure.py (--out FILE to write "
+                                "elsewhere).")
+    fields = [f.name for f in dataclasses.fields(FailureParams)]
+    rows = json.loads(path.read_text(encoding="utf-8"))["rows"]
+    return {r["tracker"]: FailureParams(**{k: r[k] for k in fields}) for r in rows}
+
+
+__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID", "FOUND_RATIOS",
+           "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
+           "roc_curve"]

@@ -1,0 +1,201 @@
+"""The one rule that turns a tracker's confidence series into ``ok``: :class:`FailureDetector`.
+
+Every tracker reports a confidence each frame (larger is surer), but on its own scale: a
+peak-to-sidelobe ratio lies in [0, 50], a Bhattacharyya coefficient in [0, 1], a negated
+distance in (-inf, 0]. One fixed threshold cannot serve them all, so the rule compares each
+frame with the tracker's *own* recent confidence, through a robust centre and spread, with
+hysteresis. The thresholds of each tracker are a few numbers (:class:`FailureParams`),
+chosen on calibration runs by :func:`trackbook.evaluation.failure.calibrate`.
+
+This module imports nothing of the package, so the trackers can use it.
+"""
+
+from __future__ import annotations
+
+import collections
+import dataclasses
+import math
+
+import numpy as np
+
+#: 1 / Phi^-1(3/4): scales the median absolute deviation to a Gaussian's standard deviation.
+MAD_TO_SIGMA = 1.482602218505602
+#: sqrt(pi / 2): scales the mean absolute deviation to a Gaussian's standard deviation.
+MEAN_AD_TO_SIGMA = 1.2533141373155003
+
+
+@dataclasses.dataclass(frozen=True)
+class FailureParams:
+    """The thresholds of :class:`FailureDetector` for one tracker.
+
+    Attributes
+    ----------
+    k_lost : float
+        Lost when the confidence falls more than ``k_lost`` spreads below the reference.
+    k_found : float
+        Found again only at no more than ``k_found`` spreads below the reference;
+        ``k_found <= k_lost`` (the band between them is the hysteresis).
+    m : int
+        Frames in a row at or above the found threshold needed to recover (>= 1).
+    window : int
+        How many of the last frames judged ok make the reference (>= 2).
+    warmup : int
+        Finite confidences the reference must hold before the rule may declare a loss
+        (1 <= warmup <= window): a reference of one or two values has no spread to speak of.
+    """
+
+    k_lost: float = 4.0
+    k_found: float = 2.0
+    m: int = 3
+    window: int = 30
+    warmup: int = 5
+
+    def __post_init__(self):
+        for name in ("k_lost", "k_found"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                    or v < 0:
+                raise ValueError(f"FailureParams.{name} = {v!r}: give a finite number >= 0 "
+                                 "(a multiple of the confidence's spread).")
+        if self.k_found > self.k_lost:
+            raise ValueError(f"FailureParams: k_found = {self.k_found} is above k_lost = "
+                             f"{self.k_lost}; recovering must be at least as strict as staying "
+                             "on target, so give k_found <= k_lost.")
+        for name, low in (("m", 1), ("window", 2), ("warmup", 1)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < low:
+                raise ValueError(f"FailureParams.{name} = {v!r}: give a whole number >= {low}.")
+        if self.warmup > self.window:
+            raise ValueError(f"FailureParams: warmup = {self.warmup} exceeds window = "
+                             f"{self.window}; the reference never holds that many frames, so "
+                             "give warmup <= window.")
+
+
+def robust_reference(values) -> tuple[float, float]:
+    """Centre and spread ``(r, s)`` of confidences: the median and a scaled absolute deviation.
+
+    ``s = 1.4826 * median|c - r|`` (the median absolute deviation, MAD, in the units of a
+    Gaussian's standard deviation); when more than half of the values equal the median (a
+    quantised confidence) the MAD is 0 although the values vary, and ``s`` falls back to
+    ``1.2533 * mean|c - r|``, zero only when all values are equal. Both are equivariant under
+    ``c -> a c + b`` (``a > 0``): ``r -> a r + b``, ``s -> a s``.
+    """
+    v = np.asarray(values, float)
+    r = float(np.median(v))
+    dev = np.abs(v - r)
+    s = MAD_TO_SIGMA * float(np.median(dev))
+    if s == 0.0:
+        s = MEAN_AD_TO_SIGMA * float(dev.mean())
+    return r, s
+
+
+class FailureDetector:
+    r"""Judge each frame on target or lost from the tracker's confidence alone.
+
+    With :math:`r_t, s_t` the median and the scaled MAD (:func:`robust_reference`) of the
+    confidences of the last ``window`` frames judged ok before frame :math:`t`:
+
+    .. math::
+
+        \text{on target} \to \text{lost} &\iff c_t < r_t - k_\text{lost}\, s_t, \\
+        \text{lost} \to \text{on target} &\iff c_{t-j} \ge r - k_\text{found}\, s
+        \text{ for } j = 0, \dots, m - 1,
+
+    with :math:`k_\text{found} \le k_\text{lost}`, and :math:`r, s` frozen at the loss while
+    lost (a reference that learned from lost frames would drift down to them and declare the
+    target found). A frame judged ok adds its confidence to the reference; a lost one does
+    not. Until the reference holds ``warmup`` finite values, every frame is ok.
+
+    Why this rule: trackers' confidences differ in scale *and* sign (a peak-to-sidelobe
+    ratio in [0, 50], a Bhattacharyya coefficient in [0, 1], a negated distance in
+    (-inf, 0]). A ratio test ``c_t < rho r_t`` is scale-free but assumes a positive
+    confidence with a meaningful zero; it is wrong for a negated distance and changes
+    meaning when the confidence is shifted. Median and MAD are equivariant under every
+    positive affine map ``c -> a c + b`` (``a > 0``), so the rule gives exactly the same ``ok``
+    sequence for ``c`` and ``a c + b``: the thresholds ``k`` are in units of the tracker's own
+    spread, comparable between trackers. Median and MAD also ignore the few outlying frames
+    (a brief occlusion the tracker survived) that would pull a mean and standard deviation.
+
+    Conventions: a NaN or ``-inf`` confidence (the tracker found nothing to score) is below
+    any threshold; ``+inf`` is above any threshold and is not added to the reference (it
+    carries no finite value). A constant reference has ``s = 0``: then any value below ``r`` is
+    a drop, the only scale-free reading of a series that never varied.
+
+    Parameters
+    ----------
+    params : FailureParams, optional
+        The thresholds; the defaults of :class:`FailureParams` when left out.
+
+    Examples
+    --------
+    >>> d = FailureDetector(FailureParams(k_lost=4, k_found=2, m=2, window=10, warmup=3))
+    >>> [d.step(c) for c in [10, 11, 10, 11, 10, 2, 2, 10, 10, 11]]
+    [True, True, True, True, True, False, False, False, True, True]
+    """
+
+    def __init__(self, params: FailureParams | None = None):
+        if params is None:
+            params = FailureParams()
+        if not isinstance(params, FailureParams):
+            raise TypeError(f"FailureDetector takes a FailureParams, not {type(params).__name__}"
+                            "; build one with FailureParams(k_lost=..., k_found=...).")
+        self.params = params
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget everything (a new clip, or the tracker was initialised again)."""
+        self._ref = collections.deque(maxlen=self.params.window)
+        self.lost = False
+        self._frozen = (math.nan, math.nan)
+        self._run = 0
+
+    @property
+    def reference(self) -> tuple[float, float]:
+        """``(r, s)`` the next frame is judged against (frozen while lost; NaN before any)."""
+        if self.lost:
+            return self._frozen
+        if not self._ref:
+            return math.nan, math.nan
+        return robust_reference(self._ref)
+
+    @property
+    def ok(self) -> bool:
+        """The judgement of the last frame."""
+        return not self.lost
+
+    def step(self, confidence) -> bool:
+        """Judge the next frame from its confidence; returns ``ok``."""
+        c = float(confidence)
+        p = self.params
+        if not self.lost:
+            if len(self._ref) >= p.warmup:
+                r, s = robust_reference(self._ref)
+                if not c >= r - p.k_lost * s:            # NaN compares False: lost
+                    self.lost, self._frozen, self._run = True, (r, s), 0
+                    return False
+            self._learn(c)
+            return True
+        r, s = self._frozen
+        self._run = self._run + 1 if c >= r - p.k_found * s else 0
+        if self._run >= p.m:
+            self.lost = False
+            self._learn(c)
+            return True
+        return False
+
+    def _learn(self, c: float) -> None:
+        if math.isfinite(c):
+            self._ref.append(c)
+
+    def run(self, confidences) -> np.ndarray:
+        """``ok`` for every value of a series, from a fresh start (the detector is reset)."""
+        self.reset()
+        return np.array([self.step(c) for c in np.asarray(confidences, float).ravel()], bool)
+
+
+def judge(confidences, params: FailureParams | None = None) -> np.ndarray:
+    """``ok`` per frame of one confidence series: ``FailureDetector(params).run(confidences)``."""
+    return FailureDetector(params).run(confidences)
+
+
+__all__ = ["FailureDetector", "FailureParams", "judge", "robust_reference"]

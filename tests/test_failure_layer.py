@@ -1,0 +1,148 @@
+"""The calibration script of the failure rule (``experiments/calibrate_failure.py``), run on
+small trackers defined here that report a confidence through an overridden ``state()``."""
+
+import importlib.util
+import json
+import sys
+import types
+from pathlib import Path
+
+import cv2
+import numpy as np
+import pytest
+
+from trackbook import trackers
+from trackbook.clips.failure_scenes import KINDS, calibration_set
+from trackbook.evaluation.failure import load_calibration
+from trackbook.trackers.failure import FailureParams
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location(
+        "calibrate_failure", ROOT / "experiments" / "calibrate_failure.py")
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = mod          # its dataclass looks its module up there
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _with_confidence(state, c):
+    """The tracker's state plus a ``confidence`` (the field is not on TrackerState here)."""
+    return types.SimpleNamespace(**{k: getattr(state, k) for k in state.__dataclass_fields__},
+                                 confidence=c)
+
+
+class _Template(trackers.Tracker):
+    """Finds its first patch anywhere in the frame; confidence: the best normalised
+    correlation."""
+
+    name = "test-template"
+
+    def _init(self, frame, box):
+        x, y, w, h = (int(round(v)) for v in box)
+        self.patch = frame[y:y + h, x:x + w].copy()
+        self.score = 1.0
+
+    def _update(self, frame):
+        r = cv2.matchTemplate(frame, self.patch, cv2.TM_CCOEFF_NORMED)
+        _, self.score, _, (x, y) = cv2.minMaxLoc(r)
+        return True, (x, y, self.patch.shape[1], self.patch.shape[0])
+
+    def state(self):
+        return _with_confidence(super().state(), self.score)
+
+
+class _Counter(trackers.Tracker):
+    """Stays where it started; confidence: the frame's index."""
+
+    name = "test-counter"
+
+    def _init(self, frame, box):
+        pass
+
+    def _update(self, frame):
+        return True, self.bbox
+
+    def state(self):
+        return _with_confidence(super().state(), float(self.frame_index))
+
+
+class _Mute(trackers.Tracker):
+    """A tracker without a confidence."""
+
+    name = "test-mute"
+
+    def _init(self, frame, box):
+        pass
+
+    def _update(self, frame):
+        return True, self.bbox
+
+
+@pytest.fixture
+def fakes(clean_registry):
+    for cls in (_Template, _Counter, _Mute):
+        trackers.register(cls)
+
+
+def test_record_aligns_confidence_iou_and_absent_frames(fakes):
+    mod = _script()
+    scenes = calibration_set(seed=0, per_kind=1, kinds=("exit",))
+    runs = mod.record(["test-counter"], scenes)["test-counter"]
+    sc, run = scenes[0], runs[0]
+    n = len(sc.clip)
+    # frames 1..N-1: the counter's confidence is the frame index
+    np.testing.assert_array_equal(run.confidence, np.arange(1, n))
+    np.testing.assert_array_equal(run.absent, sc.absent[1:])
+    # it never moves: IoU with the ground truth, 0 where the target is absent
+    gt = sc.clip.groundtruth
+    box = gt[0]
+    x0 = np.maximum(gt[1:, 0], box[0])
+    x1 = np.minimum(gt[1:, 0] + gt[1:, 2], box[0] + box[2])
+    y0 = np.maximum(gt[1:, 1], box[1])
+    y1 = np.minimum(gt[1:, 1] + gt[1:, 3], box[1] + box[3])
+    inter = np.clip(x1 - x0, 0, None) * np.clip(y1 - y0, 0, None)
+    want = np.nan_to_num(inter / (gt[1:, 2] * gt[1:, 3] + box[2] * box[3] - inter), nan=0.0)
+    np.testing.assert_allclose(run.iou, want, atol=1e-12)
+    np.testing.assert_array_equal(run.visible, sc.visible[1:])
+    assert run.on_target.sum() == int(((want > 0.5) & (sc.visible[1:] >= 0.5)).sum())
+
+
+def test_the_script_calibrates_writes_and_prints(fakes, tmp_path, capsys):
+    mod = _script()
+    out = tmp_path / "cal.json"
+    assert mod.main(["--quick", "--trackers", "test-template", "--out", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["seed"] == 0 and doc["per_kind"] == 2 and doc["scenes"] == 2 * len(KINDS)
+    assert doc["kinds"] == list(KINDS) and doc["version"] and doc["git"]
+    (row,) = doc["rows"]
+    assert row["tracker"] == "test-template"
+    p = FailureParams(**{k: row[k] for k in ("k_lost", "k_found", "m", "window", "warmup")})
+    assert p.k_found <= p.k_lost and load_calibration(out) == {"test-template": p}
+    assert 0 <= row["absent_lost"] <= 1 and 0 <= row["false_lost"] <= 1
+    assert set(row["per_kind"]) == set(KINDS) and row["per_kind"]["blur"]["n_absent"] == 0
+    # matching the patch anywhere: the best correlation is higher on target than without it
+    assert row["roc_auc"] > 0.7
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[0].startswith("| tracker | k_lost / k_found | exit | occlusion |")
+    assert printed[2].startswith("| test-template |") and len(printed) == 3
+    # the file is there: not overwritten without --force
+    assert mod.main(["--quick", "--trackers", "test-template", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"error: {out} exists; pass --force to overwrite it."]
+
+
+def test_the_script_says_when_a_tracker_has_no_confidence(fakes, tmp_path, capsys):
+    mod = _script()
+    out = tmp_path / "cal.json"
+    assert mod.main(["--quick", "--trackers", "test-counter,test-mute", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert err.startswith("error: tracker 'test-mute' reports no confidence") and \
+        "'confidence'" in err
+    assert not out.exists()
+    with pytest.raises(FileNotFoundError, match="experiments/calibrate_failure.py"):
+        load_calibration(out)
+    assert mod.main(["--trackers", "no-such", "--out", str(out)]) == 2
+    assert "unknown tracker(s) no-such" in capsys.readouterr().err
