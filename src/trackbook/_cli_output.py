@@ -145,7 +145,38 @@ def output_stem(tracker: str, clip: str, settings: dict, default_settings: dict)
     """``tracker_clip`` for a run with the default settings, else ``tracker_clip_<hash>``: a
     run with other params, seed or preset gets its own files instead of silently overwriting
     another run's (a shorter run, ``--max-frames``, is the same run cut short)."""
-    stem = f"{tracker}_{clip}"
+    from .evaluation.runs import safe_name   # a clip name from a file may hold anything
+
+    stem = f"{tracker}_{safe_name(clip)}"
     if settings_hash(settings) == settings_hash(default_settings):
         return stem
     return f"{stem}_{settings_hash(settings)}"
+
+
+@contextlib.contextmanager
+def staged(paths):
+    """Write a command's outputs through temporary files beside them.
+
+    Yields ``{final path: temporary path}`` (the temporary keeps the final suffix, which
+    OpenCV's video writer goes by). When the block ends normally each temporary replaces its
+    final file (``os.replace``: a reader sees the old file or the new one, never half of one);
+    when it raises (an error, Ctrl-C, SIGTERM) every temporary is removed, so an interrupted
+    run leaves no half-written video or CSV and the earlier files as they were.
+    """
+    mask = os.umask(0)
+    os.umask(mask)
+    temps: dict = {}
+    try:
+        for p in map(Path, paths):
+            fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.stem}.",
+                                       suffix=f".partial{p.suffix}")
+            os.close(fd)
+            os.chmod(tmp, 0o666 & ~mask)     # an ordinary file's mode, not mkstemp's 0600
+            temps[p] = Path(tmp)
+        yield temps
+        for p, tmp in temps.items():
+            os.replace(tmp, p)
+    finally:
+        for tmp in temps.values():
+            with contextlib.suppress(OSError):
+                tmp.unlink(missing_ok=True)
