@@ -168,8 +168,11 @@ def staged(paths):
     temps: dict = {}
     try:
         for p in map(Path, paths):
-            fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.stem}.",
-                                       suffix=f".partial{p.suffix}")
+            try:
+                fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.stem}.",
+                                           suffix=f".partial{p.suffix}")
+            except OSError as e:    # name the file the user asked for, not the temporary
+                raise OSError(e.errno, e.strerror, str(p)) from None
             os.close(fd)
             os.chmod(tmp, 0o666 & ~mask)     # an ordinary file's mode, not mkstemp's 0600
             temps[p] = Path(tmp)

@@ -650,7 +650,8 @@ def main(argv=None) -> int:
     try:
         new_folders = _made_folders(getattr(args, "out", None))
         rc = args.fn(args)
-        sys.stdout.flush()            # a reader that went away is seen here, not at exit
+        if sys.stdout is not None:    # None: started with stdout closed (>&-)
+            sys.stdout.flush()        # a reader that went away is seen here, not at exit
     except BaseException:
         _remove_if_empty(new_folders)
         return _report(sys.exc_info()[1], show_traceback)
