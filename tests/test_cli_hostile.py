@@ -153,10 +153,15 @@ def _refused(folder):
 @pytest.mark.skipif(not (sys.platform.startswith("linux") and os.path.isdir("/sys/kernel")
                          and _refused("/sys/kernel")), reason="needs Linux's /sys")
 @pytest.mark.parametrize("out", ["/sys/kernel", "/sys/kernel/trackbook-out"])
-def test_an_unwritable_out_is_one_line_naming_the_path_and_the_fix(tmp_path, capsys, out):
-    assert cli.main(["track", "mean-shift", "red-cube", "--max-frames", "3",
-                     "--out", out]) == 2
-    msg = _one_line_error(capsys, out, "--out")
+@pytest.mark.parametrize("command", [
+    ["track", "mean-shift", "red-cube", "--max-frames", "3"],
+    ["bench", "--trackers", "mean-shift", "--clips", "red-cube", "--max-frames", "3", "--quiet",
+     "--workers", "1"],
+    ["notebooks"],
+])
+def test_an_unwritable_out_is_one_line_naming_the_path_and_the_fix(capsys, out, command):
+    assert cli.main(command + ["--out", out]) == 2
+    msg = _one_line_error(capsys, out, "--out", "permi")
     assert "bug" not in msg and "your code" not in msg
 
 
@@ -244,6 +249,17 @@ def test_track_refuses_to_replace_a_run_without_force(tmp_path, capsys):
     rows = (out / "mean-shift_red-cube.csv").read_text().splitlines()
     assert len(rows) == 1 + 3                                     # header + 3 frames
     assert sorted(p.name for p in out.iterdir()) == sorted(before)   # no temporary left
+
+
+def test_clips_export_never_replaces_a_file_without_force(tmp_path, capsys):
+    video = tmp_path / "v.mp4"
+    gt = tmp_path / "v.groundtruth.txt"
+    gt.write_text("my own boxes\n")
+    assert cli.main(["clips", "export", "red-cube", str(video)]) == 2
+    _one_line_error(capsys, str(gt), "--force")
+    assert gt.read_text() == "my own boxes\n" and not video.exists()
+    assert cli.main(["clips", "export", "red-cube", str(video), "--force"]) == 0
+    assert video.stat().st_size > 0 and gt.read_text() != "my own boxes\n"
 
 
 def test_notebooks_never_replace_an_edited_notebook_without_force(tmp_path, capsys):
@@ -432,3 +448,24 @@ def test_odd_box_digits_are_one_line(tmp_path, capsys, box):
     assert cli.main(["track", "mean-shift", "red-cube", f"--box={box}", "--out", str(out)]) == 2
     _one_line_error(capsys, "--box")
     assert not out.exists()
+
+
+def test_sys_exit_in_an_entry_point_plugin_is_an_error_naming_it(tmp_path, capsys,
+                                                                 monkeypatch):
+    from trackbook.trackers import plugins
+
+    # a package 'installed' into tmp_path: its module and a .dist-info with the entry point
+    f, _ = _tracker(tmp_path, "fake_exit_mod", "mine-plugin", top="sys.exit(0)")
+    info = tmp_path / "fake_exit_dist-0.1.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: fake_exit_dist\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text("[trackbook.trackers]\nmine-plugin = fake_exit_mod\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(plugins, "_entry_points_done", False)
+    try:
+        assert cli.main(["trackers"]) == 2
+    finally:
+        sys.modules.pop("fake_exit_mod", None)
+    line = _line_of(f, "sys.exit(0)")
+    _one_line_error(capsys, f"error in your code (fake_exit_mod.py:{line}, in <module>): "
+                            "SystemExit")

@@ -178,6 +178,9 @@ def cmd_clips(args) -> int:
     if args.action == "export":
         if not args.name or not args.path:
             raise ValueError("usage: trackbook clips export NAME OUT.mp4")
+        # the files clips.export writes: never replaced unless asked
+        _refuse_existing([Path(args.path), Path(args.path).with_suffix(".groundtruth.txt")],
+                         args.force)
         video, gt = clips.export(args.name, args.path)
         print(f"wrote {video} and {gt}")
         return 0
@@ -533,6 +536,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("action", nargs="?", choices=["list", "export"], default="list")
     c.add_argument("name", nargs="?")
     c.add_argument("path", nargs="?")
+    c.add_argument("--force", action="store_true", help=_FORCE_HELP)
     c.set_defaults(fn=cmd_clips)
 
     t = sub.add_parser("track", help="run a tracker on a clip: annotated video + CSV of boxes")
