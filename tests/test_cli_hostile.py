@@ -3,17 +3,18 @@ code 2 (never a traceback, never silence), outputs are never replaced unless ask
 of the user's own code are reported as theirs."""
 import json
 import os
-from pathlib import Path
 import signal
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
-from .conftest import write_sequence
 from trackbook import cli, clips
 from trackbook.evaluation import bench, runs
+
+from .conftest import write_sequence
 
 pytestmark = pytest.mark.usefixtures("clean_registry")
 
@@ -316,11 +317,11 @@ def _run_without_a_reader(command, closed, timeout=300):
         r, w = os.pipe()
         os.close(r)
         try:
-            return subprocess.run(argv, stdout=w, stderr=subprocess.PIPE, text=True,
+            return subprocess.run(argv, check=False, stdout=w, stderr=subprocess.PIPE, text=True,
                                   env=_env(), timeout=timeout)
         finally:
             os.close(w)
-    return subprocess.run(argv, stderr=subprocess.PIPE, text=True, env=_env(),
+    return subprocess.run(argv, check=False, stderr=subprocess.PIPE, text=True, env=_env(),
                           timeout=timeout, preexec_fn=lambda: os.close(1))
 
 

@@ -145,7 +145,7 @@ def output_stem(tracker: str, clip: str, settings: dict, default_settings: dict)
     """``tracker_clip`` for a run with the default settings, else ``tracker_clip_<hash>``: a
     run with other params, seed or preset gets its own files instead of silently overwriting
     another run's (a shorter run, ``--max-frames``, is the same run cut short)."""
-    from .evaluation.runs import safe_name   # a clip name from a file may hold anything
+    from .evaluation.runs import safe_name  # a clip name from a file may hold anything
 
     stem = f"{tracker}_{safe_name(clip)}"
     if settings_hash(settings) == settings_hash(default_settings):
