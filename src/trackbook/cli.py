@@ -257,6 +257,15 @@ def _csv_text(rows) -> str:
     return buf.getvalue()
 
 
+def _write_video(write_video, path, tmp, frames, fps, size, codec) -> None:
+    """``write_video`` into the temporary ``tmp`` of ``path``; its error (which names the file
+    and the fix) names ``path``. The writer is released either way, also on SIGTERM."""
+    try:
+        write_video(tmp, frames, fps, size, fourcc=codec)
+    except ValueError as e:
+        raise ValueError(str(e).replace(str(tmp), str(path))) from None
+
+
 def _stopped(e: KeyboardInterrupt, out) -> int:
     """One line for Ctrl-C or SIGTERM/SIGHUP during ``track``; the exit code 128 + signal."""
     signum = getattr(e, "signum", 2)
@@ -324,13 +333,14 @@ def cmd_track(args) -> int:
                 tmp[files[0]].write_text(_csv_text(
                     [["frame", "x", "y", "w", "h", "ok", "ms"]]
                     + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"]
-                       for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms))]))
+                       for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms))]),
+                    newline="")
                 tmp[files[1]].write_text(json.dumps(record, indent=1, default=repr) + "\n")
                 frames = (draw_state_cv(annotate(frame, {args.tracker: r.boxes[i]},
                                                  clip.groundtruth[i], colors), states[i])
                           for i, frame in zip(range(len(r.boxes)), clip.frames))
-                # raises, naming the file, on failure; the writer is released either way
-                write_video(tmp[files[2]], frames, clip.fps, clip.size, fourcc=codec)
+                _write_video(write_video, files[2], tmp[files[2]], frames, clip.fps, clip.size,
+                             codec)
     except KeyboardInterrupt as e:
         return _stopped(e, out)
     if scored:
@@ -387,12 +397,13 @@ def _track_all_targets(args, clip, params, out) -> int:
                     tmp[csvs[name]].write_text(_csv_text(
                         [["frame", "x", "y", "w", "h", "ok", "ms"]]   # ms: all targets' update
                         + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"]
-                           for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms))]))
-                write_video(tmp[video],
-                            (annotate(frame, {k: b[i] for k, b in boxes_of.items()},
-                                      colors=colors)
-                             for i, frame in zip(range(n), clip.frames)),
-                            clip.fps, clip.size, fourcc=codec)
+                           for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms))]),
+                        newline="")
+                _write_video(write_video, video, tmp[video],
+                             (annotate(frame, {k: b[i] for k, b in boxes_of.items()},
+                                       colors=colors)
+                              for i, frame in zip(range(n), clip.frames)),
+                             clip.fps, clip.size, codec)
     except KeyboardInterrupt as e:
         return _stopped(e, out)
     for name, r in res.results.items():
