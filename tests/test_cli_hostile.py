@@ -470,3 +470,17 @@ def test_sys_exit_in_an_entry_point_plugin_is_an_error_naming_it(tmp_path, capsy
     line = _line_of(f, "sys.exit(0)")
     _one_line_error(capsys, f"error in your code (fake_exit_mod.py:{line}, in <module>): "
                             "SystemExit")
+
+
+def test_an_error_in_a_users_tracker_on_a_dask_worker_names_their_file(tmp_path, capsys):
+    distributed = pytest.importorskip("distributed")
+    f, _ = _tracker(tmp_path, "dask_tracker", "mine-dask", update="[][3]")
+    line = _line_of(f, "[][3]")
+    a = _folder(tmp_path / "d", "a")
+    with _cluster(distributed) as cluster:
+        code = cli.main(["bench", "--import", str(f), "--trackers", "mine-dask", "--clips",
+                         str(a), "--quiet", "--scheduler", cluster.scheduler_address,
+                         "--out", str(tmp_path / "o")])
+    assert code == 2
+    _one_line_error(capsys, f"error in your code (dask_tracker.py:{line}, in _update): "
+                            "IndexError: list index out of range")
