@@ -23,11 +23,8 @@ from pathlib import Path
 import numpy as np
 
 from . import _cli_output as _out
+from ._cli_errors import CLIError, report
 from ._cli_output import annotate  # noqa: F401  (trackbook.cli.annotate, used by the book)
-
-
-class CLIError(Exception):
-    """A user error the command reports in one line (exit code 2)."""
 
 
 def _parse_params(items) -> dict:
@@ -66,56 +63,6 @@ def _track_params(tracker: str, items) -> dict:
     params = {k: parse(cls.Params, k, v) for k, v in raw.items()}
     make_params(cls.Params, params)
     return params
-
-
-def _check_out_dir(path) -> Path:
-    """``--out`` checked before any work (a file in the way is named in the error); the
-    folder itself is made by :func:`_out_dir` once there is something to write, so a failing
-    command leaves no empty folder behind."""
-    out = Path(path)
-    try:
-        for p in (out, *out.parents):
-            if p.exists() and not p.is_dir():
-                raise ValueError(f"--out {path}: {p} is a file, not a folder; pass a folder "
-                                 "name (it is created if missing).")
-    except OSError as e:       # a name the OS refuses (too long), a folder it cannot search
-        raise ValueError(f"--out {path}: {_os_problem(e)}") from None
-    return out
-
-
-def _os_problem(e: OSError) -> str:
-    """What went wrong with a file, and the fix, from the ``errno`` of ``e``."""
-    import errno
-
-    what = e.strerror or type(e).__name__
-    fix = {errno.ENAMETOOLONG: "use a shorter folder or file name",
-           errno.EACCES: "pass a folder you can write to (--out) or fix its permissions",
-           errno.EPERM: "pass a folder you can write to (--out) or fix its permissions",
-           errno.EROFS: "the disk is read-only; pass a folder on a writable disk (--out)",
-           errno.ENOTDIR: "a file is in the way of a folder; pass another --out",
-           errno.ENOSPC: "free some disk space or pass a folder on another disk (--out)",
-           errno.EDQUOT: "free some space in your quota or pass another --out"}
-    return f"{what}; {fix.get(e.errno, 'pass a writable --out folder')}."
-
-
-def _out_dir(path) -> Path:
-    """``--out``: an existing folder or a new one; a file in the way is named in the error."""
-    out = _check_out_dir(path)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as e:
-        raise ValueError(f"--out {path}: cannot create the folder: {_os_problem(e)}") from None
-    return out
-
-
-def _refuse_existing(paths, force: bool) -> None:
-    """Outputs are never replaced unless asked: an existing one is an error naming ``--force``."""
-    if force:
-        return
-    for p in paths:
-        if Path(p).exists():
-            raise ValueError(f"{p} exists (an earlier run's); pass --force to replace it, or "
-                             "another --out.")
 
 
 def cmd_trackers(args) -> int:
@@ -179,7 +126,7 @@ def cmd_clips(args) -> int:
         if not args.name or not args.path:
             raise ValueError("usage: trackbook clips export NAME OUT.mp4")
         # the files clips.export writes: never replaced unless asked
-        _refuse_existing([Path(args.path), Path(args.path).with_suffix(".groundtruth.txt")],
+        _out.refuse_existing([Path(args.path), Path(args.path).with_suffix(".groundtruth.txt")],
                          args.force)
         video, gt = clips.export(args.name, args.path)
         print(f"wrote {video} and {gt}")
@@ -248,15 +195,6 @@ def _track_settings(args, cls, params) -> tuple[dict, dict]:
     return full, default
 
 
-def _csv_text(rows) -> str:
-    import csv
-    import io
-
-    buf = io.StringIO()
-    csv.writer(buf).writerows(rows)
-    return buf.getvalue()
-
-
 def _write_video(write_video, path, tmp, frames, fps, size, codec) -> None:
     """``write_video`` into the temporary ``tmp`` of ``path``; its error (which names the file
     and the fix) names ``path``. The writer is released either way, also on SIGTERM."""
@@ -302,7 +240,7 @@ def cmd_track(args) -> int:
         raise ValueError(f"--preset {args.preset!r}: use one of {', '.join(trackers.PRESETS)}.")
     params = _track_params(args.tracker, args.param)
     clip = _load_clip(args.clip, args.groundtruth)
-    out = _check_out_dir(args.out)
+    out = _out.check_out_dir(args.out)
     init_box = _parse_box(args.box, clip) if args.box else None
     if args.all_targets:
         if init_box is not None:
@@ -317,20 +255,20 @@ def cmd_track(args) -> int:
     settings, default = _track_settings(args, cls, params)
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     files = [out / f"{stem}{ext}" for ext in (".csv", ".json", ".mp4")]
-    _refuse_existing(files, args.force)
+    _out.refuse_existing(files, args.force)
     try:
         with stop_on_signals():
             states = []     # what the tracker shows of itself on each frame, drawn on the video
             r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
                          init_box=init_box, preset=args.preset,
                          on_frame=lambda i, t, f, b: states.append(t.state()), **params)
-            _out_dir(out)
+            _out.out_dir(out)
             record = {**settings, "preset": args.preset, "clip": clip.name,
                       "max_frames": args.max_frames, "box": init_box}
             colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
             codec = _out.video_codec()
             with _out.staged(files) as tmp:
-                tmp[files[0]].write_text(_csv_text(
+                tmp[files[0]].write_text(_out.csv_text(
                     [["frame", "x", "y", "w", "h", "ok", "ms"]]
                     + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"]
                        for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms))]),
@@ -382,19 +320,19 @@ def _track_all_targets(args, clip, params, out) -> int:
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     csvs = {name: out / f"{stem}_{safe_name(name)}.csv" for name in clip.targets}
     video = out / f"{stem}.mp4"
-    _refuse_existing([*csvs.values(), video], args.force)
+    _out.refuse_existing([*csvs.values(), video], args.force)
     try:
         with stop_on_signals():
             res = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
                            targets="all", **params)
             ms, oks, boxes_of = res.ms, res.ok, res.boxes
-            _out_dir(out)
+            _out.out_dir(out)
             colors = _out.estimate_colors(clip.frames[0], [b[0] for b in boxes_of.values()])
             codec = _out.video_codec()
             n = len(ms)
             with _out.staged([*(csvs[k] for k in boxes_of), video]) as tmp:
                 for name, boxes in boxes_of.items():
-                    tmp[csvs[name]].write_text(_csv_text(
+                    tmp[csvs[name]].write_text(_out.csv_text(
                         [["frame", "x", "y", "w", "h", "ok", "ms"]]   # ms: all targets' update
                         + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"]
                            for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms))]),
@@ -502,11 +440,11 @@ def cmd_notebooks(args) -> int:
     if not chapters:
         raise ValueError(f"no chapters in {book}; pass --book FOLDER (the book/ folder of the "
                          "repository).")
-    out = _check_out_dir(args.out)
+    out = _out.check_out_dir(args.out)
     files = {md: out / (md.stem + ".ipynb") for md in chapters}
     # a notebook a student has edited is never replaced unless asked
-    _refuse_existing(files.values(), args.force)
-    _out_dir(out)
+    _out.refuse_existing(files.values(), args.force)
+    _out.out_dir(out)
     for md, path in files.items():
         text = jupytext.writes(jupytext.read(md), fmt="ipynb")
         with _out.staged([path]) as tmp:
@@ -629,26 +567,6 @@ def _one_line_warnings():
     warnings.showwarning = show
 
 
-def _made_folders(path) -> list[Path]:
-    """The folders of ``path`` that do not exist yet (deepest last)."""
-    if path is None:
-        return []
-    p, missing = Path(path), []
-    while not p.exists() and p != p.parent:
-        missing.append(p)
-        p = p.parent
-    return missing[::-1]
-
-
-def _remove_if_empty(folders) -> None:
-    """After a failed command: remove the ``--out`` folders it created if they are empty."""
-    for d in reversed(folders):
-        try:
-            d.rmdir()          # only succeeds on an empty folder
-        except OSError:
-            return
-
-
 def main(argv=None) -> int:
     """Run one subcommand; every error is one line on stderr and a non-zero exit code
     (the whole traceback too with ``--traceback``)."""
@@ -663,74 +581,13 @@ def main(argv=None) -> int:
     _one_line_warnings()
     new_folders = []
     try:
-        new_folders = _made_folders(getattr(args, "out", None))
+        new_folders = _out.made_folders(getattr(args, "out", None))
         rc = args.fn(args)
         if sys.stdout is not None:    # None: started with stdout closed (>&-)
             sys.stdout.flush()        # a reader that went away is seen here, not at exit
     except BaseException:
-        _remove_if_empty(new_folders)
-        return _report(sys.exc_info()[1], show_traceback)
+        _out.remove_if_empty(new_folders)
+        return report(sys.exc_info()[1], show_traceback)
     if rc:
-        _remove_if_empty(new_folders)
+        _out.remove_if_empty(new_folders)
     return rc
-
-
-def _quiet_stdout() -> None:
-    """Point stdout at /dev/null: the reader is gone, and Python's final flush must not
-    print a BrokenPipeError of its own."""
-    import os
-    try:
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-    except (OSError, ValueError):
-        pass
-
-
-def _report(e: BaseException, show_traceback: bool = False) -> int:
-    """One line on stderr for an exception of a subcommand; the exit code.
-
-    An exception raised in the user's own code (a ``--import`` file, an entry-point plugin;
-    see :mod:`trackbook._user_code`) is reported as theirs with its file and line, whatever
-    its type, and so is ``sys.exit`` called there.
-    """
-    from ._user_code import UserCodeError, describe
-
-    if isinstance(e, BrokenPipeError):  # the reader went away (trackbook trackers | head)
-        _quiet_stdout()
-        return 0
-    if show_traceback and not isinstance(e, KeyboardInterrupt):
-        import traceback
-        details = getattr(e, "details", "") if isinstance(e, UserCodeError) else ""
-        print(details or "".join(traceback.format_exception(type(e), e, e.__traceback__)),
-              file=sys.stderr, end="")
-    user = None if isinstance(e, KeyboardInterrupt) else describe(e)
-    if isinstance(e, SystemExit) and user is None:
-        raise e
-    if user is not None:
-        print(f"trackbook: {user}" + ("" if show_traceback else
-                                       " (re-run with --traceback for the whole traceback)"),
-              file=sys.stderr)
-        return 2
-    try:
-        raise e
-    except KeyboardInterrupt:
-        signum = getattr(e, "signum", 2)
-        print("trackbook: interrupted (Ctrl-C)." if signum == 2 else
-              f"trackbook: stopped by a signal ({signum}).", file=sys.stderr)
-        return 128 + signum
-    except (ValueError, CLIError, OSError, KeyError) as e:
-        msg = e.args[0] if isinstance(e, KeyError) and e.args else e
-        if isinstance(e, OSError) and e.filename is not None and e.strerror:
-            msg = f"{e.filename}: {_os_problem(e)}"
-        print(f"trackbook: error: {' '.join(str(msg).split())}", file=sys.stderr)
-        return 2
-    except ImportError as e:   # an optional package (an extra) is not installed
-        print(f"trackbook: error: this needs the package {e.name or e}, which is not installed; "
-              "pip install it, or the extra that has it (pip install 'trackbook[book]').",
-              file=sys.stderr)
-        return 2
-    except Exception as e:  # noqa: BLE001  a bug, still reported in one line
-        print(f"trackbook: error: {type(e).__name__}: {' '.join(str(e).split())} (this is a "
-              "bug; please report it with the command line"
-              + ("" if show_traceback else " and the output of --traceback") + ")",
-              file=sys.stderr)
-        return 1
