@@ -417,10 +417,13 @@ def _execute_dask(tasks, out, finished, scheduler, multi_seed, imports=(), timeo
     timeout = check_timeout(timeout)
     resume = (f"finished runs are saved in {out}/runs; run the same command again (without "
               "--scheduler to run here) to resume.")
-    # Dask logs a lost connection with tracebacks on stderr; the bench says it in one line
-    log = logging.getLogger("distributed")
-    level = log.level
-    log.setLevel(logging.CRITICAL)
+    # Dask logs a lost connection (with tracebacks) on stderr from several loggers; the bench
+    # says it in one line
+    logs = [logging.getLogger(n) for n in ["distributed", *logging.root.manager.loggerDict]
+            if n == "distributed" or n.startswith("distributed.")]
+    levels = [lg.level for lg in logs]
+    for lg in logs:
+        lg.setLevel(logging.CRITICAL + 1)
     if isinstance(scheduler, Client):
         client = scheduler
     else:
@@ -428,7 +431,7 @@ def _execute_dask(tasks, out, finished, scheduler, multi_seed, imports=(), timeo
         try:
             client = Client(scheduler, timeout=timeout)
         except (OSError, TimeoutError) as e:
-            log.setLevel(level)
+            _restore(logs, levels)
             raise ValueError(f"scheduler {scheduler}: cannot connect a Dask client within "
                              f"{timeout:g} s ({' '.join(str(e).split())}).") from None
     where = f"scheduler {getattr(client, 'scheduler', None) and client.scheduler.address}"
@@ -495,4 +498,9 @@ def _execute_dask(tasks, out, finished, scheduler, multi_seed, imports=(), timeo
         if client is not scheduler:
             with contextlib.suppress(Exception):
                 client.close(timeout=timeout)
-        log.setLevel(level)
+        _restore(logs, levels)
+
+
+def _restore(logs, levels) -> None:
+    for lg, level in zip(logs, levels):
+        lg.setLevel(level)
