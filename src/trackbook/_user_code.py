@@ -4,13 +4,15 @@ The command line reports an error raised in a user's own tracker as theirs, with
 and line, instead of as a usage error or a bug in trackbook. "User code" is the deepest frame
 of the traceback whose file is neither in the trackbook package nor in the Python
 installation's library folders (the standard library and site-packages, from
-:mod:`sysconfig`). Benchmark worker processes describe the exception where it happened
+:mod:`sysconfig`, and the other site-packages folders :mod:`site` names). Benchmark worker processes describe the exception where it happened
 (:func:`portable`), since a traceback does not survive the trip back to the parent.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
+import site
 import sysconfig
 import traceback
 from pathlib import Path
@@ -20,9 +22,12 @@ _PACKAGE = str(Path(__file__).resolve().parent)
 
 def _library_dirs() -> list[str]:
     paths = sysconfig.get_paths()
-    dirs = {os.path.realpath(paths[k]) for k in ("stdlib", "platstdlib", "purelib", "platlib")
-            if paths.get(k)}
-    return sorted(dirs)
+    dirs = [paths[k] for k in ("stdlib", "platstdlib", "purelib", "platlib") if paths.get(k)]
+    # packages installed elsewhere on the path Python searches (pip install --user, a
+    # distribution's dist-packages) are libraries too, not the user's own code
+    with contextlib.suppress(AttributeError):   # site without these (an embedded Python)
+        dirs += [*site.getsitepackages(), site.getusersitepackages()]
+    return sorted({os.path.realpath(d) for d in dirs})
 
 
 _LIBRARY = _library_dirs()

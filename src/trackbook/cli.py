@@ -10,6 +10,9 @@
     trackbook track lab-color-pf red-cube --import my_tracker.py   a tracker of your own
     trackbook bench --trackers color-pf,kalman-covariance --clips samples --out bench-results/
     trackbook notebooks --out notebooks/  export the book's chapters to .ipynb for class
+
+An output that exists is replaced only with --force; an error is one line (the whole
+traceback too with --traceback, anywhere on the line).
 """
 
 from __future__ import annotations
