@@ -178,7 +178,7 @@ def _load_imports(specs) -> None:
     for spec in specs or []:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            plugins.load(spec)   # an error, or sys.exit, of the file is reported by _report
+            plugins.load(spec)   # its error or sys.exit: reported as the file's by _cli_errors
         for w in caught:          # e.g. "registered no new tracker": one line, not two
             print(f"trackbook: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
 
