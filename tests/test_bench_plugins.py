@@ -166,7 +166,7 @@ def test_otb_layout_files_score_what_the_bench_scored(tmp_path):
     gt = np.loadtxt(a / "groundtruth_rect.txt", delimiter=",")
     for r in rows:
         boxes = np.loadtxt(tmp_path / "o/otb" / r["tracker"] / "a.txt", delimiter=",")
-        times = np.loadtxt(tmp_path / "o/otb" / r["tracker"] / "a_time.txt")
+        times = np.loadtxt(tmp_path / "o/otb" / r["tracker"] / "times" / "a_time.txt")
         assert boxes.shape == (10, 4) and times.shape == (10,) and np.all(times >= 0)
         assert np.allclose(boxes[0], gt[0])                    # frame 1: the initial box
         ious = [_iou(p, g) for p, g in zip(boxes[1:], gt[1:])]  # OTB scores frames 2..N

@@ -180,7 +180,8 @@ def test_output_names_carry_the_settings(tmp_path, capsys):
     assert cli.main(base) == 0
     assert cli.main(base + ["--param", "eps=1.0"]) == 0
     assert cli.main(base + ["--seed", "1"]) == 0
-    assert cli.main(base) == 0                       # the same settings: the same files
+    assert cli.main(base) == 2                       # the same settings: refused ...
+    assert cli.main(base + ["--force"]) == 0         # ... unless asked: the same files
     names = sorted(p.name for p in o.glob("*.csv"))
     assert len(names) == 3 and len(set(names)) == 3
     assert "mean-shift_red-cube.csv" in names         # the default params keep the plain name

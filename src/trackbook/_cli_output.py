@@ -1,4 +1,6 @@
-"""What ``trackbook track`` writes: annotated frames, the video codec, the output file names.
+"""What the ``trackbook`` commands write, and where: annotated frames, the video codec, the
+output file names, the ``--out`` folder, and files written only when complete
+(:func:`staged`) and never over an existing one unless asked (:func:`refuse_existing`).
 
 Kept apart from :mod:`trackbook.cli` (argument parsing and messages) so both stay short.
 """
@@ -14,6 +16,8 @@ from pathlib import Path
 
 import cv2
 import numpy as np
+
+from ._cli_errors import os_problem
 
 #: Box colours (BGR) an estimate may be drawn in: red, blue, orange, purple, cyan, magenta,
 #: yellow, white. Ground truth is always green (``GT_COLOR``); :func:`estimate_colors` orders
@@ -145,7 +149,107 @@ def output_stem(tracker: str, clip: str, settings: dict, default_settings: dict)
     """``tracker_clip`` for a run with the default settings, else ``tracker_clip_<hash>``: a
     run with other params, seed or preset gets its own files instead of silently overwriting
     another run's (a shorter run, ``--max-frames``, is the same run cut short)."""
-    stem = f"{tracker}_{clip}"
+    from .evaluation.runs import safe_name  # a clip name from a file may hold anything
+
+    stem = f"{tracker}_{safe_name(clip)}"
     if settings_hash(settings) == settings_hash(default_settings):
         return stem
     return f"{stem}_{settings_hash(settings)}"
+
+
+def csv_text(rows) -> str:
+    """``rows`` as CSV text (write it with ``newline=""``)."""
+    import csv
+    import io
+
+    buf = io.StringIO()
+    csv.writer(buf).writerows(rows)
+    return buf.getvalue()
+
+
+@contextlib.contextmanager
+def staged(paths):
+    """Write a command's outputs through temporary files beside them.
+
+    Yields ``{final path: temporary path}`` (the temporary keeps the final suffix, which
+    OpenCV's video writer goes by). When the block ends normally each temporary replaces its
+    final file (``os.replace``: a reader sees the old file or the new one, never half of one);
+    when it raises (an error, Ctrl-C, SIGTERM) every temporary is removed, so an interrupted
+    run leaves no half-written video or CSV and the earlier files as they were.
+    """
+    mask = os.umask(0)
+    os.umask(mask)
+    temps: dict = {}
+    try:
+        for p in map(Path, paths):
+            try:
+                fd, tmp = tempfile.mkstemp(dir=p.parent, prefix=f".{p.stem}.",
+                                           suffix=f".partial{p.suffix}")
+            except OSError as e:    # name the file the user asked for, not the temporary
+                raise OSError(e.errno, e.strerror, str(p)) from None
+            os.close(fd)
+            os.chmod(tmp, 0o666 & ~mask)     # an ordinary file's mode, not mkstemp's 0600
+            temps[p] = Path(tmp)
+        yield temps
+        for p, tmp in temps.items():
+            os.replace(tmp, p)
+    finally:
+        for tmp in temps.values():
+            with contextlib.suppress(OSError):
+                tmp.unlink(missing_ok=True)
+
+
+# --------------------------------------------------------------------------- --out
+def check_out_dir(path) -> Path:
+    """``--out`` checked before any work (a file in the way is named in the error); the
+    folder itself is made by :func:`out_dir` once there is something to write, so a failing
+    command leaves no empty folder behind."""
+    out = Path(path)
+    try:
+        for p in (out, *out.parents):
+            if p.exists() and not p.is_dir():
+                raise ValueError(f"--out {path}: {p} is a file, not a folder; pass a folder "
+                                 "name (it is created if missing).")
+    except OSError as e:       # a name the OS refuses (too long), a folder it cannot search
+        raise ValueError(f"--out {path}: {os_problem(e)}") from None
+    return out
+
+
+def out_dir(path) -> Path:
+    """``--out``: an existing folder or a new one; a file in the way is named in the error."""
+    out = check_out_dir(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise ValueError(f"--out {path}: cannot create the folder: {os_problem(e)}") from None
+    return out
+
+
+def refuse_existing(paths, force: bool) -> None:
+    """Outputs are never replaced unless asked: an existing one is an error naming ``--force``."""
+    if force:
+        return
+    for p in paths:
+        if Path(p).exists():
+            raise ValueError(f"{p} exists (an earlier run's); pass --force to replace it, or "
+                             "another --out.")
+
+
+def made_folders(path) -> list[Path]:
+    """The folders of ``path`` that do not exist yet (deepest last)."""
+    if path is None:
+        return []
+    p, missing = Path(path), []
+    while not p.exists() and p != p.parent:
+        missing.append(p)
+        p = p.parent
+    return missing[::-1]
+
+
+def remove_if_empty(folders) -> None:
+    """After a failed command: remove the ``--out`` folders it created if they are empty."""
+    for d in reversed(folders):
+        try:
+            d.rmdir()          # only succeeds on an empty folder
+        except OSError:
+            return

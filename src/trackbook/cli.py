@@ -10,6 +10,9 @@
     trackbook track lab-color-pf red-cube --import my_tracker.py   a tracker of your own
     trackbook bench --trackers color-pf,kalman-covariance --clips samples --out bench-results/
     trackbook notebooks --out notebooks/  export the book's chapters to .ipynb for class
+
+An output that exists is replaced only with --force; an error is one line (the whole
+traceback too with --traceback, anywhere on the line).
 """
 
 from __future__ import annotations
@@ -23,11 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from . import _cli_output as _out
+from ._cli_errors import CLIError, report
 from ._cli_output import annotate  # noqa: F401  (trackbook.cli.annotate, used by the book)
-
-
-class CLIError(Exception):
-    """A user error the command reports in one line (exit code 2)."""
 
 
 def _parse_params(items) -> dict:
@@ -66,29 +66,6 @@ def _track_params(tracker: str, items) -> dict:
     params = {k: parse(cls.Params, k, v) for k, v in raw.items()}
     make_params(cls.Params, params)
     return params
-
-
-def _check_out_dir(path) -> Path:
-    """``--out`` checked before any work (a file in the way is named in the error); the
-    folder itself is made by :func:`_out_dir` once there is something to write, so a failing
-    command leaves no empty folder behind."""
-    out = Path(path)
-    for p in (out, *out.parents):
-        if p.exists() and not p.is_dir():
-            raise ValueError(f"--out {path}: {p} is a file, not a folder; pass a folder name "
-                             "(it is created if missing).")
-    return out
-
-
-def _out_dir(path) -> Path:
-    """``--out``: an existing folder or a new one; a file in the way is named in the error."""
-    out = _check_out_dir(path)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as e:
-        raise ValueError(f"--out {path}: cannot create the folder ({e.strerror}); pass a "
-                         "writable folder.") from None
-    return out
 
 
 def cmd_trackers(args) -> int:
@@ -151,6 +128,9 @@ def cmd_clips(args) -> int:
     if args.action == "export":
         if not args.name or not args.path:
             raise ValueError("usage: trackbook clips export NAME OUT.mp4")
+        # the files clips.export writes: never replaced unless asked
+        _out.refuse_existing([Path(args.path), Path(args.path).with_suffix(".groundtruth.txt")],
+                         args.force)
         video, gt = clips.export(args.name, args.path)
         print(f"wrote {video} and {gt}")
         return 0
@@ -168,14 +148,21 @@ def cmd_clips(args) -> int:
 def _parse_box(text: str, clip) -> tuple:
     """``--box x,y,w,h`` (pixels of the first frame) -> a float tuple, checked against the
     frame size so a typo fails with a clear message rather than a lost tracker."""
-    try:
-        x, y, w, h = (float(v) for v in text.replace(" ", "").split(","))
-    except ValueError:
-        raise ValueError(f"--box {text!r}: expected four numbers x,y,w,h, e.g. "
-                         "--box 40,30,24,24") from None
+    import math
+    import re
+
+    # ASCII decimals only: float() would also take "١٢" (Arabic-Indic digits), "1_0",
+    # "inf" and "nan", none of which a box of pixels is written in
+    number = r"[0-9]+(?:\.[0-9]*)?|\.[0-9]+"
+    parts = text.replace(" ", "").split(",")
+    if len(parts) != 4 or not all(re.fullmatch(number, v, re.ASCII) for v in parts):
+        raise ValueError(f"--box {text!r}: expected four numbers x,y,w,h in plain digits, "
+                         "e.g. --box 40,30,24,24")
+    x, y, w, h = (float(v) for v in parts)
     width, height = clip.size
     # written so that NaN (every comparison False) is refused too
-    if not (w > 0 and h > 0 and x >= 0 and y >= 0 and x + w <= width and y + h <= height):
+    if not (all(math.isfinite(v) for v in (x, y, w, h)) and w > 0 and h > 0
+            and x >= 0 and y >= 0 and x + w <= width and y + h <= height):
         raise ValueError(f"--box {text!r} is not a box inside the {width}x{height} first frame; "
                          "give x,y of its top-left corner and a positive width and height.")
     return (x, y, w, h)
@@ -191,7 +178,7 @@ def _load_imports(specs) -> None:
     for spec in specs or []:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            plugins.load(spec)
+            plugins.load(spec)   # its error or sys.exit: reported as the file's by _cli_errors
         for w in caught:          # e.g. "registered no new tracker": one line, not two
             print(f"trackbook: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
 
@@ -211,25 +198,52 @@ def _track_settings(args, cls, params) -> tuple[dict, dict]:
     return full, default
 
 
+def _write_video(write_video, path, tmp, frames, fps, size, codec) -> None:
+    """``write_video`` into the temporary ``tmp`` of ``path``; its error (which names the file
+    and the fix) names ``path``. The writer is released either way, also on SIGTERM."""
+    try:
+        write_video(tmp, frames, fps, size, fourcc=codec)
+    except ValueError as e:
+        raise ValueError(str(e).replace(str(tmp), str(path))) from None
+
+
+def _stopped(e: KeyboardInterrupt, out) -> int:
+    """One line for Ctrl-C or SIGTERM/SIGHUP during ``track``; the exit code 128 + signal."""
+    signum = getattr(e, "signum", 2)
+    how = "interrupted (Ctrl-C)" if signum == 2 else f"stopped by a signal ({signum})"
+    print(f"trackbook: {how}; the unfinished outputs were removed, nothing in {out} was "
+          "changed.", file=sys.stderr)
+    return 128 + signum
+
+
+def _without_groundtruth(clip):
+    """``clip`` with no ground truth: ``--box`` starts the tracker, and a ground-truth file
+    found beside the video is not used to score it unless given with ``--groundtruth``."""
+    nan = np.full_like(np.asarray(clip.groundtruth, dtype=float), np.nan)
+    return dataclasses.replace(clip, groundtruth=nan, targets={"target": nan})
+
+
 def cmd_track(args) -> int:
-    import csv
     import json
 
     from . import trackers
     from ._checks import check_max_frames
     from .clips.loaders import write_video
     from .evaluation.metrics import scores_line
+    from .evaluation.parallel import stop_on_signals
     from .evaluation.runner import evaluate
+    from .evaluation.runs import check_tracker_name
     from .viz.core import draw_state_cv
 
     _load_imports(args.imports)
     cls = trackers.get(args.tracker)          # unknown name: one line before any work
+    check_tracker_name(args.tracker)          # it names the output files
     check_max_frames(args.max_frames, name="--max-frames")
     if args.preset not in trackers.PRESETS:
         raise ValueError(f"--preset {args.preset!r}: use one of {', '.join(trackers.PRESETS)}.")
     params = _track_params(args.tracker, args.param)
     clip = _load_clip(args.clip, args.groundtruth)
-    out = _check_out_dir(args.out)
+    out = _out.check_out_dir(args.out)
     init_box = _parse_box(args.box, clip) if args.box else None
     if args.all_targets:
         if init_box is not None:
@@ -238,30 +252,45 @@ def cmd_track(args) -> int:
             from .params import paper_values
             params = {**paper_values(cls.Params), **params}
         return _track_all_targets(args, clip, params, out)
+    scored = init_box is None or args.groundtruth is not None
+    if not scored:
+        clip = _without_groundtruth(clip)
     settings, default = _track_settings(args, cls, params)
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
-    states = []     # what the tracker shows of itself on each frame, drawn on the video
-    r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
-                 init_box=init_box, preset=args.preset,
-                 on_frame=lambda i, t, f, b: states.append(t.state()), **params)
-    out = _out_dir(out)
-    with open(out / f"{stem}.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])
-        for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms)):
-            w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"])
-    record = {**settings, "preset": args.preset, "clip": clip.name,
-              "max_frames": args.max_frames, "box": init_box}
-    (out / f"{stem}.json").write_text(json.dumps(record, indent=1, default=repr) + "\n")
-    colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
-    codec = _out.video_codec()
-    write_video(out / f"{stem}.mp4", (draw_state_cv(annotate(frame, {args.tracker: r.boxes[i]},
-                                                             clip.groundtruth[i], colors),
-                                                    states[i])
-                                      for i, frame in zip(range(len(r.boxes)), clip.frames)),
-                clip.fps, clip.size, fourcc=codec)   # raises, naming the file, on failure
-    print(f"{args.tracker} on {clip.name}: {scores_line(r.scores, sep=', ')}")
-    print(f"wrote {out / (stem + '.csv')}, {stem}.json (the settings) and {stem}.mp4 "
+    files = [out / f"{stem}{ext}" for ext in (".csv", ".json", ".mp4")]
+    _out.refuse_existing(files, args.force)
+    try:
+        with stop_on_signals():
+            states = []     # what the tracker shows of itself on each frame, drawn on the video
+            r = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
+                         init_box=init_box, preset=args.preset,
+                         on_frame=lambda i, t, f, b: states.append(t.state()), **params)
+            _out.out_dir(out)
+            record = {**settings, "preset": args.preset, "clip": clip.name,
+                      "max_frames": args.max_frames, "box": init_box}
+            colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
+            codec = _out.video_codec()
+            with _out.staged(files) as tmp:
+                tmp[files[0]].write_text(_out.csv_text(
+                    [["frame", "x", "y", "w", "h", "ok", "ms"]]
+                    + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{ms:.3f}"]
+                       for i, (b, ok, ms) in enumerate(zip(r.boxes, r.ok, r.ms))]),
+                    newline="")
+                tmp[files[1]].write_text(json.dumps(record, indent=1, default=repr) + "\n")
+                frames = (draw_state_cv(annotate(frame, {args.tracker: r.boxes[i]},
+                                                 clip.groundtruth[i], colors), states[i])
+                          for i, frame in zip(range(len(r.boxes)), clip.frames))
+                _write_video(write_video, files[2], tmp[files[2]], frames, clip.fps, clip.size,
+                             codec)
+    except KeyboardInterrupt as e:
+        return _stopped(e, out)
+    if scored:
+        print(f"{args.tracker} on {clip.name}: {scores_line(r.scores, sep=', ')}"
+              + (f" (against {args.groundtruth})" if args.groundtruth else ""))
+    else:
+        print(f"{args.tracker} on {clip.name}: not scored (--box starts the tracker; pass "
+              "--groundtruth FILE to score it against a ground truth)")
+    print(f"wrote {files[0]}, {stem}.json (the settings) and {stem}.mp4 "
           f"({codec}: {_out.CODEC_NOTE[codec]})")
     return 0
 
@@ -284,32 +313,40 @@ def _track_all_targets(args, clip, params, out) -> int:
     """``track --all-targets``: one tracker per annotated target of the clip (e.g. the two
     faces of ``two-faces``), run by ``trackbook.evaluate(..., targets="all")``; one CSV per
     target and one video with every target's box."""
-    import csv
-
     from .clips.loaders import write_video
+    from .evaluation.parallel import stop_on_signals
     from .evaluation.runner import evaluate
+    from .evaluation.runs import safe_name
 
-    res = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
-                   targets="all", **params)
-    ms, oks, boxes_of = res.ms, res.ok, res.boxes
     settings = {"tracker": args.tracker, "seed": args.seed, "params": params}
     default = {**settings, "seed": 0, "params": {}}
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
-    out = _out_dir(out)
-    for name, boxes in boxes_of.items():
-        with open(out / f"{stem}_{name}.csv", "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(["frame", "x", "y", "w", "h", "ok", "ms"])   # ms: all targets' update
-            for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms)):
-                w.writerow([i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"])
+    csvs = {name: out / f"{stem}_{safe_name(name)}.csv" for name in clip.targets}
     video = out / f"{stem}.mp4"
-    colors = _out.estimate_colors(clip.frames[0], [b[0] for b in boxes_of.values()])
-    codec = _out.video_codec()
-    n = len(ms)
-    write_video(video, (annotate(frame, {name: boxes[i] for name, boxes in boxes_of.items()},
-                                 colors=colors)
-                        for i, frame in zip(range(n), clip.frames)), clip.fps, clip.size,
-                fourcc=codec)
+    _out.refuse_existing([*csvs.values(), video], args.force)
+    try:
+        with stop_on_signals():
+            res = evaluate(args.tracker, clip, seed=args.seed, max_frames=args.max_frames,
+                           targets="all", **params)
+            ms, oks, boxes_of = res.ms, res.ok, res.boxes
+            _out.out_dir(out)
+            colors = _out.estimate_colors(clip.frames[0], [b[0] for b in boxes_of.values()])
+            codec = _out.video_codec()
+            n = len(ms)
+            with _out.staged([*(csvs[k] for k in boxes_of), video]) as tmp:
+                for name, boxes in boxes_of.items():
+                    tmp[csvs[name]].write_text(_out.csv_text(
+                        [["frame", "x", "y", "w", "h", "ok", "ms"]]   # ms: all targets' update
+                        + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"]
+                           for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms))]),
+                        newline="")
+                _write_video(write_video, video, tmp[video],
+                             (annotate(frame, {k: b[i] for k, b in boxes_of.items()},
+                                       colors=colors)
+                              for i, frame in zip(range(n), clip.frames)),
+                             clip.fps, clip.size, codec)
+    except KeyboardInterrupt as e:
+        return _stopped(e, out)
     for name, r in res.results.items():
         print(f"{args.tracker} on {clip.name}/{name}: AUC {r.scores.get('auc', float('nan')):.3f}")
     print(f"{float(np.median(ms[1:])) if n > 1 else 0.0:.2f} ms/frame for {len(boxes_of)} "
@@ -346,6 +383,10 @@ def cmd_bench(args) -> int:
         print(f"trackbook: error: {e}", file=sys.stderr)
         return 2
     print(bench.markdown_table(rows))
+    read_back, ran = getattr(rows, "read_back", 0), getattr(rows, "ran", len(rows))
+    print(f"{read_back} read back, {ran} run"
+          + (f" (the {read_back} read back from {args.out}/runs keep the timings of the bench "
+             "that saved them; --force re-runs them)" if read_back else ""))
     print(f"wrote {args.out}/results.csv, results.json, table.md, success.png, precision.png")
     return 0
 
@@ -402,11 +443,16 @@ def cmd_notebooks(args) -> int:
     if not chapters:
         raise ValueError(f"no chapters in {book}; pass --book FOLDER (the book/ folder of the "
                          "repository).")
-    out = _out_dir(args.out)
-    for md in chapters:
-        nb = jupytext.read(md)
-        jupytext.write(nb, out / (md.stem + ".ipynb"))
-        print(out / (md.stem + ".ipynb"))
+    out = _out.check_out_dir(args.out)
+    files = {md: out / (md.stem + ".ipynb") for md in chapters}
+    # a notebook a student has edited is never replaced unless asked
+    _out.refuse_existing(files.values(), args.force)
+    _out.out_dir(out)
+    for md, path in files.items():
+        text = jupytext.writes(jupytext.read(md), fmt="ipynb")
+        with _out.staged([path]) as tmp:
+            tmp[path].write_text(text, encoding="utf-8")
+        print(path)
     return 0
 
 
@@ -419,6 +465,9 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
+_FORCE_HELP = "replace outputs that already exist (without it, the command refuses)"
+_TRACEBACK_HELP = ("on an error, print the whole Python traceback, not only its one-line "
+                   "summary (accepted anywhere on the command line)")
 _IMPORT_HELP = ("MODULE_OR_FILE: load a tracker of your own first (a .py file or a dotted "
                 "module that uses @trackers.register); repeatable")
 
@@ -426,6 +475,7 @@ _IMPORT_HELP = ("MODULE_OR_FILE: load a tracker of your own first (a .py file or
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="trackbook", description=__doc__,
                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--traceback", action="store_true", help=_TRACEBACK_HELP)
     sub = p.add_subparsers(dest="command", required=True)
 
     k = sub.add_parser("trackers", help="list the trackers, or one tracker's params")
@@ -438,6 +488,7 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("action", nargs="?", choices=["list", "export"], default="list")
     c.add_argument("name", nargs="?")
     c.add_argument("path", nargs="?")
+    c.add_argument("--force", action="store_true", help=_FORCE_HELP)
     c.set_defaults(fn=cmd_clips)
 
     t = sub.add_parser("track", help="run a tracker on a clip: annotated video + CSV of boxes")
@@ -454,10 +505,12 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--import", dest="imports", action="append", metavar="MODULE_OR_FILE",
                    help=_IMPORT_HELP)
     t.add_argument("--box", help="x,y,w,h: the target on the first frame, for a video without "
-                   "ground truth (your own video); scores are then left out")
+                   "ground truth (your own video); scores are left out unless --groundtruth "
+                   "FILE is given too")
     t.add_argument("--all-targets", action="store_true",
                    help="track every annotated target of the clip at once (one tracker each): "
                         "one CSV per target, one video with all boxes")
+    t.add_argument("--force", action="store_true", help=_FORCE_HELP)
     t.set_defaults(fn=cmd_track)
 
     b = sub.add_parser("bench", help="trackers x clips -> tables and plots (resumable)")
@@ -471,7 +524,8 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--seeds", help="sweep seeds: 0-9, 0,3,7 or 0-2,5 (overrides --seed)")
     b.add_argument("--max-frames", type=int)
     b.add_argument("--param", action="append", help="TRACKER:NAME=VALUE, repeatable")
-    b.add_argument("--force", action="store_true", help="re-run finished runs")
+    b.add_argument("--force", action="store_true", help=_FORCE_HELP + " (re-runs the runs "
+                   "saved in OUT/runs instead of reading them back)")
     b.add_argument("--quiet", action="store_true", help="no progress bar")
     b.add_argument("--workers", type=int, default=None,
                    help="worker processes (default: the number of cores)")
@@ -493,6 +547,8 @@ def build_parser() -> argparse.ArgumentParser:
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")
     n.add_argument("--book", default=None, help="the folder of the chapters (default: ./book, else the chapters installed with trackbook)")
     n.add_argument("--out", default="notebooks")
+    n.add_argument("--force", action="store_true", help=_FORCE_HELP + " (notebooks you edited "
+                   "included)")
     n.set_defaults(fn=cmd_notebooks)
     return p
 
@@ -514,69 +570,27 @@ def _one_line_warnings():
     warnings.showwarning = show
 
 
-def _made_folders(path) -> list[Path]:
-    """The folders of ``path`` that do not exist yet (deepest last)."""
-    if path is None:
-        return []
-    p, missing = Path(path), []
-    while not p.exists() and p != p.parent:
-        missing.append(p)
-        p = p.parent
-    return missing[::-1]
-
-
-def _remove_if_empty(folders) -> None:
-    """After a failed command: remove the ``--out`` folders it created if they are empty."""
-    for d in reversed(folders):
-        try:
-            d.rmdir()          # only succeeds on an empty folder
-        except OSError:
-            return
-
-
 def main(argv=None) -> int:
-    """Run one subcommand; every error is one line on stderr and a non-zero exit code."""
+    """Run one subcommand; every error is one line on stderr and a non-zero exit code
+    (the whole traceback too with ``--traceback``)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # --traceback is global: accepted before or after the subcommand
+    show_traceback = "--traceback" in argv[:argv.index("--")] if "--" in argv else \
+        "--traceback" in argv
+    if show_traceback:
+        argv = [a for i, a in enumerate(argv) if not (a == "--traceback" and (
+            "--" not in argv or i < argv.index("--")))]
     args = build_parser().parse_args(argv)
     _one_line_warnings()
-    new_folders = _made_folders(getattr(args, "out", None))
+    new_folders = []
     try:
+        new_folders = _out.made_folders(getattr(args, "out", None))
         rc = args.fn(args)
+        if sys.stdout is not None:    # None: started with stdout closed (>&-)
+            sys.stdout.flush()        # a reader that went away is seen here, not at exit
     except BaseException:
-        _remove_if_empty(new_folders)
-        return _report(sys.exc_info()[1])
+        _out.remove_if_empty(new_folders)
+        return report(sys.exc_info()[1], show_traceback)
     if rc:
-        _remove_if_empty(new_folders)
+        _out.remove_if_empty(new_folders)
     return rc
-
-
-def _report(e: BaseException) -> int:
-    """One line on stderr for an exception of a subcommand; the exit code."""
-    try:
-        raise e
-    except KeyboardInterrupt:
-        print("trackbook: interrupted (Ctrl-C).", file=sys.stderr)
-        return 130
-    except BrokenPipeError:    # the reader went away (trackbook trackers | head): not an error
-        import os
-        try:
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        except (OSError, ValueError):
-            pass
-        return 0
-    except (ValueError, CLIError, OSError, KeyError) as e:
-        msg = e.args[0] if isinstance(e, KeyError) and e.args else e
-        if isinstance(e, OSError) and e.filename is not None and e.strerror:
-            msg = f"{e.filename}: {e.strerror}"
-        print(f"trackbook: error: {' '.join(str(msg).split())}", file=sys.stderr)
-        return 2
-    except ImportError as e:   # an optional package (an extra) is not installed
-        print(f"trackbook: error: this needs the package {e.name or e}, which is not installed; "
-              "pip install it, or the extra that has it (pip install 'trackbook[book]').",
-              file=sys.stderr)
-        return 2
-    except SystemExit:
-        raise
-    except Exception as e:  # noqa: BLE001  a bug, still reported in one line
-        print(f"trackbook: error: {type(e).__name__}: {' '.join(str(e).split())} (this is a "
-              "bug; please report it with the command line)", file=sys.stderr)
-        return 1

@@ -11,7 +11,7 @@ The summary files (``results.csv``, ``results.json``, ``curves.json``, ``table.m
 ``attributes.md``/``attributes.csv``/``success_<ATTR>.png``/``precision_<ATTR>.png``) are rebuilt
 from the runs at the end, also atomically, with mode 0644, and so are the results in the
 format other toolkits read: ``otb/<tracker>/<clip>.txt`` (one ``x,y,w,h`` line per frame,
-frame 1 the initial box) and ``otb/<tracker>/<clip>_time.txt`` (seconds per frame).
+frame 1 the initial box) and ``otb/<tracker>/times/<clip>_time.txt`` (seconds per frame).
 
 Runs go to worker processes (``workers``, default the number of cores) or to a Dask
 distributed cluster (``scheduler``): see :mod:`trackbook.evaluation.parallel`. Scores do not
@@ -34,8 +34,8 @@ import numpy as np
 from .. import clips as _clips
 from .._checks import check_max_frames
 from . import metrics, parallel
-from .runs import (ClipRef, Task, _jsonable, code_fingerprint, fingerprint,  # noqa: F401
-                   load_imports, load_run, run_group, safe_name, write_atomic)
+from .runs import (ClipRef, Task, _jsonable, check_tracker_name,  # noqa: F401
+                   code_fingerprint, fingerprint, load_imports, load_run, run_group, safe_name, write_atomic)
 
 REFERENCE = "opencv-mil"
 COLUMNS = ["tracker", "clip", "frames", "auc", "precision20", "tracking_rate",
@@ -161,6 +161,7 @@ def _check_trackers_and_params(trackers, params):
                          f"(available: {', '.join(_trackers.available())}).")
     for t in trackers:
         _trackers.get(t)  # unknown name -> ValueError listing the registered ones
+        check_tracker_name(t)
     stray = sorted(set(params) - set(trackers))
     if stray:
         raise ValueError(f"params given for {', '.join(stray)}, which this bench does not run "
@@ -265,6 +266,12 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     max_runs : the most runs this bench may do (default :data:`MAX_RUNS`)
     scheduler_timeout : seconds a Dask scheduler has to connect and answer (default
         ``$TRACKBOOK_DASK_TIMEOUT`` or 5)
+
+    Returns
+    -------
+    Rows
+        A list of row dicts, with ``read_back`` and ``ran`` (runs read back from ``out`` and
+        runs done now).
     """
     out = _check_out(out)
     workers = parallel.check_workers(workers)
@@ -307,7 +314,17 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
             bar.close()
     records = [done[t] for t in tasks]
     write_summary(records, out)
-    return [r["row"] for r in records]
+    return Rows((r["row"] for r in records), read_back=len(tasks) - len(todo), ran=len(todo))
+
+
+class Rows(list):
+    """The rows :func:`run` returns (a list), with how many runs were read back from
+    ``OUT/runs`` (``read_back``: their ``ms_*`` are the timings of the bench that saved them)
+    and how many ran now (``ran``)."""
+
+    def __init__(self, rows=(), read_back: int = 0, ran: int = 0):
+        super().__init__(rows)
+        self.read_back, self.ran = read_back, ran
 
 
 def load(out) -> list[dict]:
@@ -425,24 +442,46 @@ def write_summary(records, out) -> None:
                   suffix=f"_{safe}", title=f" ({a})")
 
 
+def otb_paths(tracker: str, clip: str, out) -> tuple[Path, Path]:
+    """Where :func:`write_otb` puts one run: ``OUT/otb/<tracker>/<clip>.txt`` and
+    ``OUT/otb/<tracker>/times/<clip>_time.txt`` (got10k's layout: timings in a folder of
+    their own, so a clip called ``Deer_time`` cannot replace ``Deer``'s timing file)."""
+    folder = Path(out) / "otb" / check_tracker_name(tracker)
+    return folder / f"{safe_name(clip)}.txt", folder / "times" / f"{safe_name(clip)}_time.txt"
+
+
 def write_otb(records, out) -> None:
     """The results in the layout the OTB toolkit, got10k, pysot and pytracking read:
     ``OUT/otb/<tracker>/<clip>.txt``, one comma-separated ``x,y,w,h`` line per frame (frame 1
     the initial box; 1-based frame numbers, 0-based pixel coordinates as in trackbook's
-    boxes), and ``OUT/otb/<tracker>/<clip>_time.txt``, the seconds each frame took (frame 1:
-    ``init``). With several seeds these are the first seed's runs. Values are written with
-    ``repr``, so a reader gets the very floats the bench scored."""
+    boxes), and ``OUT/otb/<tracker>/times/<clip>_time.txt``, the seconds each frame took
+    (frame 1: ``init``). With several seeds these are the first seed's runs. Values are written
+    with ``repr``, so a reader gets the very floats the bench scored.
+
+    Two clips whose names give the same file name (``my clip`` and ``my_clip``; names that
+    differ only in case, which some file systems do not tell apart) are a ``ValueError``
+    naming both, raised before any file is written: a result file is never renamed, and never
+    overwritten by another clip's.
+    """
     chosen: dict = {}
     for r in records:
         k = (r["row"]["tracker"], r["row"]["clip"])
         if k not in chosen or r["settings"]["seed"] < chosen[k]["settings"]["seed"]:
             chosen[k] = r
+    owner: dict = {}
+    for tracker, clip in chosen:
+        box_file, _ = otb_paths(tracker, clip, out)
+        other = owner.setdefault(str(box_file).casefold(), clip)
+        if other != clip:
+            raise ValueError(f"clips {other!r} and {clip!r} would both be written to "
+                             f"{box_file}; rename one of them (e.g. its folder) so their names "
+                             "differ in more than spaces, punctuation or case.")
     for (tracker, clip), r in chosen.items():
-        folder = out / "otb" / safe_name(tracker)
+        box_file, time_file = otb_paths(tracker, clip, out)
         boxes = "".join(",".join(repr(float(v)) for v in b) + "\n" for b in r["boxes"])
         times = "".join(f"{float(ms) / 1e3!r}\n" for ms in r["ms"])
-        write_atomic(folder / f"{safe_name(clip)}.txt", boxes)
-        write_atomic(folder / f"{safe_name(clip)}_time.txt", times)
+        write_atomic(box_file, boxes)
+        write_atomic(time_file, times)
 
 
 def _plot(records, out, suffix="", title=""):

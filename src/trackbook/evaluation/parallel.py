@@ -35,6 +35,7 @@ import sys
 import threading
 import time
 
+from .._user_code import UserCodeError, describe
 from . import runs
 
 ENV_SCHEDULER = "TRACKBOOK_DASK_SCHEDULER"
@@ -167,6 +168,11 @@ def watch_parent(parent: int, interval: float = 0.5) -> None:
 
 
 def _portable(e: BaseException) -> BaseException:
+    """``e`` as an exception that survives pickling to the parent: an error of the user's
+    own code is described here (file, line), where its traceback still is."""
+    user = describe(e)
+    if user is not None:
+        return user
     try:
         pickle.loads(pickle.dumps(e))
         return e
@@ -368,19 +374,56 @@ def check_scheduler(address: str, timeout: float = DEFAULT_TIMEOUT) -> None:
 
 def _work_dask(group, multi_seed, imports=()):
     # a Dask worker is a process of its own on a core of its own, like a local worker; user
-    # trackers are loaded here, in the worker, before the runs need them (idempotent)
-    runs.load_imports(imports)
-    one_thread_per_worker()
-    return runs.run_group(group, None, multi_seed)
+    # trackers are loaded here, in the worker, before the runs need them (idempotent). An
+    # error is described here, where its traceback is (see _portable).
+    try:
+        runs.load_imports(imports)
+        one_thread_per_worker()
+        return runs.run_group(group, None, multi_seed)
+    except BaseException as e:  # noqa: BLE001  SystemExit of a user file included
+        raise _portable(e) from None
+
+
+class ClusterLost(ConnectionError):
+    """The Dask scheduler went away, or no worker was left to run the bench's runs."""
+
+
+#: Seconds between two looks at the cluster while waiting for results.
+POLL = 0.5
+
+
+def _live_workers(client) -> int:
+    """Workers the scheduler knows now (one round trip), or -1 when it does not answer."""
+    try:
+        return len(client.nthreads())
+    except Exception:  # noqa: BLE001  a closed connection, in whatever form Dask raises it
+        return -1
 
 
 def _execute_dask(tasks, out, finished, scheduler, multi_seed, imports=(), timeout=None):
+    """Run the groups on a Dask cluster and save their runs here as they come back.
+
+    Waiting is bounded: when the scheduler stops answering, or no worker is left for
+    ``timeout`` seconds (every worker died), the bench stops with :class:`ClusterLost`;
+    the runs saved so far are read back by the next bench, local or on a cluster.
+    """
+    import logging
+
     try:
-        from distributed import Client, as_completed
+        from distributed import Client, wait
     except ImportError:
         raise ImportError("--scheduler needs Dask: pip install 'trackbook[dask]' "
                           "(dask[distributed]).") from None
     timeout = check_timeout(timeout)
+    resume = (f"finished runs are saved in {out}/runs; run the same command again (without "
+              "--scheduler to run here) to resume.")
+    # Dask logs a lost connection (with tracebacks) on stderr from several loggers; the bench
+    # says it in one line
+    logs = [logging.getLogger(n) for n in ["distributed", *logging.root.manager.loggerDict]
+            if n == "distributed" or n.startswith("distributed.")]
+    levels = [lg.level for lg in logs]
+    for lg in logs:
+        lg.setLevel(logging.CRITICAL + 1)
     if isinstance(scheduler, Client):
         client = scheduler
     else:
@@ -388,24 +431,76 @@ def _execute_dask(tasks, out, finished, scheduler, multi_seed, imports=(), timeo
         try:
             client = Client(scheduler, timeout=timeout)
         except (OSError, TimeoutError) as e:
+            _restore(logs, levels)
             raise ValueError(f"scheduler {scheduler}: cannot connect a Dask client within "
                              f"{timeout:g} s ({' '.join(str(e).split())}).") from None
+    where = f"scheduler {getattr(client, 'scheduler', None) and client.scheduler.address}"
     try:
-        n = max(1, len(client.scheduler_info().get("workers", {})))
+        n = max(1, _live_workers(client))
         gs = groups(tasks, n)
         imports = list(imports)
         futs = {client.submit(_work_dask, g, multi_seed, imports, pure=False): i
                 for i, g in enumerate(gs)}
+        pending = set(futs)
+        no_worker_since = None
         try:
-            for f in as_completed(list(futs)):
-                g = gs[futs[f]]
-                recs = f.result()
-                for t, r in zip(g, recs):
-                    runs.save_run(t, r, out)
-                finished(g, recs)
+            while pending:
+                gone = client.status not in ("running", "newly-created")
+                try:
+                    done, pending = wait(pending, timeout=POLL, return_when="FIRST_COMPLETED")
+                except TimeoutError:
+                    done = set()
+                except Exception:  # noqa: BLE001  the futures were cancelled: connection lost
+                    done, gone = set(), True
+                for f in done:
+                    if f.status in ("cancelled", "lost"):
+                        gone = True
+                        continue
+                    try:
+                        recs = f.result()
+                    except UserCodeError:
+                        raise
+                    except Exception as e:  # noqa: BLE001
+                        if type(e).__name__ == "KilledWorker":
+                            raise ClusterLost(f"{where}: a group of runs killed every worker "
+                                              f"that took it (out of memory?); {resume}") from None
+                        if client.status != "running" or type(e).__name__.endswith(
+                                ("CancelledError", "CommClosedError")):
+                            gone = True
+                            continue
+                        raise
+                    g = gs[futs[f]]
+                    for t, r in zip(g, recs):
+                        runs.save_run(t, r, out)
+                    finished(g, recs)
+                if gone or any(f.status in ("cancelled", "lost") for f in pending):
+                    raise ClusterLost(f"{where} went away (stopped, or the connection "
+                                      f"broke); {resume}")
+                if done:
+                    no_worker_since = None
+                    continue
+                live = _live_workers(client)
+                if live < 0:
+                    raise ClusterLost(f"{where} stopped answering; {resume}")
+                if live > 0:
+                    no_worker_since = None
+                elif no_worker_since is None:
+                    no_worker_since = time.monotonic()
+                elif time.monotonic() - no_worker_since > timeout:
+                    raise ClusterLost(f"{where} has no worker left (for {timeout:g} s: they "
+                                      f"died or were stopped); start workers with `dask "
+                                      f"worker {client.scheduler.address}`; {resume}")
         except BaseException:
-            client.cancel(list(futs))
+            with contextlib.suppress(Exception):
+                client.cancel(list(futs))
             raise
     finally:
         if client is not scheduler:
-            client.close()
+            with contextlib.suppress(Exception):
+                client.close(timeout=timeout)
+        _restore(logs, levels)
+
+
+def _restore(logs, levels) -> None:
+    for lg, level in zip(logs, levels):
+        lg.setLevel(level)

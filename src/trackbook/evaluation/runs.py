@@ -51,7 +51,10 @@ def write_atomic(path, data: bytes | str) -> None:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    except OSError as e:        # name the file being written, not a temporary name
+        raise OSError(e.errno, e.strerror, str(path)) from None
     try:
         with os.fdopen(fd, mode) as f:
             f.write(data)
@@ -284,13 +287,35 @@ class Task:
         return hashlib.sha1(json.dumps(self.settings, sort_keys=True).encode()).hexdigest()
 
     def path(self, out) -> Path:
-        name = f"{self.tracker}__{safe_name(self.clip.name)}__s{self.seed}__{self.key[:12]}"
+        name = f"{check_tracker_name(self.tracker)}__{safe_name(self.clip.name)}__s{self.seed}__{self.key[:12]}"
         return Path(out) / "runs" / f"{name}.json"
 
 
 def safe_name(name: str) -> str:
-    """A clip or tracker name as one file name (``a/clip`` -> ``a_clip``)."""
-    return re.sub(r"[^A-Za-z0-9._-]+", "_", str(name))
+    """A clip name as one file name (``a/clip`` -> ``a_clip``): characters other than
+    letters, digits, ``.``, ``_`` and ``-`` become ``_``, and so does a leading dot, so the
+    result never names a parent folder (``..``) or a hidden file."""
+    s = re.sub(r"[^A-Za-z0-9._-]+", "_", str(name))
+    return re.sub(r"^\.", "_", s) or "_"
+
+
+#: What a tracker name may be, since it names files and folders of the outputs.
+TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._+-]{0,99}")
+
+
+def check_tracker_name(name) -> str:
+    """``name`` when it can be a file name as it is; else a ``ValueError``.
+
+    A tracker's name names its output files (``OUT/runs/<tracker>__...``,
+    ``OUT/otb/<tracker>/``, ``TRACKER_CLIP.csv``). A name such as ``../../x`` would write
+    outside the output folder, and rewriting it would let two trackers share files, so such a
+    name is refused rather than changed.
+    """
+    if not isinstance(name, str) or not TRACKER_NAME.fullmatch(name):
+        raise ValueError(f"tracker name {name!r} cannot name an output file; rename the tracker "
+                         "(its `name = ...`) to letters, digits, '.', '_', '+' and '-', "
+                         "starting with a letter or digit, at most 100 characters.")
+    return name
 
 
 def load_run(task: Task, out) -> dict | None:
