@@ -54,8 +54,8 @@ def tre_starts(groundtruth, n_segments: int = 20, min_length: int = 20,
     """The start frames of OTB's temporal robustness evaluation (TRE).
 
     Wu et al. (2013) run a tracker from 20 starting frames of a sequence, each
-    initialised on that frame's ground truth and run to the end of the sequence. The paper
-    says only that the sequence is split into 20 segments; this follows the toolkit's
+    initialised on that frame's ground truth and run to the end of the sequence. Wu et al.
+    (2013) say only that the sequence is split into 20 segments; this follows the toolkit's
     ``splitSeqTRE.m``, which says which frames:
 
     1. candidates :math:`I = (i_1 < \\dots < i_M)` are the frames whose ground-truth box is
@@ -123,7 +123,7 @@ def sre_boxes(box) -> np.ndarray:
 
     Wu et al. (2013): "eight spatial shifts (4 center shifts and 4 corner shifts)
     and 4 scale variations"; the shift is 10 % of the target size and the scale factors are
-    0.8, 0.9, 1.1, 1.2. The paper leaves "corner shift" open; this follows the toolkit's
+    0.8, 0.9, 1.1, 1.2. Wu et al. (2013) leave "corner shift" open; this follows the toolkit's
     ``shiftInitBB.m``: a corner shift moves *one corner* outwards by 10 % of the width and
     height and keeps the opposite corner, so the box grows to :math:`1.1w \\times 1.1h`. For
     :math:`(x, y, w, h)`, :math:`\\delta_x = 0.1 w`, :math:`\\delta_y = 0.1 h`:
@@ -142,8 +142,8 @@ def sre_boxes(box) -> np.ndarray:
     1-based inclusive pixels); boxes here are continuous, so no rounding. Clamping to the
     image is left to the run (:func:`trackbook.evaluate` clips every initial box to the
     frame, as the toolkit clamps it). Some versions of the toolkit's ``calcSeqErrRobust.m``
-    divide a scaled run's boxes by its factor before scoring; the paper does not, nor does
-    this: a run is scored on the boxes the tracker gave.
+    divide a scaled run's boxes by its factor before scoring; Wu et al. (2013) do not, nor
+    does this: a run is scored on the boxes the tracker gave.
 
     Returns
     -------
@@ -169,7 +169,7 @@ def pooled_scores(boxes, gts) -> dict:
                                  {\\sum_r |F_r|},
 
     :math:`F_r` the scored frames of run :math:`r`; the AUC (the mean of SR over the 21
-    thresholds) and the precision are pooled the same way. The paper says only that the
+    thresholds) and the precision are pooled the same way. Wu et al. (2013) say only that the
     runs' results are averaged. Each run's first frame is its initialisation and is dropped,
     as :func:`trackbook.evaluate` drops it (the toolkit scores it, with the ground truth as
     the box, which lifts short TRE segments).
@@ -365,7 +365,7 @@ def reset_protocol(segment, groundtruth, skip: int = 5, burnin: int = 10) -> Res
 
     ``burnin`` (VOT: 10) is the number of frames after every initialisation (the first one
     too) that :attr:`ResetRun.accuracy` leaves out: after an initialisation at s the frames
-    s + 1, ..., s + burnin. That is the papers' "ten frames after re-initialization";
+    s + 1, ..., s + burnin. That is Kristan et al.'s (2015, 2016) "ten frames after re-initialization";
     the toolkit masks s, ..., s + burnin - 1 (its trajectory holds a marker on s), i.e. one
     tracked frame fewer: ``burnin=9`` here reproduces it.
 
@@ -548,7 +548,7 @@ def eao(runs, n_range: tuple[int, int] | None = None) -> float:
     """The expected average overlap, :math:`\\hat\\Phi = \\operatorname{mean}_{N = N_{lo}}^{N_{hi}}
     \\langle\\Phi_N\\rangle` (:func:`eao_curve`), Kristan et al. (2015, 2016).
 
-    The papers write :math:`\\frac{1}{N_{hi} - N_{lo}} \\sum_{N = N_{lo}}^{N_{hi}}`; this takes
+    Kristan et al. (2015, 2016) write :math:`\\frac{1}{N_{hi} - N_{lo}} \\sum_{N = N_{lo}}^{N_{hi}}`; this takes
     the mean over the :math:`N_{hi} - N_{lo} + 1` lengths of the range, as the toolkit does
     (the printed normaliser would lift every score by
     :math:`(N_{hi} - N_{lo} + 1) / (N_{hi} - N_{lo})`).
