@@ -108,6 +108,10 @@ def test_with_the_true_q_and_r_the_nis_lies_inside_the_95_interval(true_model):
     _, eps_z = true_model
     t = consistency_test(eps_z, 2)
     assert t.n_samples == M_RUNS * N_STEPS and t.verdict == "consistent"
+    # Bar-Shalom's single-run test: each run's time-averaged NIS against χ²(K n_z)/K; a
+    # consistent filter passes it in about 95 % of the runs
+    passed = [is_consistent(run, 2) for run in eps_z]
+    assert 0.9 <= np.mean(passed) < 1.0
 
 
 def test_with_q_ten_times_too_small_the_filter_is_overconfident():
@@ -117,6 +121,7 @@ def test_with_q_ten_times_too_small_the_filter_is_overconfident():
     assert avg[-1] > hi
     assert consistency_test(eps_x[:, -1], 4).verdict == "overconfident"
     assert consistency_test(eps_z, 2).verdict == "overconfident"
+    assert np.mean([is_consistent(run, 2) for run in eps_z]) < 0.5     # most single runs fail
 
 
 def test_with_q_ten_times_too_large_the_filter_is_underconfident():

@@ -2,7 +2,7 @@
 
 A particle filter moves each particle xⁱ_{k-1} to a new xⁱ_k drawn from a *proposal*
 q(x_k | x_{k-1}, z_k) and corrects for having drawn from q instead of the posterior by the
-importance weight (Arulampalam et al. 2002, eq. 48):
+importance weight (Arulampalam et al. 2002):
 
     wⁱ_k ∝ wⁱ_{k-1} · p(z_k | xⁱ_k) p(xⁱ_k | xⁱ_{k-1}) / q(xⁱ_k | xⁱ_{k-1}, z_k)
 
