@@ -286,6 +286,14 @@ def simulate_turning_target(rng: np.random.Generator, n_straight: int = 40, n_tu
     ----------
     rng : numpy.random.Generator
         The measurement noise's only source.
+    n_straight, n_turn, n_after : int
+        Steps before, during and after the turn.
+    speed : float
+        Length of the velocity, per step.
+    turn_rate : float
+        Radians the velocity turns per step during the turn.
+    sigma_z : float
+        Standard deviation of the measurement noise on each coordinate.
 
     Returns
     -------
@@ -321,8 +329,22 @@ def imm_versus_constant_velocity(truth, zs, sigma_z: float = 2.0, q_straight: fl
 
     The single filter is tuned for the straight part (q = ``q_straight``). The IMM holds that
     filter and a second constant-velocity filter with q = ``q_turn`` (about the squared
-    acceleration of the turn), mixed by the transition matrix ``M``. Both start from the first
-    true state, with μ = (0.9, 0.1).
+    acceleration of the turn), mixed by the transition matrix ``M``. Both start from the true
+    state one step before the first measurement (the track must begin straight), the IMM with
+    μ = (0.9, 0.1).
+
+    Parameters
+    ----------
+    truth : (n, 4) array_like
+        The true states, from :func:`simulate_turning_target`.
+    zs : (n, 2) array_like
+        The measured positions.
+    sigma_z : float
+        Standard deviation of the measurement noise (R = sigma_z² I).
+    q_straight, q_turn : float
+        Acceleration variances of the quiet and the manoeuvring constant-velocity models.
+    M : (2, 2) array_like
+        Mode transition matrix, M[i, j] = P(mode j | mode i).
 
     Returns
     -------
