@@ -162,7 +162,7 @@ def _field(cls, name: str) -> dataclasses.Field:
     if name not in fields:
         names = list(fields)
         hint = _did_you_mean(str(name), names)
-        raise ValueError(f"unknown parameter {name!r} for {cls.__qualname__}{hint}; "
+        raise ValueError(f"unknown parameter {name!r}{hint} for {cls.__qualname__}; "
                          f"valid names: {', '.join(names)}.")
     return fields[name]
 
@@ -294,6 +294,8 @@ def make_params(cls, values: dict):
     """Build ``cls(**values)`` with every value through :func:`parse`, then validate it."""
     names = [f.name for f in dataclasses.fields(cls)]
     unknown = sorted(set(values) - set(names))
+    if len(unknown) == 1:
+        _field(cls, unknown[0])         # one unknown name: the parser's own message
     if unknown:
         hints = [repr(u) + _did_you_mean(str(u), names) for u in unknown]
         raise ValueError(

@@ -351,6 +351,6 @@ def parse_values(tracker, values: dict) -> dict:
         return {}
     if not isinstance(values, dict):
         raise TypeError(f"values must be a dict {{knob: value}}, got {type(values).__name__}.")
-    out = {k: _params.parse(cls.Params, k, v) for k, v in values.items()}
-    _params.make_params(cls.Params, out)       # combinations (e.g. low < high) checked too
-    return {k: _jsonable(v) for k, v in out.items()}
+    # make_params parses each value once and checks the combinations (e.g. low < high)
+    p = _params.make_params(cls.Params, values)
+    return {k: _jsonable(getattr(p, k)) for k in values}
