@@ -172,7 +172,6 @@ class EdgeRayX(EdgeRayPF):
     def model(self, frame, box):
         self._set_edges(frame)
         super().model(frame, box)
-        p = self.params
         c0 = self.box_to_state(box)
         self._g0 = self._gain_energy(frame, c0)
         self.gain = 1.0

@@ -154,7 +154,7 @@ def occluder(n_before=12, n_cover=14, n_after=20, seed=0, size=(W, H)) -> Scenar
     gt = np.array(gt)
     # a partly covered target: keep its box (the tracker is not asked to be lost there)
     return Scenario("occluder", _finish("occluder", frames, gt, rng), _absent(gt),
-                    _back_uncovered(f"occluder", frames, gt, t, n_before + n_cover, panel))
+                    _back_uncovered("occluder", frames, gt, t, n_before + n_cover, panel))
 
 
 def _back_uncovered(name, frames, gt, t, start, panel):

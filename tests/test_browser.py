@@ -410,7 +410,7 @@ def test_book_animation_loads_its_frames_and_runs_from_files(browser, tmp_path, 
     (its HTML stays small), and the viewer draws and steps through them as before."""
     from trackbook.playground import BOOK_ENV
     from trackbook.playground.animations import kalman_ball
-    from trackbook.playground.export import STATIC_BASE, static_html
+    from trackbook.playground.export import STATIC_BASE
     from trackbook.playground.static import OUT_ENV
     from trackbook.sphinx_playground import STATIC_DIR, copy_files
 

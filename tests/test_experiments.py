@@ -88,7 +88,7 @@ def test_clip_filter_refuses_clips_the_experiment_does_not_have():
 
 def test_papers_are_keyed_by_paper_with_their_printed_tables():
     assert list(PAPERS) == ["lee2012", "kim2016", "lee2015", "cho2005"]
-    for key, p in PAPERS.items():
+    for p in PAPERS.values():
         assert set(p["tracking_rate"]) <= set(p["trackers"]) and set(p["ms"]) <= set(p["trackers"])
     # Table 1 of Lee 2015 and the headline rates are the same figures, typed once
     for t, row in PAPERS["lee2015"]["table1"].items():

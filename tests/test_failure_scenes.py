@@ -29,7 +29,7 @@ def test_the_same_seed_gives_the_same_frames_and_other_seeds_differ():
 
 def test_size_length_and_ground_truth(scenes):
     sizes, lengths = set(), set()
-    for (kind, s), (clip, absent) in scenes.items():
+    for (kind, _s), (clip, absent) in scenes.items():
         w, h = clip.size
         assert 160 <= w <= 320 and h == w * 3 // 4
         assert 40 <= len(clip) <= 80 and absent.shape == (len(clip),)

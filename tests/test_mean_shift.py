@@ -9,7 +9,7 @@ from skimage import data
 
 import trackbook
 from trackbook import clips, trackers
-from trackbook.features.color import bhattacharyya_coefficient, hsv_bin_index
+from trackbook.features.color import hsv_bin_index
 from trackbook.filters.mean_shift import (bin_image, ellipse_histograms, ellipse_labels,
                                           ellipse_rho, ellipse_window, lattice_pixel, mean_shift,
                                           mean_shift_weights, mean_shift_with_scale)

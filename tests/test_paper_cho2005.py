@@ -6,7 +6,6 @@ why the book departs from the paper.
 """
 import dataclasses
 
-import numpy as np
 import pytest
 
 from trackbook import trackers

@@ -8,7 +8,6 @@ files scored by a one-frame-at-a-time loop written the way the OTB toolkit score
 from __future__ import annotations
 
 import csv
-import os
 import re
 from pathlib import Path
 

@@ -116,7 +116,7 @@ def cmd_trackers(args) -> int:
     print("  ".join(h.ljust(w) for h, w in zip(heads, widths)) + "  doc")
     for r in rows:
         print("  ".join(v.ljust(w) for v, w in zip(r[:4], widths)) + "  " + r[4])
-    print(f"\nset one with --param NAME=VALUE; --preset paper starts from the paper column.")
+    print("\nset one with --param NAME=VALUE; --preset paper starts from the paper column.")
     return 0
 
 
@@ -140,7 +140,7 @@ def cmd_clips(args) -> int:
     found = clips.find_sequences()
     if found:
         print(f"\nsequences found ({Path(next(iter(found.values()))).parent}):")
-        for name, p in found.items():
+        for name in found:
             print(f"  {name}")
     return 0
 

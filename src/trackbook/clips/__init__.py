@@ -119,6 +119,6 @@ __all__ = [
 ]
 
 
-from . import datasets  # noqa: E402  (after load(): datasets builds clips with the loaders)
+from . import datasets  # noqa: E402,F401  (after load(): datasets builds clips with the loaders)
 from .datasets import load_dataset  # noqa: E402,F401
 from .failure_scenes import calibration_set, failure_scene  # noqa: E402,F401

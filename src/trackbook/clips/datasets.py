@@ -33,7 +33,6 @@ import warnings
 from pathlib import Path
 from typing import NamedTuple
 
-import numpy as np
 
 from .._checks import check_file, fs_error, list_dir
 from . import _dataset_tables as _t

@@ -94,7 +94,7 @@ def figure(height: int, head: np.ndarray, shirt: np.ndarray, trousers: np.ndarra
     shirt_t = cv2.resize(shirt, (w, h), interpolation=cv2.INTER_AREA)
     trousers_t = cv2.resize(trousers, (w, h), interpolation=cv2.INTER_AREA)
     skin = np.float32(cv2.resize(head, (1, 1), interpolation=cv2.INTER_AREA)[0, 0])
-    s, leg, arm = np.sin(phase) * swing, 0.11 * h, 0.08 * h
+    s, leg = np.sin(phase) * swing, 0.11 * h
 
     def part(draw, texture, shade=1.0):
         m = np.zeros((h, w), np.uint8)
@@ -133,7 +133,7 @@ def figure(height: int, head: np.ndarray, shirt: np.ndarray, trousers: np.ndarra
             body = [(-0.09, 0.212), (0.09, 0.212), (0.13, 0.24), (0.14, 0.28), (0.105, 0.58),
                     (-0.105, 0.58), (-0.14, 0.28), (-0.13, 0.24)]
             pts = np.int32([(cx + a * h, b * h) for a, b in body])
-            part(lambda m: cv2.fillConvexPoly(m, pts, 255), shirt_t)
+            part(lambda m: cv2.fillConvexPoly(m, pts, 255), shirt_t)  # noqa: B023 (called at once)
     # the head: the face crop fills an ellipse (slightly wider face texture is cropped by it)
     hw, hh = int(0.15 * h), int(0.2 * h)
     head_t = np.zeros((h, w, 3), np.float32)

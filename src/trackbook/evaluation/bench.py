@@ -347,7 +347,7 @@ def summarize(rows) -> list[dict]:
     out = []
     for t, rs in by.items():
         def mean(k):
-            v = [x[k] for x in rs if x.get(k) is not None]
+            v = [x[k] for x in rs if x.get(k) is not None]  # noqa: B023 (called at once)
             return float(np.mean(v)) if v else float("nan")
         out.append({"tracker": t, "clips": len({x["clip"] for x in rs}), "auc": mean("auc"),
                     "precision20": mean("precision20"), "tracking_rate": mean("tracking_rate"),

@@ -13,7 +13,6 @@ import numpy as np
 
 from .. import clips as _clips
 from ..evaluation import metrics
-from ..evaluation.runner import evaluate
 from ..style import OKABE_ITO
 from .animation import Animation, run_entry
 from .data import snapshot
@@ -73,10 +72,10 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
         w = lik / lik.sum() if lik.sum() > 0 else np.full(len(lik), 1 / len(lik))
         n = len(w)
         prev = _Snap(t._particles, t._weights)
-        for step, (p, ww, cap) in enumerate((
+        for p, ww, cap in (
                 (resampled, np.full(n, 1 / n), "resample: drawn in proportion to weight"),
                 (predicted, np.full(n, 1 / n), "predict: moved by the motion model"),
-                (predicted, w, "weigh: scored by the likelihood"))):
+                (predicted, w, "weigh: scored by the likelihood")):
             states.append(snapshot(TrackerState(particles=p, weights=ww)))
             index.append(img)
             gts.append(clip.groundtruth[k])

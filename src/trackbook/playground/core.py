@@ -24,7 +24,6 @@ from .. import trackers as _trackers
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
 from . import export
-from . import static as S
 from .data import VIEWER_CSS, VIEWER_JS
 from .live import LiveRun, running_loop, stream
 
