@@ -273,6 +273,28 @@ def hue_histogram(bgr: np.ndarray, box, bins: int = 16, s_min: int = 60, v_min: 
     return hist * (255.0 / top) if top > 0 else hist
 
 
+def background_weights(bgr: np.ndarray, box, bins: int = 16, s_min: int = 60, v_min: int = 32,
+                       v_max: int = 255, margin: float = 1.0) -> np.ndarray:
+    """Comaniciu, Ramesh & Meer 2003's background weights ``v_u = min(o* / o_u, 1)`` of the hue
+    bins, ``o`` the hue histogram of the ring around ``box`` (the box grown by ``margin`` times
+    its side on every side, the box left out) and ``o*`` its smallest non-zero bin: a hue
+    common around the target counts less in the target's histogram. Bins absent from the
+    ring weigh 1."""
+    H, W = bgr.shape[:2]
+    x, y, w, h = (int(round(v)) for v in box)
+    mx, my = int(round(margin * w)), int(round(margin * h))
+    x0, y0, x1, y1 = max(x - mx, 0), max(y - my, 0), min(x + w + mx, W), min(y + h + my, H)
+    hsv = _hsv(bgr[y0:y1, x0:x1])
+    keep = hue_mask(hsv, s_min, v_min, v_max)
+    yy, xx = np.mgrid[y0:y1, x0:x1]
+    keep &= ~((xx >= x) & (xx < x + w) & (yy >= y) & (yy < y + h))
+    o = np.bincount(hue_bins(hsv, bins)[keep], minlength=bins).astype(np.float64)
+    if not np.any(o > 0):
+        return np.ones(bins)
+    o_star = o[o > 0].min()
+    return np.where(o > 0, np.minimum(o_star / np.where(o > 0, o, 1.0), 1.0), 1.0)
+
+
 def back_projection(bgr: np.ndarray, hist: np.ndarray, s_min: int = 60, v_min: int = 32,
                     v_max: int = 255) -> np.ndarray:
     """The 8-bit probability image: each trusted pixel gets its hue bin's histogram value
@@ -285,4 +307,4 @@ def back_projection(bgr: np.ndarray, hist: np.ndarray, s_min: int = 60, v_min: i
 
 
 __all__ = ["CamShiftResult", "Moments", "OPENCV_TOLERANCE", "back_projection", "camshift",
-           "hue_bins", "hue_histogram", "hue_mask", "mean_shift", "moments", "orientation"]
+           "background_weights", "hue_bins", "hue_histogram", "hue_mask", "mean_shift", "moments", "orientation"]

@@ -33,10 +33,12 @@ _OPENCV_SAMPLE = "OpenCV's camshift sample"
 @dataclasses.dataclass(frozen=True)
 class CamShiftParams:
     bins: int = param(
-        16, 4, 180, 1, doc="hue bins of the target's histogram",
+        64, 4, 180, 1, doc="hue bins of the target's histogram",
         paper=NOT_PRINTED,
-        why=f"16 bins as in {_OPENCV_SAMPLE}: coarse enough that a few hundred target "
-            "pixels fill every bin they use")
+        why="Bradski prints no bin count (OpenCV's camshift sample uses 16); with the "
+            "background weights, mean AUC over the 8 sample clips was 0.30 at 16 bins, 0.54 "
+            "at 32, 0.47 at 48, 0.61 at 64, 0.62 at 90: 64 keeps the target's hue apart from "
+            "a background of a near hue")
     s_min: int = param(
         60, 0, 255, 1, doc="pixels with saturation below this have no trusted hue (masked)",
         paper=NOT_PRINTED,
@@ -70,6 +72,13 @@ class CamShiftParams:
         paper=NOT_PRINTED, paper_value=0.0,   # Bradski gives no lost rule
         why="the book's rule: Bradski prints none; with less than 30 % of the first "
             "frame's probability mass under the window the target's hues are gone")
+    background_weighted: bool = param(
+        True, doc="weigh each hue bin by min(1, o*/o_u), o the hues around the first box "
+        "(Comaniciu et al. 2003)",
+        paper=NOT_PRINTED, paper_value=False,
+        why="the book's addition: Bradski's plain hue histogram lets the window spread over "
+            "any background of the target's hue (yellow-ball's floor); hues common around "
+            "the first box are weighed down")
     redetect: bool = param(
         True, doc="while lost, also start the search at the densest window of the whole "
         "probability image",
@@ -86,9 +95,11 @@ class CamShiftTracker(Tracker):
     (:func:`~trackbook.filters.camshift.back_projection`, pixels with saturation below
     ``s_min`` or value outside ``v_min..v_max`` at 0), then
     :func:`~trackbook.filters.camshift.camshift` from the last search window with Bradski's
-    window rule. The box is centred on the centroid of ``P`` in the converged window; its size
-    is the first box's times ``sqrt(M00 / M00_1)`` (M00 counts the target's pixels, so its
-    square root follows the target's side), between a quarter and four times the first size.
+    window rule. The box's size is the first box's times ``sqrt(M00 / M00_1)`` (M00 counts the
+    target's pixels, so its square root follows the target's side), between a quarter and four
+    times the first size; its centre is the centroid of ``P`` in the converged window plus the
+    first frame's offset of the box centre from the centroid, scaled with the size (a target's
+    colours need not sit in the middle of its box).
 
     Confidence
     ----------
@@ -121,12 +132,20 @@ class CamShiftTracker(Tracker):
         p = self.params
         x, y, w, h = (float(v) for v in box)
         self._size0 = (w, h)
-        self.hist = cs.hue_histogram(frame, box, p.bins, **self._hist_args())
+        hist = cs.hue_histogram(frame, box, p.bins, **self._hist_args())
+        if p.background_weighted:
+            hist = hist * cs.background_weights(frame, box, p.bins, **self._hist_args())
+            hist = hist * (255.0 / hist.max()) if hist.max() > 0 else hist
+        self.hist = hist
         start = self._int_box(box, frame.shape)
         res = self._run(cs.back_projection(frame, self.hist, **self._hist_args()), start)
         # M00 of the first frame is the unit of the confidence; a box with no trusted hue has
         # none, and then every frame is lost (confidence 0).
         self._m00_first = res.m00
+        # the target's colours need not be centred in its box: keep the first frame's offset
+        # of the box centre from the centroid, in units of the box's size
+        self._offset = (0.0, 0.0) if res.m00 <= 0 else (
+            (x + w / 2 - (res.center[0] + 0.5)) / w, (y + h / 2 - (res.center[1] + 0.5)) / h)
         self.confidence = 1.0 if res.m00 > 0 else 0.0
         self.window = res.window if res.m00 > 0 else start
         self._good_window = self.window
@@ -176,7 +195,9 @@ class CamShiftTracker(Tracker):
         self.ellipse = (cx + 0.5, cy + 0.5, hx, hy, angle)   # pixel j covers [j, j + 1)
         scale = float(np.clip(np.sqrt(conf), 0.25, 4.0))
         w, h = self._size0[0] * scale, self._size0[1] * scale
-        self._box = np.array([res.center[0] + 0.5 - w / 2, res.center[1] + 0.5 - h / 2, w, h])
+        cx = res.center[0] + 0.5 + self._offset[0] * w
+        cy = res.center[1] + 0.5 + self._offset[1] * h
+        self._box = np.array([cx - w / 2, cy - h / 2, w, h])
         return True, self._box
 
     def _last_confidence(self) -> float:
