@@ -103,6 +103,19 @@ def test_back_projection_matches_calc_back_project():
     np.testing.assert_array_equal(cs.back_projection(f, hist, s_min, v_min, v_max), bp & mask)
 
 
+def test_background_weights_by_hand():
+    """A 10 x 10 red box (hue 0) in a ring 10 px wide: 300 of the ring's 800 pixels blue
+    (hue 120), 100 green (hue 60), the rest grey (no trusted hue). o* = 100, so blue's bin
+    weighs 100 / 300, green's 1, red's (absent from the ring) 1."""
+    f = np.full((30, 30, 3), 128, np.uint8)
+    f[10:20, 10:20] = (0, 0, 255)
+    f[0:10, 0:30] = (255, 0, 0)                        # 300 px of the ring
+    f[20:30, 0:10] = (0, 255, 0)                       # 100 px
+    v = cs.background_weights(f, (10, 10, 10, 10), bins=6, margin=1.0)
+    # 6 bins of 30 hue units (OpenCV's hue is 0..179): red in bin 0, green 2, blue 4
+    np.testing.assert_allclose(v, [1, 1, 1, 1, 100 / 300, 1])
+
+
 def test_orientation_and_axes_of_a_hand_made_ellipse():
     """A filled ellipse of half-axes 20 and 8 at 30 degrees (the pixels whose centre lies
     inside): its standard deviations are a / 2 and b / 2 (a uniform ellipse has variance

@@ -36,9 +36,9 @@ class CamShiftParams:
         64, 4, 180, 1, doc="hue bins of the target's histogram",
         paper=NOT_PRINTED,
         why="Bradski prints no bin count (OpenCV's camshift sample uses 16); with the "
-            "background weights, mean AUC over the 8 sample clips was 0.30 at 16 bins, 0.54 "
-            "at 32, 0.47 at 48, 0.61 at 64, 0.62 at 90: 64 keeps the target's hue apart from "
-            "a background of a near hue")
+            "book's other defaults, mean AUC over the 8 sample clips was 0.33 at 16 bins, "
+            "0.64 at 32, 0.57 at 48, 0.70 at 64, 0.70 at 90: 64 keeps the target's hue apart "
+            "from a background of a near hue")
     s_min: int = param(
         60, 0, 255, 1, doc="pixels with saturation below this have no trusted hue (masked)",
         paper=NOT_PRINTED,
@@ -78,7 +78,8 @@ class CamShiftParams:
         paper=NOT_PRINTED, paper_value=False,
         why="the book's addition: Bradski's plain hue histogram lets the window spread over "
             "any background of the target's hue (yellow-ball's floor); hues common around "
-            "the first box are weighed down")
+            "the first box are weighed down (mean AUC over the 8 sample clips 0.29 without, "
+            "0.70 with)")
     redetect: bool = param(
         True, doc="while lost, also start the search at the densest window of the whole "
         "probability image",
