@@ -57,10 +57,13 @@ class CamShiftResult:
 
     Attributes
     ----------
-    center : (cx, cy) in image pixels (pixel ``(i, j)`` at ``x = j, y = i``).
-    size : (width, length) of the rotated rect, ``4 σ_w`` and ``4 σ_l`` (OpenCV's order).
-    angle : degrees in [0, 180), OpenCV's convention (of the rect's ``length`` side... see
-        :func:`camshift`).
+    center : (cx, cy), the centroid of the probability in the final window, in image pixels
+        (pixel ``(i, j)`` at ``x = j, y = i``). ``cv2.CamShift`` returns the centre of its
+        next window instead (the centroid rounded to a pixel).
+    size : (width, length) of the rotated rect, ``4 σ_w`` and ``4 σ_l`` (OpenCV's order: the
+        rect's height is the long side).
+    angle : degrees in [0, 180), ``90° + θ`` with θ the long axis's angle from the x axis
+        (OpenCV's convention).
     window : (x, y, w, h) integer search window for the next frame.
     m00 : zeroth moment of the probability image over the final window (0: nothing found).
     iterations : mean-shift iterations run.
