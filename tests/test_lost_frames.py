@@ -24,8 +24,8 @@ def start():
 
 
 def test_eleven_trackers():
-    # the four papers' eleven, and the correlation filters mosse and kcf
-    assert len(NAMES) == 13
+    # the four papers' eleven, the correlation filters mosse and kcf, and camshift
+    assert len(NAMES) == 14
 
 
 @pytest.mark.parametrize("name", NAMES)

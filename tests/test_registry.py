@@ -23,6 +23,7 @@ BOOK_GROUPS = [["color-pf", "color-hog-pf", "color-hog-ipca"],                  
                ["hsi-color-pf", "hog-pf", "edge-ray-pf"],                       # kim2016
                ["covariance", "kalman-covariance"],                             # lee2015
                ["condensation", "mean-shift", "condensation-mean-shift"],       # cho2005
+               ["camshift"],                                                    # bradski1998
                ["mosse", "kcf"]]                                                # correlation
 BOOK_ORDER = [n for g in BOOK_GROUPS for n in g]
 
