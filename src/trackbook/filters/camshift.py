@@ -142,7 +142,7 @@ def mean_shift(prob: np.ndarray, window, max_iter: int = 10, eps: float = 1.0):
     eps2 = _round(max(float(eps), 0.0) ** 2)
     cur = (x, y, w, h)
     i = 0
-    for _ in range(max(int(max_iter), 1)):
+    for i in range(max(int(max_iter), 1)):  # noqa: B007 (i is returned)
         cur = _intersect(cur, W, H)
         if cur == (0, 0, 0, 0):
             cur = (W // 2, H // 2, 0, 0)
