@@ -73,16 +73,17 @@ class Run:
 
 
 def confidence_of(tracker) -> float:
-    """``tracker.state().confidence`` as a float (None -> NaN), or :class:`NoConfidence`."""
+    """``tracker.state().confidence`` as a float (NaN on the first frame, which is given, not
+    tracked), or :class:`NoConfidence` when a tracked frame has none."""
     st = tracker.state()
-    if not hasattr(st, "confidence"):
+    c = getattr(st, "confidence", None)
+    if c is None and getattr(tracker, "frame_index", 0) > 0:
         name = getattr(tracker, "name", type(tracker).__name__)
         hint = " (or leave it out with --no-mil)" if name == "opencv-mil" else ""
         raise NoConfidence(
-            f"tracker {name!r} reports no confidence: its state() has no 'confidence' field; "
-            f"the failure rule is calibrated on TrackerState.confidence, so add it to the "
-            f"tracker first{hint}.")
-    c = st.confidence
+            f"tracker {name!r} reports no confidence: its state() has 'confidence' None; "
+            f"the failure rule is calibrated on TrackerState.confidence, so give the tracker "
+            f"a _last_confidence() first{hint}.")
     return math.nan if c is None else float(c)
 
 

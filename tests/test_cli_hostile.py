@@ -451,8 +451,11 @@ def test_odd_box_digits_are_one_line(tmp_path, capsys, box):
     assert not out.exists()
 
 
-def test_sys_exit_in_an_entry_point_plugin_is_an_error_naming_it(tmp_path, capsys,
-                                                                 monkeypatch):
+def test_sys_exit_in_an_entry_point_plugin_is_a_warning_naming_it(tmp_path, capsys,
+                                                                  monkeypatch):
+    """An installed package that exits while loading neither ends the command with exit 0
+    and nothing done nor stops it: the command does its work and a warning names the file
+    and line (one broken package does not hide the others; see plugins.load_entry_points)."""
     from trackbook.trackers import plugins
 
     # a package 'installed' into tmp_path: its module and a .dist-info with the entry point
@@ -464,12 +467,15 @@ def test_sys_exit_in_an_entry_point_plugin_is_an_error_naming_it(tmp_path, capsy
     monkeypatch.syspath_prepend(str(tmp_path))
     monkeypatch.setattr(plugins, "_entry_points_done", False)
     try:
-        assert cli.main(["trackers"]) == 2
+        with pytest.warns(UserWarning) as caught:
+            assert cli.main(["trackers"]) == 0
     finally:
         sys.modules.pop("fake_exit_mod", None)
+    out = capsys.readouterr().out
+    assert "kcf" in out and "mine-plugin" not in out        # the work done, the plugin not
     line = _line_of(f, "sys.exit(0)")
-    _one_line_error(capsys, f"error in your code (fake_exit_mod.py:{line}, in <module>): "
-                            "SystemExit")
+    said = " ".join(str(w.message) for w in caught)
+    assert "sys.exit(0)" in said and f"fake_exit_mod.py, line {line}" in said, said
 
 
 def test_an_error_in_a_users_tracker_on_a_dask_worker_names_their_file(tmp_path, capsys):

@@ -1,10 +1,10 @@
 """The calibration script of the failure rule (``experiments/calibrate_failure.py``), run on
 small trackers defined here that report a confidence through an overridden ``state()``."""
 
+import dataclasses
 import importlib.util
 import json
 import sys
-import types
 from pathlib import Path
 
 import cv2
@@ -29,9 +29,8 @@ def _script():
 
 
 def _with_confidence(state, c):
-    """The tracker's state plus a ``confidence`` (the field is not on TrackerState here)."""
-    return types.SimpleNamespace(**{k: getattr(state, k) for k in state.__dataclass_fields__},
-                                 confidence=c)
+    """The tracker's state with this ``confidence``."""
+    return dataclasses.replace(state, confidence=c)
 
 
 class _Template(trackers.Tracker):
@@ -140,7 +139,7 @@ def test_the_script_says_when_a_tracker_has_no_confidence(fakes, tmp_path, capsy
     assert mod.main(["--quick", "--trackers", "test-counter,test-mute", "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert err.startswith("error: tracker 'test-mute' reports no confidence") and \
-        "'confidence'" in err
+        "'confidence' None" in err
     assert not out.exists()
     with pytest.raises(FileNotFoundError, match="experiments/calibrate_failure.py"):
         load_calibration(out)

@@ -4,7 +4,7 @@ Every module's imports are read with :mod:`ast` (imports inside functions count 
 import still makes the lower layer depend on the higher one) and resolved to modules of the
 package. Layers, bottom up:
 
-0. ``_checks``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers`` (helpers, data)
+0. ``_checks``, ``_user_code``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers`` (helpers, data)
 1. ``clips``, ``features``, ``learning``
 2. ``filters``
 3. ``trackers``, ``mot``
@@ -12,7 +12,7 @@ package. Layers, bottom up:
    trackers' params they back: it reads the trackers' declarations)
 5. ``viz``
 6. ``playground``
-7. ``widgets``, ``cli``, ``__main__``, ``exercises``, ``sphinx_*``
+7. ``widgets``, ``cli``, ``_cli_output``, ``_cli_errors``, ``__main__``, ``exercises``, ``sphinx_*``
 
 A module may import its own layer or a lower one. The package's ``__init__`` re-exports the
 public names and may import any layer.
@@ -29,14 +29,14 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "trackbook"
 
 LAYERS = {
-    "_checks": 0, "_memory": 0, "_markdown": 0, "params": 0, "style": 0, "papers": 0,
+    "_checks": 0, "_user_code": 0, "_memory": 0, "_markdown": 0, "params": 0, "style": 0, "papers": 0,
     "clips": 1, "features": 1, "learning": 1,
     "filters": 2,
     "trackers": 3, "mot": 3,
     "evaluation": 4, "metrics": 4, "results": 4, "quotes": 4,
     "viz": 5,
     "playground": 6,
-    "widgets": 7, "cli": 7, "_cli_output": 7, "__main__": 7, "exercises": 7,
+    "widgets": 7, "cli": 7, "_cli_output": 7, "_cli_errors": 7, "__main__": 7, "exercises": 7,
 }
 
 
