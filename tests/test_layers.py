@@ -4,7 +4,8 @@ Every module's imports are read with :mod:`ast` (imports inside functions count 
 import still makes the lower layer depend on the higher one) and resolved to modules of the
 package. Layers, bottom up:
 
-0. ``_checks``, ``_user_code``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers`` (helpers, data)
+0. ``_checks``, ``_user_code``, ``_memory``, ``_markdown``, ``params``, ``style``, ``papers``
+   (helpers, data)
 1. ``clips``, ``features``, ``learning``
 2. ``filters``
 3. ``trackers``, ``mot``
