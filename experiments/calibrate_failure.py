@@ -11,7 +11,7 @@ with the ground truth and whether the target is absent; then
 while flagging at most 1 % of the frames on target (IoU > 0.5, at least half of the target
 in view, not the first 3 frames after a return: the rule needs 3 frames to trust it) lost.
 
-It writes ``src/trackbook/results/failure_calibration.json`` (tracker -> thresholds,
+It writes ``src/trackbook/data/failure_calibration.json`` (tracker -> thresholds,
 achieved rates, ROC AUC of the confidence; the set's seed and size; the library version and
 ``git describe``) and prints a table tracker x kind: share of absent frames flagged / share
 of on-target frames flagged (false losses) / ROC AUC of the confidence.
@@ -45,7 +45,7 @@ from trackbook.evaluation.failure import calibrate, detection_rates, roc_auc
 from trackbook.evaluation.metrics import iou as box_iou
 
 ROOT = Path(__file__).resolve().parents[1]
-OUT = ROOT / "src" / "trackbook" / "results" / "failure_calibration.json"
+OUT = ROOT / "src" / "trackbook" / "data" / "failure_calibration.json"
 ON_TARGET_IOU = 0.5
 MIN_VISIBLE = 0.5
 

@@ -256,8 +256,10 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
                        feasible and r["absent_lost"] >= target, r["n_absent"], r["n_on"])
 
 
-#: The file the calibration script writes (package data beside the other results).
-CALIBRATION_FILE = "failure_calibration.json"
+#: The file the calibration script writes: package data in ``trackbook/data`` (not among the
+#: benchmark results of ``trackbook.results``: its rows are thresholds, not runs), where the
+#: trackers' failure layer can read it without importing ``evaluation``.
+CALIBRATION_FILE = Path(__file__).resolve().parents[1] / "data" / "failure_calibration.json"
 
 
 def load_calibration(path=None) -> dict:
@@ -267,18 +269,14 @@ def load_calibration(path=None) -> dict:
     ----------
     path : str or Path, optional
         The JSON file ``experiments/calibrate_failure.py`` wrote; default the committed one,
-        ``trackbook/results/failure_calibration.json``.
+        ``trackbook/data/failure_calibration.json``.
 
     Raises
     ------
     FileNotFoundError
         When there is no such file, naming the command that makes it.
     """
-    if path is None:
-        from .. import results
-
-        path = results.HERE / CALIBRATION_FILE
-    path = Path(path)
+    path = Path(CALIBRATION_FILE if path is None else path)
     if not path.is_file():
         raise FileNotFoundError(f"no calibration file {path}; make it with: python "
                                 "experiments/calibrate_failure.py (--out FILE to write "
@@ -288,6 +286,6 @@ def load_calibration(path=None) -> dict:
     return {r["tracker"]: FailureParams(**{k: r[k] for k in fields}) for r in rows}
 
 
-__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID", "FOUND_RATIOS",
-           "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
+__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID",
+           "FOUND_RATIOS", "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
            "roc_curve"]
