@@ -34,7 +34,7 @@ import numpy as np
 
 from .optical_flow import to_gray
 
-__all__ = ["forward_backward", "good_features", "min_eigenvalue_map", "pyramid",
+__all__ = ["forward_backward", "good_features", "min_eigenvalue_map", "patches_at", "pyramid",
            "track_points"]
 
 
@@ -146,6 +146,17 @@ def _sample(img, x, y, zero_outside=False):
     top = f[ya, xa] * (1 - fx) + f[ya, xb] * fx
     bottom = f[yb, xa] * (1 - fx) + f[yb, xb] * fx
     return top * (1 - fy) + bottom * fy
+
+
+def patches_at(image, points, size: int) -> np.ndarray:
+    """(N, size, size) bilinear patches of a grey image centred on each of ``points`` (x, y),
+    the border reflected: the patches Median Flow compares by NCC, all sampled at once."""
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    off = np.arange(int(size), dtype=np.float64) - (int(size) - 1) / 2.0
+    xs = pts[:, 0, None, None] + off[None, None, :]
+    ys = pts[:, 1, None, None] + off[None, :, None]
+    xs, ys = np.broadcast_arrays(xs, ys)
+    return _sample(np.asarray(image, np.float32), xs, ys)
 
 
 def track_points(prev, curr, points, win: int = 21, levels: int = 4, iterations: int = 30,

@@ -28,6 +28,7 @@ from . import edge_ray  # noqa: E402,F401  kim2016: edge-ray-pf
 from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covariance
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
+from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
