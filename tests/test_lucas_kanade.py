@@ -12,8 +12,8 @@ Agreement measures, and why:
   window stays inside the image (the two treat the border differently: OpenCV pads each
   pyramid level, we reflect at sampling) and whose smaller eigenvalue per pixel is at least
   10 grey level^2 (a well-determined 2 x 2 system), every flow agrees to 0.02 px (measured: median
-  below 1e-4 px, 95th percentile below 1e-3 px); over all points, border ones included, 98 %. Both trackers must also be within 0.15 px of the true
-  motion there.
+  below 1e-4 px, 95th percentile below 1e-3 px); over all points, border ones included, 98 %.
+  Both trackers must also be within 0.15 px of the true motion there.
 - Status: identical on every corner tracked; on flat and edge-only windows (smaller eigenvalue
   0) both flag the point lost.
 """

@@ -33,6 +33,7 @@ KIND = {
     "mean-shift": {"particles", "weights", "ellipse"},
     "mosse": {"search_window"},
     "kcf": {"search_window"},
+    "median-flow": set(),
 }
 
 

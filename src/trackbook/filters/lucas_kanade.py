@@ -20,8 +20,8 @@ Pyramidal Lucas-Kanade (Lucas & Kanade 1981; Bouguet's pyramidal form)
     the border adds nothing to G or b. A point is lost (``status=False``) when its window's smaller
     eigenvalue per pixel, ``lambda_min(G) / win^2`` with gradients in grey levels per pixel,
     is below ``min_eigenvalue`` at full resolution (the aperture problem), or when its window
-    no longer overlaps the image. Gradients are Scharr's, interpolation bilinear, the image's border reflected,
-    as OpenCV's ``calcOpticalFlowPyrLK``.
+    no longer overlaps the image. Gradients are Scharr's, interpolation bilinear, the
+    image's border reflected, as OpenCV's ``calcOpticalFlowPyrLK``.
 Forward-backward error (Kalal, Mikolajczyk & Matas 2010)
     Track a point forward from frame t to t+1, then the result backward to t; in a reliable
     track the back-tracked point lands where it started. ``FB = ||x_t - x_t^back||``.

@@ -20,16 +20,15 @@ The book's additions, so that "lost" means lost (each can be switched off):
   the flow, so a camera's exposure change does not break brightness constancy;
 - a frame whose grey levels span at most ``flat_range`` is lost (nothing to track), and a box
   with less than ``min_visible`` of its area in the frame is lost (the target is leaving);
-- while lost, the flow is still run from the last box, and resumes tracking only if its box
-  passes the rules above and its patch, resampled to the first frame's box size, has an NCC
-  of at least ``resume_ncc`` with the first frame's patch: a box left on an occluder or on
-  the background moves consistently forward and backward, so the FB rule alone would call
-  it found;
-- ``redetect``: while lost and the flow did not resume, the first frame's patch, resized to
-  the last box, is matched over the whole frame
-  (:func:`trackbook.filters.template_matching.ncc_map`); a peak of at least ``redetect_ncc``
-  places the box there and tracking resumes. Median Flow has no detector: TLD (Kalal et
-  al.'s later tracker) pairs it with one; this is the plainest.
+- ``redetect``: while lost, the flow is still run from the last box, and resumes tracking
+  only if its box passes the rules above and its patch, resampled to the first frame's box
+  size, has an NCC of at least ``resume_ncc`` with the first frame's patch (a box left on an
+  occluder or on the background moves consistently forward and backward, so the FB rule
+  alone would call it found). Otherwise the first frame's patch, resized to the last box,
+  is matched over the whole frame (:func:`trackbook.filters.template_matching.ncc_map`); a
+  peak of at least ``redetect_ncc`` places the box there and tracking resumes. Median Flow
+  has no detector: TLD (Kalal et al.'s later tracker) pairs it with one; this is the
+  plainest.
 
 Confidence: ``state().confidence`` is minus the median FB error (pixels) of the grid on the
 frame the box was placed by the flow; on a frame where no flow placed it (a flat frame, a
@@ -38,9 +37,10 @@ points were lost) it is minus the frame's diagonal, the largest distance in the 
 re-detected frame minus ``fb_threshold`` (accepted, but not by the flow).
 
 >>> from trackbook import trackers, clips
->>> clip = clips.load("red-cube")                                                    # doctest: +SKIP
->>> t = trackers.create("median-flow"); t.init(clip.frames[0], clip.groundtruth[0])  # doctest: +SKIP
->>> ok, box = t.update(clip.frames[1]); t.state().confidence                         # doctest: +SKIP
+>>> clip = clips.load("red-cube")                                       # doctest: +SKIP
+>>> t = trackers.create("median-flow")                                  # doctest: +SKIP
+>>> t.init(clip.frames[0], clip.groundtruth[0])                         # doctest: +SKIP
+>>> ok, box = t.update(clip.frames[1]); t.state().confidence            # doctest: +SKIP
 """
 
 from __future__ import annotations
@@ -98,12 +98,14 @@ class MedianFlowParams:
     resume_ncc: float = param(
         0.3, -1.0, 1.0, 0.05, doc="while lost, the flow from the last box resumes tracking "
         "only if the box's NCC with the first frame's patch reaches this",
-        paper=NOT_PRINTED, paper_value=1.0,
-        why="the book's addition: while the target is hidden the box rests on the occluder "
-            "or background, whose flow is consistent forward and backward; their NCC with "
+        paper=NOT_PRINTED,
+        why="the book's addition (part of redetect): while the target is hidden the box "
+            "rests on the occluder or background, whose flow is consistent forward and "
+            "backward; their NCC with "
             "the first patch stays near 0.2 on the test scenes, the target's above 0.3")
     redetect: bool = param(
-        True, doc="match the first frame's patch over the whole frame while lost",
+        True, doc="while lost, resume by the flow (resume_ncc) or by matching the first "
+        "frame's patch over the whole frame (redetect_ncc)",
         paper=NOT_PRINTED, paper_value=False,
         why="the book's addition: Median Flow has no detector, so a target that left the "
             "view is never found again without one")
@@ -214,11 +216,12 @@ class MedianFlowTracker(Tracker):
         self._confidence = -self._diag
         if self._is_flat(frame):
             self._pyr = None       # no flow from a flat frame: the target must be found again
+            self._lost = True
             return False, self.bbox
         g = self._grey(frame)
         pyr = lk.pyramid(g, p.levels)
         box = None
-        if self._pyr is not None:
+        if self._pyr is not None and (p.redetect or not self._lost):
             box = self._flow(pyr, np.asarray(self.bbox, float))
             if box is not None and (visible_fraction(box, frame.shape) < p.min_visible or (
                     self._lost and self._template_ncc(g, box) < p.resume_ncc)):
