@@ -23,7 +23,8 @@ BOOK_GROUPS = [["color-pf", "color-hog-pf", "color-hog-ipca"],                  
                ["hsi-color-pf", "hog-pf", "edge-ray-pf"],                       # kim2016
                ["covariance", "kalman-covariance"],                             # lee2015
                ["condensation", "mean-shift", "condensation-mean-shift"],       # cho2005
-               ["mosse", "kcf"]]                                                # correlation
+               ["mosse", "kcf"],                                                # correlation
+               ["median-flow"]]                                                 # kalal2010
 BOOK_ORDER = [n for g in BOOK_GROUPS for n in g]
 
 
