@@ -77,8 +77,8 @@ def test_confidence_is_minus_the_median_fb_error_of_the_grid():
     pts = np.stack([gx.ravel(), gy.ravel()], 1)
     p = t.params
     _, fb, _ = lk.forward_backward(lk.pyramid(to_gray(f0), p.levels),
-                                   lk.pyramid(to_gray(f1), p.levels), pts, win=p.win,
-                                   levels=p.levels)
+                                   lk.pyramid(to_gray(f1), p.levels), pts,
+                                   win=2 * p.half_win + 1, levels=p.levels)
     assert t.state().confidence == pytest.approx(-np.median(fb), abs=1e-12)
 
 

@@ -118,6 +118,8 @@ def _reflect(i, n):
     """Indices reflected about the border without repeating it (OpenCV's BORDER_REFLECT_101)."""
     if n == 1:
         return np.zeros_like(i)
+    if i.size and i.min() >= 0 and i.max() < n:
+        return i                       # the usual case, every index inside: nothing to do
     period = 2 * (n - 1)
     i = np.abs(i) % period
     return np.where(i >= n, period - i, i)
@@ -142,7 +144,7 @@ def _sample(img, x, y, zero_outside=False):
     else:
         xa, xb = _reflect(x0, W), _reflect(x0 + 1, W)
         ya, yb = _reflect(y0, H), _reflect(y0 + 1, H)
-        f = img.astype(np.float64, copy=False)
+        f = img                        # float32 values promote to float64 with the weights
     top = f[ya, xa] * (1 - fx) + f[ya, xb] * fx
     bottom = f[yb, xa] * (1 - fx) + f[yb, xb] * fx
     return top * (1 - fy) + bottom * fy

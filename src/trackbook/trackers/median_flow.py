@@ -68,10 +68,10 @@ class MedianFlowParams:
     fb_threshold: float = param(
         10.0, 0.5, 100.0, 0.5, doc="median forward-backward error (px) above which the frame "
         "is a tracking failure", paper=10.0)   # Kalal et al. 2010: failure when median FB > 10 px
-    win: int = param(
-        11, 3, 41, 2, doc="Lucas-Kanade window side (px, odd)",
+    half_win: int = param(
+        5, 1, 20, 1, doc="Lucas-Kanade window half-side r (px): a (2r + 1) x (2r + 1) window",
         paper=NOT_PRINTED,
-        why="not printed in the paper; 11 px keeps a window inside a small target's box "
+        why="not printed in the paper; an 11 px window keeps inside a small target's box "
             "while holding enough texture for the 2 x 2 system")
     levels: int = param(
         3, 1, 6, 1, doc="pyramid levels of Lucas-Kanade (1: full resolution only)",
@@ -79,7 +79,7 @@ class MedianFlowParams:
         why="not printed in the paper; three levels reach motions of about 4 x the window "
             "half-width, more than the sample clips move in a frame")
     ncc_window: int = param(
-        11, 3, 41, 2, doc="side (px) of the patches around a point compared by NCC",
+        11, 3, 41, 1, doc="side (px) of the patches around a point compared by NCC",
         paper=NOT_PRINTED,
         why="not printed in the paper; the same side as the Lucas-Kanade window, so a point's "
             "NCC judges the pixels its flow was solved on")
@@ -175,7 +175,8 @@ class MedianFlowTracker(Tracker):
         on failure; sets ``fb_error`` and ``points``."""
         p = self.params
         pts = self._grid(box)
-        fwd, fb, status = lk.forward_backward(self._pyr, pyr, pts, win=p.win, levels=p.levels)
+        fwd, fb, status = lk.forward_backward(self._pyr, pyr, pts, win=2 * p.half_win + 1,
+                                              levels=p.levels)
         self.fb_error = float(np.median(fb))              # inf when over half were lost
         if not self.fb_error <= p.fb_threshold or status.sum() < 2:
             return None
