@@ -23,9 +23,9 @@ def start():
     return frames, c.groundtruth[0]
 
 
-def test_eleven_trackers():
-    # the four papers' eleven, the correlation filters mosse and kcf, and camshift
-    assert len(NAMES) == 14
+def test_every_registered_tracker():
+    # the four papers' eleven, the correlation filters mosse and kcf, camshift and median-flow
+    assert len(NAMES) == 15
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -24,7 +24,8 @@ BOOK_GROUPS = [["color-pf", "color-hog-pf", "color-hog-ipca"],                  
                ["covariance", "kalman-covariance"],                             # lee2015
                ["condensation", "mean-shift", "condensation-mean-shift"],       # cho2005
                ["camshift"],                                                    # bradski1998
-               ["mosse", "kcf"]]                                                # correlation
+               ["mosse", "kcf"],                                                # correlation
+               ["median-flow"]]                                                 # kalal2010
 BOOK_ORDER = [n for g in BOOK_GROUPS for n in g]
 
 

@@ -34,6 +34,7 @@ KIND = {
     "mosse": {"search_window"},
     "kcf": {"search_window"},
     "camshift": {"search_window", "ellipse"},
+    "median-flow": set(),
 }
 
 

@@ -30,6 +30,7 @@ from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covaria
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
+from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
