@@ -1,7 +1,7 @@
 """The contract every tracker keeps: OpenCV's ``init(frame, bbox)`` / ``update(frame)``.
 
 Subclasses implement ``_init(frame, box)`` and ``_update(frame) -> (ok, box)`` only. This class
-owns everything that must be the same for all eleven trackers: the params dataclass, the seeded
+owns everything that must be the same for every tracker: the params dataclass, the seeded
 ``numpy.random.Generator`` (re-created on every ``init`` so a re-run repeats exactly), the input
 checks that refuse bad input naming a fix, and the last line of defence against a NaN or empty box.
 """
