@@ -325,3 +325,19 @@ def test_install_story_in_pyproject_and_readme():
     assert plain < readme.index('pip install -e ".[book]"')
     assert "git+" in readme[plain - 200:plain + 400]
     assert "book/appendix_own_tracker.md" in readme
+
+
+def test_trackers_listing_shows_no_markup(capsys):
+    """A terminal cannot show a quote popover: the list and a tracker's page carry no
+    ``[quote: key]`` marker, no reST backticks and no repeated name."""
+    from trackbook import cli, trackers
+
+    assert cli.main(["trackers"]) == 0
+    pages = [capsys.readouterr().out]
+    for name in trackers.available():
+        assert cli.main(["trackers", name]) == 0
+        out = capsys.readouterr().out
+        assert not out.startswith(f"{name}: {name}:"), out.splitlines()[0]
+        pages.append(out)
+    text = "\n".join(pages)
+    assert "[quote:" not in text and "``" not in text and ":func:`" not in text

@@ -11,6 +11,7 @@ import contextlib
 import hashlib
 import json
 import os
+import re
 import tempfile
 from pathlib import Path
 
@@ -253,3 +254,14 @@ def remove_if_empty(folders) -> None:
             d.rmdir()          # only succeeds on an empty folder
         except OSError:
             return
+
+
+def plain_doc(doc: str, name: str = "") -> str:
+    """A docstring's first paragraph as a terminal shows it: the reST backticks, the
+    ``[quote: key]`` markers (the book shows the passage; a terminal cannot) and a leading
+    repetition of the tracker's name dropped, white space folded."""
+    text = " ".join((doc or "").strip().split("\n\n")[0].split())
+    text = re.sub(r"\s*\[quote: [^\]]*\]", "", text)
+    text = re.sub(r"``([^`]*)``", r"\1", text)
+    text = re.sub(r":\w+:`~?([^`]*)`", r"\1", text)
+    return text.removeprefix(f"{name}:").strip() if name else text

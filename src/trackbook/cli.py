@@ -79,14 +79,12 @@ def cmd_trackers(args) -> int:
     _load_imports(args.imports)
     if not args.name:
         for name in trackers.available(reference=True):
-            doc = (trackers.get(name).__doc__ or "").strip().split("\n\n")[0]
-            doc = doc.removeprefix(f"``{name}``:").strip()
-            print(f"{name:24s} {textwrap.shorten(' '.join(doc.split()), 100, placeholder=' ...')}")
+            doc = _out.plain_doc(trackers.get(name).__doc__, name)
+            print(f"{name:24s} {textwrap.shorten(doc, 100, placeholder=' ...')}")
         print("\ntrackbook trackers NAME lists a tracker's params.")
         return 0
     cls = trackers.get(args.name)
-    doc = " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
-    print(f"{args.name}: {doc}")
+    print(f"{args.name}: {_out.plain_doc(cls.__doc__, args.name)}")
     if not dataclasses.is_dataclass(cls.Params) or not dataclasses.fields(cls.Params):
         print("(no params)")
         return 0
@@ -110,7 +108,7 @@ def cmd_trackers(args) -> int:
             paper_txt = repr(paper) + (" (a reading)" if reading else "")
         else:
             paper_txt = "-"
-        rows.append((f.name, rng, repr(f.default), paper_txt, " ".join(m.get("doc", "").split())))
+        rows.append((f.name, rng, repr(f.default), paper_txt, _out.plain_doc(m.get("doc", ""))))
     heads = ("param", "allowed", "book", "paper")
     widths = [max(len(h), *(len(r[i]) for r in rows)) for i, h in enumerate(heads)]
     print("  ".join(h.ljust(w) for h, w in zip(heads, widths)) + "  doc")
