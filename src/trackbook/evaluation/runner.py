@@ -162,6 +162,19 @@ def _n_frames(clip, max_frames) -> int:
     return n
 
 
+def advance(run, until: int | None = None, seconds: float | None = None) -> None:
+    """Step ``run`` (anything with ``step()``, ``done``, ``n_done`` and ``n_total``: a
+    :class:`Run`, or the playground's live run around one) until ``until`` frames are done
+    (all if None) or ``seconds`` have passed; at least one frame is tracked either way,
+    unless the run is done."""
+    stop = run.n_total if until is None else min(int(until), run.n_total)
+    t_end = None if seconds is None else time.perf_counter() + seconds
+    while not run.done:
+        run.step()
+        if run.n_done >= stop or (t_end is not None and time.perf_counter() >= t_end):
+            break
+
+
 class Run:
     """The one run loop: trackers over one clip in lockstep, one frame at a time.
 
@@ -269,12 +282,7 @@ class Run:
     def advance(self, until: int | None = None, seconds: float | None = None) -> None:
         """Step until ``until`` frames are done (all if None) or ``seconds`` have passed
         (at least one frame is tracked either way, unless the run is done)."""
-        stop = self.n_total if until is None else min(int(until), self.n_total)
-        t_end = None if seconds is None else time.perf_counter() + seconds
-        while not self.done:
-            self.step()
-            if self.n_done >= stop or (t_end is not None and time.perf_counter() >= t_end):
-                break
+        advance(self, until, seconds)
 
     def close(self) -> None:
         """Free what the trackers made by name hold (e.g. opencv-mil's child process); done

@@ -12,6 +12,7 @@ from __future__ import annotations
 import asyncio
 import time
 
+from ..evaluation import runner
 from ..evaluation.runner import Result, Run
 from . import data as D
 
@@ -73,12 +74,7 @@ class LiveRun:
     def advance(self, until: int | None = None, seconds: float | None = None) -> None:
         """Step until ``until`` frames are done (all if None) or ``seconds`` have passed
         (at least one frame is tracked either way, unless the run is done)."""
-        stop = self.n_total if until is None else min(int(until), self.n_total)
-        t_end = None if seconds is None else time.perf_counter() + seconds
-        while not self.done:
-            self.step()
-            if self.n_done >= stop or (t_end is not None and time.perf_counter() >= t_end):
-                break
+        runner.advance(self, until, seconds)    # through this run's own step()
 
     def close(self) -> None:
         """Free what the tracker holds (e.g. opencv-mil's child process); the run does it
