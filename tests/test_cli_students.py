@@ -329,7 +329,7 @@ def test_install_story_in_pyproject_and_readme():
 
 def test_trackers_listing_shows_no_markup(capsys):
     """A terminal cannot show a quote popover: the list and a tracker's page carry no
-    ``[quote: key]`` marker, no reST backticks and no repeated name."""
+    quote marker of the register, no reST backticks and no repeated name."""
     from trackbook import cli, trackers
 
     assert cli.main(["trackers"]) == 0

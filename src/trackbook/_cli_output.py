@@ -258,7 +258,7 @@ def remove_if_empty(folders) -> None:
 
 def plain_doc(doc: str, name: str = "") -> str:
     """A docstring's first paragraph as a terminal shows it: the reST backticks, the
-    ``[quote: key]`` markers (the book shows the passage; a terminal cannot) and a leading
+    quote markers of the register (the book shows the passage; a terminal cannot) and a leading
     repetition of the tracker's name dropped, white space folded."""
     text = " ".join((doc or "").strip().split("\n\n")[0].split())
     text = re.sub(r"\s*\[quote: [^\]]*\]", "", text)
