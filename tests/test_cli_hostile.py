@@ -230,7 +230,7 @@ def test_bench_refuses_two_clips_whose_otb_files_collide(tmp_path, capsys):
                      "--workers", "1", "--out", str(tmp_path / "o")])
     assert code == 2
     _one_line_error(capsys, "'my clip' and 'my_clip'")
-    assert not (tmp_path / "o" / "otb").exists()
+    assert not (tmp_path / "o").exists()          # refused before the first run: no file
 
 
 # --- 5. never overwritten without --force; atomic writes ----------------------------------------

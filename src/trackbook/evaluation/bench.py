@@ -282,6 +282,7 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     scheduler = scheduler or os.environ.get(parallel.ENV_SCHEDULER) or None
     if isinstance(scheduler, (str, os.PathLike)):  # fail in seconds, before any run
         parallel.check_scheduler(scheduler, parallel.check_timeout(scheduler_timeout))
+    check_otb_names({(t.tracker, t.clip.name) for t in tasks}, out)   # before any run
     multi_seed = len({t.seed for t in tasks}) > 1
     done: dict[Task, dict] = {}
     if not force:
@@ -450,6 +451,20 @@ def otb_paths(tracker: str, clip: str, out) -> tuple[Path, Path]:
     return folder / f"{safe_name(clip)}.txt", folder / "times" / f"{safe_name(clip)}_time.txt"
 
 
+def check_otb_names(pairs, out) -> None:
+    """A ``ValueError`` naming two clips whose OTB result files (:func:`otb_paths`) would be
+    one file: ``pairs`` of ``(tracker, clip)``. :func:`run` checks its plan before the first
+    run, so such a bench writes nothing."""
+    owner: dict = {}
+    for tracker, clip in sorted(pairs):
+        box_file, _ = otb_paths(tracker, clip, out)
+        other = owner.setdefault(str(box_file).casefold(), clip)
+        if other != clip:
+            raise ValueError(f"clips {other!r} and {clip!r} would both be written to "
+                             f"{box_file}; rename one of them (e.g. its folder) so their names "
+                             "differ in more than spaces, punctuation or case.")
+
+
 def write_otb(records, out) -> None:
     """The results in the layout the OTB toolkit, got10k, pysot and pytracking read:
     ``OUT/otb/<tracker>/<clip>.txt``, one comma-separated ``x,y,w,h`` line per frame (frame 1
@@ -468,14 +483,7 @@ def write_otb(records, out) -> None:
         k = (r["row"]["tracker"], r["row"]["clip"])
         if k not in chosen or r["settings"]["seed"] < chosen[k]["settings"]["seed"]:
             chosen[k] = r
-    owner: dict = {}
-    for tracker, clip in chosen:
-        box_file, _ = otb_paths(tracker, clip, out)
-        other = owner.setdefault(str(box_file).casefold(), clip)
-        if other != clip:
-            raise ValueError(f"clips {other!r} and {clip!r} would both be written to "
-                             f"{box_file}; rename one of them (e.g. its folder) so their names "
-                             "differ in more than spaces, punctuation or case.")
+    check_otb_names(chosen, out)
     for (tracker, clip), r in chosen.items():
         box_file, time_file = otb_paths(tracker, clip, out)
         boxes = "".join(",".join(repr(float(v)) for v in b) + "\n" for b in r["boxes"])
