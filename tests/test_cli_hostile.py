@@ -490,3 +490,58 @@ def test_an_error_in_a_users_tracker_on_a_dask_worker_names_their_file(tmp_path,
     assert code == 2
     _one_line_error(capsys, f"error in your code (dask_tracker.py:{line}, in _update): "
                             "IndexError: list index out of range")
+
+
+# --- 6. one bench per --out ---------------------------------------------------------------------
+
+def _bench(clip, out, *extra):
+    return cli.main(["bench", "--trackers", "mean-shift", "--clips", str(clip), "--quiet",
+                     "--workers", "1", "--out", str(out), *extra])
+
+
+def test_bench_refuses_an_out_holding_another_benchs_tables_and_force_replaces_them(
+        tmp_path, capsys):
+    a, b = _folder(tmp_path / "d", "Alpha"), _folder(tmp_path / "d", "Beta")
+    out = tmp_path / "o"
+    assert _bench(a, out, "--max-frames", "4") == 0
+    tables = {p: (out / p).read_bytes() for p in _files(out) if (out / p).is_file()}
+    capsys.readouterr()
+    for other in ([b, "--max-frames", "4"], [a, "--max-frames", "5"],
+                  [a, "--max-frames", "4", "--seeds", "0-1"]):
+        assert _bench(other[0], out, *other[1:]) == 2           # refused before any run
+        _one_line_error(capsys, f"--out {out}", "another bench", "Alpha", "--force")
+        assert {p: (out / p).read_bytes() for p in tables} == tables
+        assert not any("Beta" in p or "s1" in p for p in _files(out))
+    assert _bench(a, out, "--max-frames", "4") == 0              # the same bench: resumed
+    assert "2 read back, 0 run" in capsys.readouterr().out
+    assert _bench(b, out, "--max-frames", "4", "--force") == 0   # replaced, Alpha's files gone
+    otb = [p for p in _files(out) if p.startswith("otb/") and p.endswith(".txt")]
+    assert otb == ["otb/mean-shift/Beta.txt", "otb/mean-shift/times/Beta_time.txt",
+                   "otb/opencv-mil/Beta.txt", "otb/opencv-mil/times/Beta_time.txt"]
+    assert {r["clip"] for r in bench.load(out)} == {"Beta"}
+
+
+def test_bench_refuses_an_out_whose_tables_predate_the_plan_record(tmp_path, capsys):
+    a, b = _folder(tmp_path / "d", "Alpha"), _folder(tmp_path / "d", "Beta")
+    out = tmp_path / "o"
+    assert _bench(a, out, "--max-frames", "4") == 0
+    (out / "plan.json").unlink()                 # tables written by an older trackbook
+    assert _bench(a, out, "--max-frames", "4") == 0              # the rows match: resumed
+    (out / "plan.json").unlink()
+    capsys.readouterr()
+    assert _bench(b, out, "--max-frames", "4") == 2
+    _one_line_error(capsys, "another bench", "Alpha", "--force")
+
+
+def test_a_bench_leaves_no_result_file_of_another_bench_in_its_out(tmp_path, capsys):
+    a = _folder(tmp_path / "d", "Alpha")
+    out = tmp_path / "o"
+    assert _bench(a, out, "--max-frames", "4") == 0
+    written = _files(out)
+    stale = ["otb/kcf/Old.txt", "otb/kcf/times/Old_time.txt", "success_IV.png",
+             "precision_IV.png", "attributes.md", "attributes.csv"]
+    for p in stale:                     # what a bench over OTB's attributes would have left
+        (out / p).parent.mkdir(parents=True, exist_ok=True)
+        (out / p).write_text("an earlier bench's\n")
+    assert _bench(a, out, "--max-frames", "4", "--force") == 0
+    assert _files(out) == written

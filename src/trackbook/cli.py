@@ -524,8 +524,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--seeds", help="sweep seeds: 0-9, 0,3,7 or 0-2,5 (overrides --seed)")
     b.add_argument("--max-frames", type=int)
     b.add_argument("--param", action="append", help="TRACKER:NAME=VALUE, repeatable")
-    b.add_argument("--force", action="store_true", help=_FORCE_HELP + " (re-runs the runs "
-                   "saved in OUT/runs instead of reading them back)")
+    b.add_argument("--force", action="store_true", help=_FORCE_HELP + ": re-run the runs "
+                   "saved in OUT/runs and replace the tables, also another bench's (without "
+                   "it the same bench resumes, and an OUT holding another bench is refused)")
     b.add_argument("--quiet", action="store_true", help="no progress bar")
     b.add_argument("--workers", type=int, default=None,
                    help="worker processes (default: the number of cores)")
