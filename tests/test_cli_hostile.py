@@ -237,19 +237,50 @@ def test_bench_refuses_two_clips_whose_otb_files_collide(tmp_path, capsys):
 
 def test_track_refuses_to_replace_a_run_without_force(tmp_path, capsys):
     out = tmp_path / "o"
-    base = ["track", "mean-shift", "red-cube", "--out", str(out)]
-    assert cli.main(base + ["--max-frames", "6"]) == 0
+    base = ["track", "mean-shift", "red-cube", "--out", str(out), "--param", "max_iter=5"]
+    assert cli.main(base) == 0
     before = {p.name: p.read_bytes() for p in out.iterdir()}
-    assert sorted(before) == ["mean-shift_red-cube.csv", "mean-shift_red-cube.json",
-                              "mean-shift_red-cube.mp4"]
+    stems = {p.stem for p in out.iterdir()}
+    assert len(stems) == 1 and stems.pop().startswith("mean-shift_red-cube_")
+    assert sorted(p.suffix for p in out.iterdir()) == [".csv", ".json", ".mp4"]
     capsys.readouterr()
-    assert cli.main(base + ["--max-frames", "3"]) == 2          # a shorter run
+    assert cli.main(base) == 2                                    # the same run again
     _one_line_error(capsys, "mean-shift_red-cube", "--force")
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
-    assert cli.main(base + ["--max-frames", "3", "--force"]) == 0
-    rows = (out / "mean-shift_red-cube.csv").read_text().splitlines()
-    assert len(rows) == 1 + 3                                     # header + 3 frames
+    csv = next(p for p in out.iterdir() if p.suffix == ".csv")
+    csv.write_text("edited\n")
+    assert cli.main(base + ["--force"]) == 0
+
+    def boxes(text):                  # frame and box columns (the timings differ run to run)
+        return [line.split(",")[:5] for line in text.decode().splitlines()]
+    assert boxes(csv.read_bytes()) == boxes(before[csv.name])    # replaced: same seed, boxes
     assert sorted(p.name for p in out.iterdir()) == sorted(before)   # no temporary left
+
+
+def test_track_runs_with_another_box_or_length_get_their_own_files(tmp_path, capsys):
+    """README: track a video, then the same video with --box: the second is a new run."""
+    from trackbook.clips.loaders import write_video
+    clip = clips.load("red-cube")
+    video = tmp_path / "my_video.mp4"
+    write_video(video, list(clip.frames)[:5], 10, clip.size)
+    gt = tmp_path / "my_boxes.txt"
+    gt.write_text("".join(",".join(f"{v:g}" for v in b) + "\n" for b in clip.groundtruth[:5]))
+    (tmp_path / "my_video.groundtruth.txt").write_text(gt.read_text())   # as clips export
+    out = tmp_path / "o"
+    base = ["track", "mean-shift", str(video), "--out", str(out)]
+    x, y, w, h = (int(v) for v in clip.groundtruth[0])
+    for i, extra in enumerate([[], ["--box", f"{x},{y},{w},{h}"],
+                               ["--box", f"{x + 1},{y},{w},{h}"],
+                               ["--box", f"{x},{y},{w},{h}", "--max-frames", "3"],
+                               ["--groundtruth", str(gt)]]):
+        assert cli.main(base + extra) == 0, capsys.readouterr().err
+        assert len(list(out.glob("*.json"))) == i + 1          # a new run, new files
+    records = [json.loads(p.read_text()) for p in out.glob("*.json")]
+    assert sorted(map(str, (r["box"] for r in records))) == sorted(
+        map(str, [None, None, *[[float(v) for v in b] for b in
+                                 ((x, y, w, h), (x + 1, y, w, h), (x, y, w, h))]]))
+    assert sorted(str(r["max_frames"]) for r in records) == ["3"] + ["None"] * 4
+    assert [r["groundtruth"] for r in records if r["groundtruth"]] == [str(gt.resolve())]
 
 
 def test_clips_export_never_replaces_a_file_without_force(tmp_path, capsys):
