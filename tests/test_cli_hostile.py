@@ -576,3 +576,20 @@ def test_a_bench_leaves_no_result_file_of_another_bench_in_its_out(tmp_path, cap
         (out / p).write_text("an earlier bench's\n")
     assert _bench(a, out, "--max-frames", "4", "--force") == 0
     assert _files(out) == written
+
+
+def test_a_dataset_folder_linked_twice_is_listed_as_skipped_not_dropped(tmp_path, capsys):
+    ds = tmp_path / "ds2"
+    real = _folder(tmp_path / "data", "seq")
+    ds.mkdir()
+    (ds / "Alpha").symlink_to(real, target_is_directory=True)
+    (ds / "Beta").symlink_to(real, target_is_directory=True)
+    with pytest.warns(clips.datasets.DatasetWarning, match="Beta"):
+        found = clips.load_dataset(ds)
+    assert [q.name for q in found] == ["Alpha"]
+    assert [s.name for s in found.skipped] == ["Beta"]
+    assert "the same sequence as Alpha" in found.skipped[0].reason
+    assert _bench(ds, tmp_path / "o", "--max-frames", "3") == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and err[0].startswith("trackbook: warning:") and "Beta" in err[0]
+    assert {r["clip"] for r in bench.load(tmp_path / "o")} == {"Alpha"}

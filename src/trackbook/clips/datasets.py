@@ -295,6 +295,24 @@ def _folders(root: Path, skipped: list) -> list[Sequence]:
     return out
 
 
+def _once(seqs, skipped: list) -> list[Sequence]:
+    """Each sequence once: a second folder that leads to the same images and ground truth
+    (a link to another sequence's folder) would count that sequence twice in every mean, so
+    it is listed in ``skipped`` with the name it duplicates, not dropped without a word."""
+    first: dict = {}
+    out = []
+    for q in seqs:
+        other = first.setdefault(q.identity, q)
+        if other is q:
+            out.append(q)
+        else:
+            folder = Path(q.images[0]).parent
+            skipped.append(Skipped(q.name, str(folder), f"the same sequence as {other.name} "
+                                   f"(both lead to {folder.resolve()}); benched once, as "
+                                   f"{other.name}"))
+    return out
+
+
 def detect(root) -> str:
     """``"uav123"``, ``"otb100"`` (a sub-folder named as in OTB-100's table) or ``"folders"``."""
     root = Path(root)
@@ -341,8 +359,8 @@ def load_dataset(root, kind: str = "auto", strict: bool = False) -> Dataset:
         raise FileNotFoundError(f"{root} is not a UAV123 tree: expected data_seq/UAV123/ and "
                                 "anno/UAV123/ in it.")
     skipped: list[Skipped] = []
-    seqs = Dataset({"otb100": _otb, "uav123": _uav, "folders": _folders}[kind](root, skipped),
-                   root=str(root), kind=kind, skipped=skipped)
+    found = {"otb100": _otb, "uav123": _uav, "folders": _folders}[kind](root, skipped)
+    seqs = Dataset(_once(found, skipped), root=str(root), kind=kind, skipped=skipped)
     if skipped and (strict or not seqs):
         raise ValueError(f"dataset {root}: " + (seqs.skipped_text() if strict else
                          f"no sequence could be loaded; {seqs.skipped_text()}")
