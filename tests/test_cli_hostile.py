@@ -593,3 +593,28 @@ def test_a_dataset_folder_linked_twice_is_listed_as_skipped_not_dropped(tmp_path
     err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
     assert len(err) == 1 and err[0].startswith("trackbook: warning:") and "Beta" in err[0]
     assert {r["clip"] for r in bench.load(tmp_path / "o")} == {"Alpha"}
+
+
+# --- 7. small things a user sees ----------------------------------------------------------------
+
+@pytest.mark.parametrize("command", [
+    ["track", "mean-shift", "red-cube", "--max-frames", "3"],
+    ["bench", "--trackers", "mean-shift", "--clips", "red-cube", "--max-frames", "3", "--quiet",
+     "--workers", "1"],
+])
+def test_an_out_too_long_under_a_new_folder_leaves_no_folder(tmp_path, capsys, monkeypatch,
+                                                             command):
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(command + ["--out", "c3/" + "x" * 300]) == 2
+    _one_line_error(capsys, "shorter")
+    assert _files(tmp_path) == []                  # not even the empty c3/
+
+
+def test_bench_prints_paths_without_a_doubled_slash(tmp_path, capsys):
+    a = _folder(tmp_path / "d", "Alpha")
+    assert _bench(a, str(tmp_path / "o") + "/", "--max-frames", "3") == 0
+    assert _bench(a, str(tmp_path / "o") + "/", "--max-frames", "3") == 0   # read back
+    out = capsys.readouterr().out
+    assert f"wrote {tmp_path / 'o' / 'results.csv'}," in out
+    assert f"read back from {tmp_path / 'o' / 'runs'} keep" in out
+    assert "//" not in out

@@ -258,7 +258,7 @@ def made_folders(path) -> list[Path]:
 def remove_if_empty(folders) -> None:
     """After a failed command: remove the ``--out`` folders it created if they are empty."""
     for d in reversed(folders):
-        try:
-            d.rmdir()          # only succeeds on an empty folder
-        except OSError:
-            return
+        # only succeeds on an empty folder; a name the OS refused (too long) was never made,
+        # so its parent is still tried
+        with contextlib.suppress(OSError):
+            d.rmdir()

@@ -369,18 +369,19 @@ def cmd_bench(args) -> int:
     except KeyboardInterrupt as e:   # Ctrl-C, or SIGTERM/SIGHUP (parallel.Stopped)
         signum = getattr(e, "signum", 2)
         print(f"\ntrackbook: {'interrupted' if signum == 2 else 'stopped by a signal'}; "
-              f"finished runs are saved in {args.out}/runs; run the same command again to "
-              "resume.", file=sys.stderr)
+              f"finished runs are saved in {Path(args.out, 'runs')}; run the same command "
+              "again to resume.", file=sys.stderr)
         return 128 + signum
     except ImportError as e:   # --scheduler without the dask extra
         print(f"trackbook: error: {e}", file=sys.stderr)
         return 2
     print(bench.markdown_table(rows))
     read_back, ran = getattr(rows, "read_back", 0), getattr(rows, "ran", len(rows))
-    print(f"{read_back} read back, {ran} run"
-          + (f" (the {read_back} read back from {args.out}/runs keep the timings of the bench "
-             "that saved them; --force re-runs them)" if read_back else ""))
-    print(f"wrote {args.out}/results.csv, results.json, table.md, success.png, precision.png")
+    print(f"{read_back} read back, {ran} run"      # Path: no doubled slash from --out dir/
+          + (f" (the {read_back} read back from {Path(args.out, 'runs')} keep the timings of "
+             "the bench that saved them; --force re-runs them)" if read_back else ""))
+    print(f"wrote {Path(args.out, 'results.csv')}, results.json, table.md, success.png, "
+          "precision.png")
     return 0
 
 
