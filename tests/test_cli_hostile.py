@@ -618,3 +618,15 @@ def test_bench_prints_paths_without_a_doubled_slash(tmp_path, capsys):
     assert f"wrote {tmp_path / 'o' / 'results.csv'}," in out
     assert f"read back from {tmp_path / 'o' / 'runs'} keep" in out
     assert "//" not in out
+
+
+def test_bench_on_a_folder_of_sequences_without_ground_truth_says_what_is_missing(tmp_path,
+                                                                                   capsys):
+    ds = tmp_path / "ds"
+    for name in ("A", "B"):
+        _folder(ds, name)
+        (ds / name / "groundtruth_rect.txt").unlink()
+    assert _bench(ds, tmp_path / "o", "--max-frames", "3") == 2
+    line = _one_line_error(capsys, str(ds), "A: no ground truth", "B: no ground truth")
+    assert "no images" not in line
+    assert not (tmp_path / "o").exists()

@@ -174,6 +174,18 @@ def is_dataset(root) -> bool:
     return any(is_sequence(d) for d in list_dir(root, what="dataset folder") if d.is_dir())
 
 
+def holds_folders(root) -> bool:
+    """A folder with sub-folders and no images of its own: meant as a folder of sequences
+    even when none of them loads, so :func:`load_dataset` can say what each one lacks."""
+    root = Path(root)
+    try:
+        return (root.is_dir() and not _images(root) and not _gt_files(root)
+                and any(d.is_dir() and d.name != "img"
+                        for d in list_dir(root, what="dataset folder")))
+    except (OSError, ValueError):
+        return False
+
+
 def _otb_attributes(name: str, folder: str) -> tuple:
     for k in (name, name.replace(".", "_"), folder):
         if k in _t.OTB_ATTRIBUTES:
@@ -376,4 +388,4 @@ def load_dataset(root, kind: str = "auto", strict: bool = False) -> Dataset:
 
 
 __all__ = ["Sequence", "Dataset", "Skipped", "DatasetWarning", "load_dataset",
-           "is_dataset", "detect", "KINDS"]
+           "is_dataset", "holds_folders", "detect", "KINDS"]

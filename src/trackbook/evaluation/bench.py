@@ -56,7 +56,9 @@ def _ref(spec) -> list[ClipRef]:
     if s in _clips.available():
         return [ClipRef(s, s, f"sample:{s}")]
     p = Path(s).expanduser()
-    if p.is_dir() and _clips.datasets.is_dataset(p):
+    # a folder of folders none of which loads still goes to load_dataset: its error says
+    # what each sub-folder lacks, where loading it as one sequence would say "no images"
+    if p.is_dir() and (_clips.datasets.is_dataset(p) or _clips.datasets.holds_folders(p)):
         return [ClipRef(q, q.name, q.identity) for q in _clips.load_dataset(p)]
     if p.exists():
         clip = _clips.load(p)
