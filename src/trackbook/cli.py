@@ -459,6 +459,14 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
+def _seed(text: str) -> int:
+    """``--seed``: a whole number >= 0 (the Python API's None cannot be typed here)."""
+    if not (text.strip().isascii() and text.strip().isdigit()):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a seed; give 0 or a positive whole "
+                                         "number, e.g. --seed 3")
+    return int(text)
+
+
 _FORCE_HELP = "replace outputs that already exist (without it, the command refuses)"
 _TRACEBACK_HELP = ("on an error, print the whole Python traceback, not only its one-line "
                    "summary (accepted anywhere on the command line)")
@@ -490,7 +498,7 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("clip", help="sample name, OTB folder or video file")
     t.add_argument("--out", default="track-output", help="the folder of the outputs "
                    "(default: track-output/)")
-    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--seed", type=_seed, default=0)
     t.add_argument("--max-frames", type=int)
     t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
     t.add_argument("--preset", default="book", help="'book' (the book's defaults) or 'paper' "
@@ -515,7 +523,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="comma-separated: names, paths, 'samples' (all), 'shared' (all "
                         "sequences), or a dataset root (OTB-100, UAV123, a folder of sequences)")
     b.add_argument("--out", default="bench-results")
-    b.add_argument("--seed", type=int, default=0)
+    b.add_argument("--seed", type=_seed, default=0)
     b.add_argument("--seeds", help="sweep seeds: 0-9, 0,3,7 or 0-2,5 (overrides --seed)")
     b.add_argument("--max-frames", type=int)
     b.add_argument("--param", action="append", help="TRACKER:NAME=VALUE, repeatable")
