@@ -630,3 +630,24 @@ def test_bench_on_a_folder_of_sequences_without_ground_truth_says_what_is_missin
     line = _one_line_error(capsys, str(ds), "A: no ground truth", "B: no ground truth")
     assert "no images" not in line
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("command", [["track", "mean-shift", "red-cube"],
+                                     ["bench", "--trackers", "mean-shift"]])
+@pytest.mark.parametrize("seed", ["-1", "x", "1.5", "١"])
+def test_a_bad_seed_is_one_line_offering_only_what_can_be_typed(tmp_path, capsys, command,
+                                                                seed):
+    with pytest.raises(SystemExit) as e:
+        cli.main(command + [f"--seed={seed}", "--out", str(tmp_path / "o")])
+    assert e.value.code == 2
+    line = _one_line_error(capsys, "--seed", "0 or a positive whole number")
+    assert "None" not in line
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_bad_tracker_name_is_plain_text_not_markdown(tmp_path, capsys):
+    f, _ = _tracker(tmp_path, "evil", "../x")
+    assert cli.main(["track", "../x", "red-cube", "--import", str(f),
+                     "--out", str(tmp_path / "o")]) == 2
+    line = _one_line_error(capsys, "'../x'", "rename")
+    assert "`" not in line

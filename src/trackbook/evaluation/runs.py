@@ -312,9 +312,10 @@ def check_tracker_name(name) -> str:
     name is refused rather than changed.
     """
     if not isinstance(name, str) or not TRACKER_NAME.fullmatch(name):
+        # plain text, no Markdown: the command line prints it on a terminal
         raise ValueError(f"tracker name {name!r} cannot name an output file; rename the tracker "
-                         "(its `name = ...`) to letters, digits, '.', '_', '+' and '-', "
-                         "starting with a letter or digit, at most 100 characters.")
+                         "(the name = ... line of its class) to letters, digits, '.', '_', '+' "
+                         "and '-', starting with a letter or digit, at most 100 characters.")
     return name
 
 
