@@ -38,12 +38,20 @@ def test_two_workers_give_the_single_process_scores_mil_included(tmp_path, two_c
     assert b1 == b2
 
 
+def _drop_tables(out):
+    """Remove a bench's tables, keeping its saved runs: an out holding another bench's tables
+    is refused (tests/test_cli_hostile.py), while saved runs are reused by their key."""
+    for f in ("plan.json", "results.json"):
+        (out / f).unlink()
+
+
 def test_resumed_bench_equals_a_clean_one(tmp_path, two_clips):
     clean = bench.run(TRACKERS, two_clips, tmp_path / "clean", progress=False)
     out = tmp_path / "resumed"
     bench.run(TRACKERS, two_clips[1:], out, progress=False)    # MIL ran on b first here
     for p in (out / "runs").glob("mean-shift*"):
         p.unlink()                                              # as if interrupted
+    _drop_tables(out)
     resumed = bench.run(TRACKERS, two_clips, out, progress=False)
     assert _scores(clean) == _scores(resumed)
 
@@ -83,6 +91,7 @@ def test_duplicate_names_and_edited_ground_truth_never_share_a_result(tmp_path):
     lines = gt.read_text().splitlines()
     lines[5] = "0,0,10,10"
     gt.write_text("\n".join(lines) + "\n")
+    _drop_tables(tmp_path / "o")
     again = bench.run(["mean-shift"], [str(a)], tmp_path / "o", progress=False,
                       reference=False)
     assert again[0]["auc"] != before["auc"] or again[0]["mean_center_error"] != \

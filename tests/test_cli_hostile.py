@@ -230,26 +230,57 @@ def test_bench_refuses_two_clips_whose_otb_files_collide(tmp_path, capsys):
                      "--workers", "1", "--out", str(tmp_path / "o")])
     assert code == 2
     _one_line_error(capsys, "'my clip' and 'my_clip'")
-    assert not (tmp_path / "o" / "otb").exists()
+    assert not (tmp_path / "o").exists()          # refused before the first run: no file
 
 
 # --- 5. never overwritten without --force; atomic writes ----------------------------------------
 
 def test_track_refuses_to_replace_a_run_without_force(tmp_path, capsys):
     out = tmp_path / "o"
-    base = ["track", "mean-shift", "red-cube", "--out", str(out)]
-    assert cli.main(base + ["--max-frames", "6"]) == 0
+    base = ["track", "mean-shift", "red-cube", "--out", str(out), "--param", "max_iter=5"]
+    assert cli.main(base) == 0
     before = {p.name: p.read_bytes() for p in out.iterdir()}
-    assert sorted(before) == ["mean-shift_red-cube.csv", "mean-shift_red-cube.json",
-                              "mean-shift_red-cube.mp4"]
+    stems = {p.stem for p in out.iterdir()}
+    assert len(stems) == 1 and stems.pop().startswith("mean-shift_red-cube_")
+    assert sorted(p.suffix for p in out.iterdir()) == [".csv", ".json", ".mp4"]
     capsys.readouterr()
-    assert cli.main(base + ["--max-frames", "3"]) == 2          # a shorter run
+    assert cli.main(base) == 2                                    # the same run again
     _one_line_error(capsys, "mean-shift_red-cube", "--force")
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
-    assert cli.main(base + ["--max-frames", "3", "--force"]) == 0
-    rows = (out / "mean-shift_red-cube.csv").read_text().splitlines()
-    assert len(rows) == 1 + 3                                     # header + 3 frames
+    csv = next(p for p in out.iterdir() if p.suffix == ".csv")
+    csv.write_text("edited\n")
+    assert cli.main(base + ["--force"]) == 0
+
+    def boxes(text):                  # frame and box columns (the timings differ run to run)
+        return [line.split(",")[:5] for line in text.decode().splitlines()]
+    assert boxes(csv.read_bytes()) == boxes(before[csv.name])    # replaced: same seed, boxes
     assert sorted(p.name for p in out.iterdir()) == sorted(before)   # no temporary left
+
+
+def test_track_runs_with_another_box_or_length_get_their_own_files(tmp_path, capsys):
+    """README: track a video, then the same video with --box: the second is a new run."""
+    from trackbook.clips.loaders import write_video
+    clip = clips.load("red-cube")
+    video = tmp_path / "my_video.mp4"
+    write_video(video, list(clip.frames)[:5], 10, clip.size)
+    gt = tmp_path / "my_boxes.txt"
+    gt.write_text("".join(",".join(f"{v:g}" for v in b) + "\n" for b in clip.groundtruth[:5]))
+    (tmp_path / "my_video.groundtruth.txt").write_text(gt.read_text())   # as clips export
+    out = tmp_path / "o"
+    base = ["track", "mean-shift", str(video), "--out", str(out)]
+    x, y, w, h = (int(v) for v in clip.groundtruth[0])
+    for i, extra in enumerate([[], ["--box", f"{x},{y},{w},{h}"],
+                               ["--box", f"{x + 1},{y},{w},{h}"],
+                               ["--box", f"{x},{y},{w},{h}", "--max-frames", "3"],
+                               ["--groundtruth", str(gt)]]):
+        assert cli.main(base + extra) == 0, capsys.readouterr().err
+        assert len(list(out.glob("*.json"))) == i + 1          # a new run, new files
+    records = [json.loads(p.read_text()) for p in out.glob("*.json")]
+    assert sorted(map(str, (r["box"] for r in records))) == sorted(
+        map(str, [None, None, *[[float(v) for v in b] for b in
+                                 ((x, y, w, h), (x + 1, y, w, h), (x, y, w, h))]]))
+    assert sorted(str(r["max_frames"]) for r in records) == ["3"] + ["None"] * 4
+    assert [r["groundtruth"] for r in records if r["groundtruth"]] == [str(gt.resolve())]
 
 
 def test_clips_export_never_replaces_a_file_without_force(tmp_path, capsys):
@@ -490,3 +521,133 @@ def test_an_error_in_a_users_tracker_on_a_dask_worker_names_their_file(tmp_path,
     assert code == 2
     _one_line_error(capsys, f"error in your code (dask_tracker.py:{line}, in _update): "
                             "IndexError: list index out of range")
+
+
+# --- 6. one bench per --out ---------------------------------------------------------------------
+
+def _bench(clip, out, *extra):
+    return cli.main(["bench", "--trackers", "mean-shift", "--clips", str(clip), "--quiet",
+                     "--workers", "1", "--out", str(out), *extra])
+
+
+def test_bench_refuses_an_out_holding_another_benchs_tables_and_force_replaces_them(
+        tmp_path, capsys):
+    a, b = _folder(tmp_path / "d", "Alpha"), _folder(tmp_path / "d", "Beta")
+    out = tmp_path / "o"
+    assert _bench(a, out, "--max-frames", "4") == 0
+    tables = {p: (out / p).read_bytes() for p in _files(out) if (out / p).is_file()}
+    capsys.readouterr()
+    for other in ([b, "--max-frames", "4"], [a, "--max-frames", "5"],
+                  [a, "--max-frames", "4", "--seeds", "0-1"]):
+        assert _bench(other[0], out, *other[1:]) == 2           # refused before any run
+        _one_line_error(capsys, f"--out {out}", "another bench", "Alpha", "--force")
+        assert {p: (out / p).read_bytes() for p in tables} == tables
+        assert not any("Beta" in p or "s1" in p for p in _files(out))
+    assert _bench(a, out, "--max-frames", "4") == 0              # the same bench: resumed
+    assert "2 read back, 0 run" in capsys.readouterr().out
+    assert _bench(b, out, "--max-frames", "4", "--force") == 0   # replaced, Alpha's files gone
+    otb = [p for p in _files(out) if p.startswith("otb/") and p.endswith(".txt")]
+    assert otb == ["otb/mean-shift/Beta.txt", "otb/mean-shift/times/Beta_time.txt",
+                   "otb/opencv-mil/Beta.txt", "otb/opencv-mil/times/Beta_time.txt"]
+    assert {r["clip"] for r in bench.load(out)} == {"Beta"}
+
+
+def test_bench_refuses_an_out_whose_tables_predate_the_plan_record(tmp_path, capsys):
+    a, b = _folder(tmp_path / "d", "Alpha"), _folder(tmp_path / "d", "Beta")
+    out = tmp_path / "o"
+    assert _bench(a, out, "--max-frames", "4") == 0
+    (out / "plan.json").unlink()                 # tables written by an older trackbook
+    assert _bench(a, out, "--max-frames", "4") == 0              # the rows match: resumed
+    (out / "plan.json").unlink()
+    capsys.readouterr()
+    assert _bench(b, out, "--max-frames", "4") == 2
+    _one_line_error(capsys, "another bench", "Alpha", "--force")
+
+
+def test_a_bench_leaves_no_result_file_of_another_bench_in_its_out(tmp_path, capsys):
+    a = _folder(tmp_path / "d", "Alpha")
+    out = tmp_path / "o"
+    assert _bench(a, out, "--max-frames", "4") == 0
+    written = _files(out)
+    stale = ["otb/kcf/Old.txt", "otb/kcf/times/Old_time.txt", "success_IV.png",
+             "precision_IV.png", "attributes.md", "attributes.csv"]
+    for p in stale:                     # what a bench over OTB's attributes would have left
+        (out / p).parent.mkdir(parents=True, exist_ok=True)
+        (out / p).write_text("an earlier bench's\n")
+    assert _bench(a, out, "--max-frames", "4", "--force") == 0
+    assert _files(out) == written
+
+
+def test_a_dataset_folder_linked_twice_is_listed_as_skipped_not_dropped(tmp_path, capsys):
+    ds = tmp_path / "ds2"
+    real = _folder(tmp_path / "data", "seq")
+    ds.mkdir()
+    (ds / "Alpha").symlink_to(real, target_is_directory=True)
+    (ds / "Beta").symlink_to(real, target_is_directory=True)
+    with pytest.warns(clips.datasets.DatasetWarning, match="Beta"):
+        found = clips.load_dataset(ds)
+    assert [q.name for q in found] == ["Alpha"]
+    assert [s.name for s in found.skipped] == ["Beta"]
+    assert "the same sequence as Alpha" in found.skipped[0].reason
+    assert _bench(ds, tmp_path / "o", "--max-frames", "3") == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if ln.strip()]
+    assert len(err) == 1 and err[0].startswith("trackbook: warning:") and "Beta" in err[0]
+    assert {r["clip"] for r in bench.load(tmp_path / "o")} == {"Alpha"}
+
+
+# --- 7. small things a user sees ----------------------------------------------------------------
+
+@pytest.mark.parametrize("command", [
+    ["track", "mean-shift", "red-cube", "--max-frames", "3"],
+    ["bench", "--trackers", "mean-shift", "--clips", "red-cube", "--max-frames", "3", "--quiet",
+     "--workers", "1"],
+])
+def test_an_out_too_long_under_a_new_folder_leaves_no_folder(tmp_path, capsys, monkeypatch,
+                                                             command):
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(command + ["--out", "c3/" + "x" * 300]) == 2
+    _one_line_error(capsys, "shorter")
+    assert _files(tmp_path) == []                  # not even the empty c3/
+
+
+def test_bench_prints_paths_without_a_doubled_slash(tmp_path, capsys):
+    a = _folder(tmp_path / "d", "Alpha")
+    assert _bench(a, str(tmp_path / "o") + "/", "--max-frames", "3") == 0
+    assert _bench(a, str(tmp_path / "o") + "/", "--max-frames", "3") == 0   # read back
+    out = capsys.readouterr().out
+    assert f"wrote {tmp_path / 'o' / 'results.csv'}," in out
+    assert f"read back from {tmp_path / 'o' / 'runs'} keep" in out
+    assert "//" not in out
+
+
+def test_bench_on_a_folder_of_sequences_without_ground_truth_says_what_is_missing(tmp_path,
+                                                                                   capsys):
+    ds = tmp_path / "ds"
+    for name in ("A", "B"):
+        _folder(ds, name)
+        (ds / name / "groundtruth_rect.txt").unlink()
+    assert _bench(ds, tmp_path / "o", "--max-frames", "3") == 2
+    line = _one_line_error(capsys, str(ds), "A: no ground truth", "B: no ground truth")
+    assert "no images" not in line
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("command", [["track", "mean-shift", "red-cube"],
+                                     ["bench", "--trackers", "mean-shift"]])
+@pytest.mark.parametrize("seed", ["-1", "x", "1.5", "١"])
+def test_a_bad_seed_is_one_line_offering_only_what_can_be_typed(tmp_path, capsys, command,
+                                                                seed):
+    with pytest.raises(SystemExit) as e:
+        cli.main(command + [f"--seed={seed}", "--out", str(tmp_path / "o")])
+    assert e.value.code == 2
+    line = _one_line_error(capsys, "--seed", "0 or a positive whole number")
+    assert "None" not in line
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_bad_tracker_name_is_plain_text_not_markdown(tmp_path, capsys):
+    f, _ = _tracker(tmp_path, "evil", "../x")
+    assert cli.main(["track", "../x", "red-cube", "--import", str(f),
+                     "--out", str(tmp_path / "o")]) == 2
+    line = _one_line_error(capsys, "'../x'", "rename")
+    assert "`" not in line

@@ -106,7 +106,9 @@ def test_track_import_runs_a_tracker_from_a_file(tmp_path, clean_registry, capsy
     rc = cli.main(["track", "still-cli", "red-cube", "--import", str(f), "--max-frames", "4",
                    "--out", str(o)])
     assert rc == 0, capsys.readouterr().err
-    rows = _rows(o / "still-cli_red-cube.csv")          # default settings: the plain name
+    csvs = list(o.glob("still-cli_red-cube_*.csv"))     # --max-frames: a name with a hash
+    assert len(csvs) == 1
+    rows = _rows(csvs[0])
     box0 = clips.load("red-cube").groundtruth[0]
     assert len(rows) == 4
     for r in rows:       # the tracker never moves: every row is the first ground-truth box
@@ -144,7 +146,9 @@ def test_track_groundtruth_file_is_scored(tmp_path, own_video, capsys):
                    "--out", str(o)])
     assert rc == 0
     assert "AUC" in capsys.readouterr().out
-    rows = _rows(o / "mean-shift_mine.csv")
+    csvs = list(o.glob("mean-shift_mine_*.csv"))        # --groundtruth: a name with a hash
+    assert len(csvs) == 1
+    rows = _rows(csvs[0])
     assert np.allclose([float(rows[0][k]) for k in "xywh"], gt[0])
 
 
@@ -182,11 +186,13 @@ def test_output_names_carry_the_settings(tmp_path, capsys):
     assert cli.main(base + ["--seed", "1"]) == 0
     assert cli.main(base) == 2                       # the same settings: refused ...
     assert cli.main(base + ["--force"]) == 0         # ... unless asked: the same files
+    assert cli.main(base[:3] + base[5:]) == 0        # the whole clip, default settings
     names = sorted(p.name for p in o.glob("*.csv"))
-    assert len(names) == 3 and len(set(names)) == 3
-    assert "mean-shift_red-cube.csv" in names         # the default params keep the plain name
+    assert len(names) == 4 and len(set(names)) == 4
+    assert "mean-shift_red-cube.csv" in names         # the default settings keep the plain name
     settings = [json.loads((o / n).with_suffix(".json").read_text()) for n in names]
-    assert sorted(s["seed"] for s in settings) == [0, 0, 1]
+    assert sorted(s["seed"] for s in settings) == [0, 0, 0, 1]
+    assert sorted(str(s["max_frames"]) for s in settings) == ["3", "3", "3", "None"]
     assert any(s["params"]["eps"] == 1.0 for s in settings)
 
 

@@ -140,16 +140,25 @@ def open_video(path, fps, size):
     return w, codec
 
 
+def write_video_as(write_video, path, tmp, frames, fps, size, codec) -> None:
+    """``write_video`` into the temporary ``tmp`` of ``path``; its error (which names the file
+    and the fix) names ``path``. The writer is released either way, also on SIGTERM."""
+    try:
+        write_video(tmp, frames, fps, size, fourcc=codec)
+    except ValueError as e:
+        raise ValueError(str(e).replace(str(tmp), str(path))) from None
+
+
 def settings_hash(settings: dict) -> str:
-    """Six hex digits of the SHA-1 of the run's settings (tracker, seed, params)."""
+    """Six hex digits of the SHA-1 of the run's settings (tracker, seed, params, ...)."""
     text = json.dumps(settings, sort_keys=True, default=repr)
     return hashlib.sha1(text.encode()).hexdigest()[:6]
 
 
 def output_stem(tracker: str, clip: str, settings: dict, default_settings: dict) -> str:
     """``tracker_clip`` for a run with the default settings, else ``tracker_clip_<hash>``: a
-    run with other params, seed or preset gets its own files instead of silently overwriting
-    another run's (a shorter run, ``--max-frames``, is the same run cut short)."""
+    run with other params, seed, preset, starting box, ``--max-frames`` or ground truth gets
+    its own files instead of being refused as another run's (or overwriting it)."""
     from .evaluation.runs import safe_name  # a clip name from a file may hold anything
 
     stem = f"{tracker}_{safe_name(clip)}"
@@ -250,10 +259,10 @@ def made_folders(path) -> list[Path]:
 def remove_if_empty(folders) -> None:
     """After a failed command: remove the ``--out`` folders it created if they are empty."""
     for d in reversed(folders):
-        try:
-            d.rmdir()          # only succeeds on an empty folder
-        except OSError:
-            return
+        # only succeeds on an empty folder; a name the OS refused (too long) was never made,
+        # so its parent is still tried
+        with contextlib.suppress(OSError):
+            d.rmdir()
 
 
 def plain_doc(doc: str, name: str = "") -> str:

@@ -119,8 +119,6 @@ def cmd_trackers(args) -> int:
 
 
 def cmd_clips(args) -> int:
-    import textwrap
-
     from . import clips
 
     if args.action == "export":
@@ -181,28 +179,23 @@ def _load_imports(specs) -> None:
             print(f"trackbook: warning: {' '.join(str(w.message).split())}", file=sys.stderr)
 
 
-def _track_settings(args, cls, params) -> tuple[dict, dict]:
-    """What the output name's hash covers: the tracker, its seed and every param resolved
-    from the preset (what changes the boxes); and the same for the default run."""
+def _track_settings(args, cls, params, box=None) -> tuple[dict, dict]:
+    """What the output name's hash covers: everything that changes the run (the tracker, its
+    seed, every param resolved from the preset, the starting box, --max-frames and the
+    ground-truth file); and the same for the default run."""
     from .params import make_params, paper_values
 
     def values(p):
         return dataclasses.asdict(p) if dataclasses.is_dataclass(p) else repr(p)
 
     base = paper_values(cls.Params) if args.preset == "paper" else {}
+    gt = args.groundtruth and str(Path(args.groundtruth).resolve())
     full = {"tracker": args.tracker, "seed": args.seed,
-            "params": values(make_params(cls.Params, {**base, **params}))}
-    default = {**full, "seed": 0, "params": values(make_params(cls.Params, {}))}
+            "params": values(make_params(cls.Params, {**base, **params})),
+            "box": box, "max_frames": args.max_frames, "groundtruth": gt}
+    default = {**full, "seed": 0, "params": values(make_params(cls.Params, {})), "box": None,
+               "max_frames": None, "groundtruth": None}
     return full, default
-
-
-def _write_video(write_video, path, tmp, frames, fps, size, codec) -> None:
-    """``write_video`` into the temporary ``tmp`` of ``path``; its error (which names the file
-    and the fix) names ``path``. The writer is released either way, also on SIGTERM."""
-    try:
-        write_video(tmp, frames, fps, size, fourcc=codec)
-    except ValueError as e:
-        raise ValueError(str(e).replace(str(tmp), str(path))) from None
 
 
 def _stopped(e: KeyboardInterrupt, out) -> int:
@@ -253,7 +246,7 @@ def cmd_track(args) -> int:
     scored = init_box is None or args.groundtruth is not None
     if not scored:
         clip = _without_groundtruth(clip)
-    settings, default = _track_settings(args, cls, params)
+    settings, default = _track_settings(args, cls, params, init_box)
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     files = [out / f"{stem}{ext}" for ext in (".csv", ".json", ".mp4")]
     _out.refuse_existing(files, args.force)
@@ -264,8 +257,7 @@ def cmd_track(args) -> int:
                          init_box=init_box, preset=args.preset,
                          on_frame=lambda i, t, f, b: states.append(t.state()), **params)
             _out.out_dir(out)
-            record = {**settings, "preset": args.preset, "clip": clip.name,
-                      "max_frames": args.max_frames, "box": init_box}
+            record = {**settings, "preset": args.preset, "clip": clip.name}
             colors = _out.estimate_colors(clip.frames[0], [r.boxes[0]])
             codec = _out.video_codec()
             with _out.staged(files) as tmp:
@@ -278,8 +270,8 @@ def cmd_track(args) -> int:
                 frames = (draw_state_cv(annotate(frame, {args.tracker: r.boxes[i]},
                                                  clip.groundtruth[i], colors), states[i])
                           for i, frame in zip(range(len(r.boxes)), clip.frames))
-                _write_video(write_video, files[2], tmp[files[2]], frames, clip.fps, clip.size,
-                             codec)
+                _out.write_video_as(write_video, files[2], tmp[files[2]], frames, clip.fps,
+                                    clip.size, codec)
     except KeyboardInterrupt as e:
         return _stopped(e, out)
     if scored:
@@ -316,8 +308,9 @@ def _track_all_targets(args, clip, params, out) -> int:
     from .evaluation.runner import evaluate
     from .evaluation.runs import safe_name
 
-    settings = {"tracker": args.tracker, "seed": args.seed, "params": params}
-    default = {**settings, "seed": 0, "params": {}}
+    settings = {"tracker": args.tracker, "seed": args.seed, "params": params,
+                "max_frames": args.max_frames}
+    default = {**settings, "seed": 0, "params": {}, "max_frames": None}
     stem = _out.output_stem(args.tracker, clip.name, settings, default)
     csvs = {name: out / f"{stem}_{safe_name(name)}.csv" for name in clip.targets}
     video = out / f"{stem}.mp4"
@@ -338,11 +331,11 @@ def _track_all_targets(args, clip, params, out) -> int:
                         + [[i, *(f"{v:.3f}" for v in b), int(ok), f"{t:.3f}"]
                            for i, (b, ok, t) in enumerate(zip(boxes, oks[name], ms))]),
                         newline="")
-                _write_video(write_video, video, tmp[video],
-                             (annotate(frame, {k: b[i] for k, b in boxes_of.items()},
-                                       colors=colors)
-                              for i, frame in zip(range(n), clip.frames)),
-                             clip.fps, clip.size, codec)
+                _out.write_video_as(write_video, video, tmp[video],
+                                    (annotate(frame, {k: b[i] for k, b in boxes_of.items()},
+                                              colors=colors)
+                                     for i, frame in zip(range(n), clip.frames)),
+                                    clip.fps, clip.size, codec)
     except KeyboardInterrupt as e:
         return _stopped(e, out)
     for name, r in res.results.items():
@@ -374,18 +367,19 @@ def cmd_bench(args) -> int:
     except KeyboardInterrupt as e:   # Ctrl-C, or SIGTERM/SIGHUP (parallel.Stopped)
         signum = getattr(e, "signum", 2)
         print(f"\ntrackbook: {'interrupted' if signum == 2 else 'stopped by a signal'}; "
-              f"finished runs are saved in {args.out}/runs; run the same command again to "
-              "resume.", file=sys.stderr)
+              f"finished runs are saved in {Path(args.out, 'runs')}; run the same command "
+              "again to resume.", file=sys.stderr)
         return 128 + signum
     except ImportError as e:   # --scheduler without the dask extra
         print(f"trackbook: error: {e}", file=sys.stderr)
         return 2
     print(bench.markdown_table(rows))
     read_back, ran = getattr(rows, "read_back", 0), getattr(rows, "ran", len(rows))
-    print(f"{read_back} read back, {ran} run"
-          + (f" (the {read_back} read back from {args.out}/runs keep the timings of the bench "
-             "that saved them; --force re-runs them)" if read_back else ""))
-    print(f"wrote {args.out}/results.csv, results.json, table.md, success.png, precision.png")
+    print(f"{read_back} read back, {ran} run"      # Path: no doubled slash from --out dir/
+          + (f" (the {read_back} read back from {Path(args.out, 'runs')} keep the timings of "
+             "the bench that saved them; --force re-runs them)" if read_back else ""))
+    print(f"wrote {Path(args.out, 'results.csv')}, results.json, table.md, success.png, "
+          "precision.png")
     return 0
 
 
@@ -463,6 +457,14 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
+def _seed(text: str) -> int:
+    """``--seed``: a whole number >= 0 (the Python API's None cannot be typed here)."""
+    if not (text.strip().isascii() and text.strip().isdigit()):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a seed; give 0 or a positive whole "
+                                         "number, e.g. --seed 3")
+    return int(text)
+
+
 _FORCE_HELP = "replace outputs that already exist (without it, the command refuses)"
 _TRACEBACK_HELP = ("on an error, print the whole Python traceback, not only its one-line "
                    "summary (accepted anywhere on the command line)")
@@ -492,8 +494,9 @@ def build_parser() -> argparse.ArgumentParser:
     t = sub.add_parser("track", help="run a tracker on a clip: annotated video + CSV of boxes")
     t.add_argument("tracker")
     t.add_argument("clip", help="sample name, OTB folder or video file")
-    t.add_argument("--out", default="track-output")
-    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--out", default="track-output", help="the folder of the outputs "
+                   "(default: track-output/)")
+    t.add_argument("--seed", type=_seed, default=0)
     t.add_argument("--max-frames", type=int)
     t.add_argument("--param", action="append", help="NAME=VALUE, repeatable")
     t.add_argument("--preset", default="book", help="'book' (the book's defaults) or 'paper' "
@@ -518,12 +521,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="comma-separated: names, paths, 'samples' (all), 'shared' (all "
                         "sequences), or a dataset root (OTB-100, UAV123, a folder of sequences)")
     b.add_argument("--out", default="bench-results")
-    b.add_argument("--seed", type=int, default=0)
+    b.add_argument("--seed", type=_seed, default=0)
     b.add_argument("--seeds", help="sweep seeds: 0-9, 0,3,7 or 0-2,5 (overrides --seed)")
     b.add_argument("--max-frames", type=int)
     b.add_argument("--param", action="append", help="TRACKER:NAME=VALUE, repeatable")
-    b.add_argument("--force", action="store_true", help=_FORCE_HELP + " (re-runs the runs "
-                   "saved in OUT/runs instead of reading them back)")
+    b.add_argument("--force", action="store_true", help=_FORCE_HELP + ": re-run the runs "
+                   "saved in OUT/runs and replace the tables, also another bench's (without "
+                   "it the same bench resumes, and an OUT holding another bench is refused)")
     b.add_argument("--quiet", action="store_true", help="no progress bar")
     b.add_argument("--workers", type=int, default=None,
                    help="worker processes (default: the number of cores)")

@@ -174,6 +174,18 @@ def is_dataset(root) -> bool:
     return any(is_sequence(d) for d in list_dir(root, what="dataset folder") if d.is_dir())
 
 
+def holds_folders(root) -> bool:
+    """A folder with sub-folders and no images of its own: meant as a folder of sequences
+    even when none of them loads, so :func:`load_dataset` can say what each one lacks."""
+    root = Path(root)
+    try:
+        return (root.is_dir() and not _images(root) and not _gt_files(root)
+                and any(d.is_dir() and d.name != "img"
+                        for d in list_dir(root, what="dataset folder")))
+    except (OSError, ValueError):
+        return False
+
+
 def _otb_attributes(name: str, folder: str) -> tuple:
     for k in (name, name.replace(".", "_"), folder):
         if k in _t.OTB_ATTRIBUTES:
@@ -295,6 +307,24 @@ def _folders(root: Path, skipped: list) -> list[Sequence]:
     return out
 
 
+def _once(seqs, skipped: list) -> list[Sequence]:
+    """Each sequence once: a second folder that leads to the same images and ground truth
+    (a link to another sequence's folder) would count that sequence twice in every mean, so
+    it is listed in ``skipped`` with the name it duplicates, not dropped without a word."""
+    first: dict = {}
+    out = []
+    for q in seqs:
+        other = first.setdefault(q.identity, q)
+        if other is q:
+            out.append(q)
+        else:
+            folder = Path(q.images[0]).parent
+            skipped.append(Skipped(q.name, str(folder), f"the same sequence as {other.name} "
+                                   f"(both lead to {folder.resolve()}); benched once, as "
+                                   f"{other.name}"))
+    return out
+
+
 def detect(root) -> str:
     """``"uav123"``, ``"otb100"`` (a sub-folder named as in OTB-100's table) or ``"folders"``."""
     root = Path(root)
@@ -341,8 +371,8 @@ def load_dataset(root, kind: str = "auto", strict: bool = False) -> Dataset:
         raise FileNotFoundError(f"{root} is not a UAV123 tree: expected data_seq/UAV123/ and "
                                 "anno/UAV123/ in it.")
     skipped: list[Skipped] = []
-    seqs = Dataset({"otb100": _otb, "uav123": _uav, "folders": _folders}[kind](root, skipped),
-                   root=str(root), kind=kind, skipped=skipped)
+    found = {"otb100": _otb, "uav123": _uav, "folders": _folders}[kind](root, skipped)
+    seqs = Dataset(_once(found, skipped), root=str(root), kind=kind, skipped=skipped)
     if skipped and (strict or not seqs):
         raise ValueError(f"dataset {root}: " + (seqs.skipped_text() if strict else
                          f"no sequence could be loaded; {seqs.skipped_text()}")
@@ -358,4 +388,4 @@ def load_dataset(root, kind: str = "auto", strict: bool = False) -> Dataset:
 
 
 __all__ = ["Sequence", "Dataset", "Skipped", "DatasetWarning", "load_dataset",
-           "is_dataset", "detect", "KINDS"]
+           "is_dataset", "holds_folders", "detect", "KINDS"]

@@ -12,6 +12,9 @@ The summary files (``results.csv``, ``results.json``, ``curves.json``, ``table.m
 from the runs at the end, also atomically, with mode 0644, and so are the results in the
 format other toolkits read: ``otb/<tracker>/<clip>.txt`` (one ``x,y,w,h`` line per frame,
 frame 1 the initial box) and ``otb/<tracker>/times/<clip>_time.txt`` (seconds per frame).
+``plan.json`` records the bench the tables came from: an ``out`` holding another bench's
+tables is refused unless ``force`` (which re-runs, replaces the tables and removes the other
+bench's ``otb/`` files), so one folder never mixes two benches.
 
 Runs go to worker processes (``workers``, default the number of cores) or to a Dask
 distributed cluster (``scheduler``): see :mod:`trackbook.evaluation.parallel`. Scores do not
@@ -34,8 +37,9 @@ import numpy as np
 from .. import clips as _clips
 from .._checks import check_max_frames
 from . import metrics, parallel
-from .runs import (ClipRef, Task, _jsonable, check_tracker_name,  # noqa: F401
-                   code_fingerprint, fingerprint, load_imports, load_run, run_group, safe_name, write_atomic)
+from .runs import (PLAN_FILE, ClipRef, Task, _jsonable, check_same_plan,  # noqa: F401
+                   check_tracker_name, code_fingerprint, fingerprint, load_imports, load_run,
+                   plan_record, run_group, safe_name, write_atomic)
 
 REFERENCE = "opencv-mil"
 COLUMNS = ["tracker", "clip", "frames", "auc", "precision20", "tracking_rate",
@@ -52,7 +56,9 @@ def _ref(spec) -> list[ClipRef]:
     if s in _clips.available():
         return [ClipRef(s, s, f"sample:{s}")]
     p = Path(s).expanduser()
-    if p.is_dir() and _clips.datasets.is_dataset(p):
+    # a folder of folders none of which loads still goes to load_dataset: its error says
+    # what each sub-folder lacks, where loading it as one sequence would say "no images"
+    if p.is_dir() and (_clips.datasets.is_dataset(p) or _clips.datasets.holds_folders(p)):
         return [ClipRef(q, q.name, q.identity) for q in _clips.load_dataset(p)]
     if p.exists():
         clip = _clips.load(p)
@@ -253,7 +259,9 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     max_frames : int, optional; track only the first frames
     params : dict tracker name -> dict of params (only for trackers in the run)
     progress : show a progress bar (runs, and frames in its postfix)
-    force : re-run runs already saved
+    force : replace outputs that exist: re-run runs already saved, and replace the tables
+        of ``out`` also when they are another bench's (without it such an ``out`` is a
+        ``ValueError``, see :func:`check_same_plan`; the same bench is resumed)
     reference : also run OpenCV's MIL (the reference row of every table)
     seeds : ``"0-9"``, ``"0,3"`` or a list; rows then carry a ``seed`` column
     workers : worker processes on this machine (1: in this process; at least 1)
@@ -282,7 +290,10 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     scheduler = scheduler or os.environ.get(parallel.ENV_SCHEDULER) or None
     if isinstance(scheduler, (str, os.PathLike)):  # fail in seconds, before any run
         parallel.check_scheduler(scheduler, parallel.check_timeout(scheduler_timeout))
+    check_otb_names({(t.tracker, t.clip.name) for t in tasks}, out)   # before any run
     multi_seed = len({t.seed for t in tasks}) > 1
+    if not force:
+        check_same_plan(tasks, out)
     done: dict[Task, dict] = {}
     if not force:
         for t in tasks:
@@ -314,6 +325,7 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
             bar.close()
     records = [done[t] for t in tasks]
     write_summary(records, out)
+    write_atomic(out / PLAN_FILE, json.dumps(plan_record(tasks), indent=1))
     return Rows((r["row"] for r in records), read_back=len(tasks) - len(todo), ran=len(todo))
 
 
@@ -429,6 +441,12 @@ def write_summary(records, out) -> None:
     write_otb(records, out)
     _plot(records, out)
     attrs = attribute_rows(records)
+    names = {f"{k}_{re.sub(r'[^A-Za-z0-9_-]+', '_', a)}.png" for a in {x["attribute"] for x in attrs}
+             for k in ("success", "precision")}
+    for p in [*out.glob("success_*.png"), *out.glob("precision_*.png"),     # another bench's
+              *([] if attrs else [out / "attributes.csv", out / "attributes.md"])]:
+        if p.name not in names:
+            p.unlink(missing_ok=True)
     if attrs:
         write_atomic(out / "attributes.csv",
                      _csv(attrs, ["attribute", "tracker", "clips", "auc", "precision20"]))
@@ -450,6 +468,34 @@ def otb_paths(tracker: str, clip: str, out) -> tuple[Path, Path]:
     return folder / f"{safe_name(clip)}.txt", folder / "times" / f"{safe_name(clip)}_time.txt"
 
 
+def check_otb_names(pairs, out) -> None:
+    """A ``ValueError`` naming two clips whose OTB result files (:func:`otb_paths`) would be
+    one file: ``pairs`` of ``(tracker, clip)``. :func:`run` checks its plan before the first
+    run, so such a bench writes nothing."""
+    owner: dict = {}
+    for tracker, clip in sorted(pairs):
+        box_file, _ = otb_paths(tracker, clip, out)
+        other = owner.setdefault(str(box_file).casefold(), clip)
+        if other != clip:
+            raise ValueError(f"clips {other!r} and {clip!r} would both be written to "
+                             f"{box_file}; rename one of them (e.g. its folder) so their names "
+                             "differ in more than spaces, punctuation or case.")
+
+
+def _remove_stale(folder: Path, keep) -> None:
+    """Remove the result files under ``OUT/otb`` that this bench does not write (an earlier
+    bench's trackers or clips, replaced with ``force``), so the folder holds one bench."""
+    if not folder.is_dir():
+        return
+    keep = {Path(p) for p in keep}
+    for p in sorted(folder.rglob("*.txt")):
+        if p not in keep:
+            p.unlink()
+    for d in sorted((d for d in folder.rglob("*") if d.is_dir()), reverse=True):
+        if not any(d.iterdir()):
+            d.rmdir()
+
+
 def write_otb(records, out) -> None:
     """The results in the layout the OTB toolkit, got10k, pysot and pytracking read:
     ``OUT/otb/<tracker>/<clip>.txt``, one comma-separated ``x,y,w,h`` line per frame (frame 1
@@ -468,14 +514,9 @@ def write_otb(records, out) -> None:
         k = (r["row"]["tracker"], r["row"]["clip"])
         if k not in chosen or r["settings"]["seed"] < chosen[k]["settings"]["seed"]:
             chosen[k] = r
-    owner: dict = {}
-    for tracker, clip in chosen:
-        box_file, _ = otb_paths(tracker, clip, out)
-        other = owner.setdefault(str(box_file).casefold(), clip)
-        if other != clip:
-            raise ValueError(f"clips {other!r} and {clip!r} would both be written to "
-                             f"{box_file}; rename one of them (e.g. its folder) so their names "
-                             "differ in more than spaces, punctuation or case.")
+    check_otb_names(chosen, out)
+    keep = {p for tracker, clip in chosen for p in otb_paths(tracker, clip, out)}
+    _remove_stale(Path(out) / "otb", keep)
     for (tracker, clip), r in chosen.items():
         box_file, time_file = otb_paths(tracker, clip, out)
         boxes = "".join(",".join(repr(float(v)) for v in b) + "\n" for b in r["boxes"])

@@ -312,9 +312,10 @@ def check_tracker_name(name) -> str:
     name is refused rather than changed.
     """
     if not isinstance(name, str) or not TRACKER_NAME.fullmatch(name):
+        # plain text, no Markdown: the command line prints it on a terminal
         raise ValueError(f"tracker name {name!r} cannot name an output file; rename the tracker "
-                         "(its `name = ...`) to letters, digits, '.', '_', '+' and '-', "
-                         "starting with a letter or digit, at most 100 characters.")
+                         "(the name = ... line of its class) to letters, digits, '.', '_', '+' "
+                         "and '-', starting with a letter or digit, at most 100 characters.")
     return name
 
 
@@ -380,3 +381,91 @@ def run_group(tasks, out=None, multi_seed=False, on_frames=None) -> list[dict]:
             if on_frames is not None:
                 on_frames(t.frames)
     return [recs[t] for t in tasks]
+
+
+# --------------------------------------------------------------------------- the plan of OUT
+#: The file beside the tables that records the bench they were made from (see
+#: :func:`check_same_plan`).
+PLAN_FILE = "plan.json"
+
+
+def plan_record(tasks) -> dict:
+    """What decides a bench's tables: its trackers, clips (name and identity), seeds, params,
+    preset and ``max_frames``; written to ``OUT/plan.json`` with the tables."""
+    t0 = tasks[0] if tasks else None
+    return _jsonable({
+        "trackers": list(dict.fromkeys(t.tracker for t in tasks)),
+        "clips": list(dict.fromkeys(t.clip.name for t in tasks)),
+        "clip_identities": list(dict.fromkeys(t.clip.identity for t in tasks)),
+        "seeds": sorted({t.seed for t in tasks}),
+        "params": {t.tracker: dict(t.params) for t in tasks if t.params},
+        "preset": t0.preset if t0 else None, "max_frames": t0.max_frames if t0 else None})
+
+
+def _plan_text(p: dict) -> str:
+    def few(xs):
+        xs = [str(x) for x in xs]
+        return ", ".join(xs[:4]) + (f" and {len(xs) - 4} more" if len(xs) > 4 else "")
+    text = f"trackers {few(p.get('trackers', []))} on clips {few(p.get('clips', []))}"
+    if "seeds" in p:
+        text += f", seeds {few(p['seeds'])}"
+    if p.get("max_frames") is not None:
+        text += f", max-frames {p['max_frames']}"
+    if p.get("preset") not in (None, "book"):
+        text += f", preset {p['preset']}"
+    if p.get("params"):
+        text += f", params {json.dumps(p['params'], sort_keys=True)}"
+    return text
+
+
+def _saved_plan(out: Path):
+    """The plan of the tables in ``out``: ``OUT/plan.json``, or what the rows of an
+    ``OUT/results.json`` written without one tell (trackers, clips, seeds, frames); None when
+    ``out`` holds no tables."""
+    if (out / PLAN_FILE).is_file():
+        try:
+            return json.loads((out / PLAN_FILE).read_text())
+        except (ValueError, OSError, UnicodeDecodeError):
+            return {"unreadable": PLAN_FILE}
+    if not (out / "results.json").is_file():
+        return None
+    try:
+        rows = json.loads((out / "results.json").read_text())
+        return {"trackers": list(dict.fromkeys(r["tracker"] for r in rows)),
+                "clips": list(dict.fromkeys(r["clip"] for r in rows)),
+                "rows": sorted([r["tracker"], r["clip"], r.get("seed"), r["frames"]]
+                               for r in rows)}
+    except (ValueError, OSError, UnicodeDecodeError, KeyError, TypeError):
+        return {"unreadable": "results.json"}
+
+
+_LABEL = {"clip_identities": "clip folders", "max_frames": "max-frames"}
+
+
+def check_same_plan(tasks, out) -> None:
+    """A ``ValueError`` when ``out`` holds the tables of another bench (other trackers, clips,
+    seeds, params, preset or ``max_frames``): its results would be replaced and its
+    ``otb/`` files mixed with this bench's. The same bench is resumed; ``force`` replaces."""
+    out = Path(out)
+    saved = _saved_plan(out)
+    if saved is None:
+        return
+    new = json.loads(json.dumps(plan_record(tasks)))
+    if "rows" in saved:              # tables written before plan.json: compare the rows
+        multi = len(new["seeds"]) > 1
+        new = {**new, "rows": sorted([t.tracker, t.clip.name, t.seed if multi else None,
+                                      t.frames] for t in tasks)}
+        differs = [] if saved["rows"] == new["rows"] else ["rows"]
+    else:
+        differs = [k for k in ("trackers", "clips", "clip_identities", "seeds", "params",
+                               "preset", "max_frames") if saved.get(k) != new.get(k)]
+    if not differs:
+        return
+    if "clips" in differs:               # the same names from other folders: say so only then
+        differs.remove("clip_identities")
+    what = (f"tables whose {saved['unreadable']} cannot be read" if "unreadable" in saved
+            else f"the tables of another bench ({_plan_text(saved)})")
+    diff = "" if "unreadable" in saved or differs == ["rows"] else \
+        f"; this one differs in its {', '.join(_LABEL.get(d, d) for d in differs)}"
+    raise ValueError(f"--out {out} holds {what}{diff}; pass a new --out for this bench, or "
+                     "--force to replace them (force=True in Python; saved runs are re-run).")
