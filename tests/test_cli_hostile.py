@@ -35,8 +35,10 @@ def _one_line_error(capsys, *words):
 
 
 def _files(folder):
-    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*")) \
-        if folder.exists() else []
+    """Every path below ``folder`` but Python's own byte-code cache (importing a user's
+    tracker file may write one beside it: that is Python, not a trackbook output)."""
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*")
+                  if "__pycache__" not in p.parts) if folder.exists() else []
 
 
 def _env():
