@@ -156,8 +156,7 @@ def test_the_readme_says_what_the_committed_calibration_shows():
     said = ("it does not reach 95 % of absent frames flagged with at most 1 % false losses for "
             "any tracker")
     assert said in readme
-    assert {r["tracker"] for r in rows} >= set(trackers.available()) - {"camshift",
-                                                                        "median-flow"}
+    assert {r["tracker"] for r in rows} == set(trackers.available())
     assert not [r["tracker"] for r in rows if r["meets_target"]], (
         "a tracker's calibration now meets the target: update the README's 'What ok promises'")
     assert all(r["absent_lost"] < 0.95 or r["false_lost"] > 0.01 for r in rows)
