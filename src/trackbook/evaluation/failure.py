@@ -9,19 +9,17 @@ of the failure rule chosen on calibration runs.
 * :func:`calibrate` - the thresholds (:class:`~trackbook.trackers.failure.FailureParams`)
   of one tracker, chosen on its calibration runs by a stated objective.
 
-The rule itself lives in :mod:`trackbook.trackers.failure` (the trackers will use it).
+The rule itself lives in :mod:`trackbook.trackers.failure`, where every tracker uses it.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import json
-from pathlib import Path
 
 import numpy as np
 from scipy.stats import rankdata
 
-from ..trackers.failure import FailureDetector, FailureParams
+from ..trackers.failure import CALIBRATION_FILE, FailureDetector, FailureParams, load_calibration
 
 #: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse
 #: (a very steady confidence has a small spread, so a real drop is many spreads deep).
@@ -254,36 +252,6 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
     feasible = r["false_lost"] <= max_false
     return Calibration(p, r["absent_lost"], r["false_lost"], feasible,
                        feasible and r["absent_lost"] >= target, r["n_absent"], r["n_on"])
-
-
-#: The file the calibration script writes: package data in ``trackbook/data`` (not among the
-#: benchmark results of ``trackbook.results``: its rows are thresholds, not runs), where the
-#: trackers' failure layer can read it without importing ``evaluation``.
-CALIBRATION_FILE = Path(__file__).resolve().parents[1] / "data" / "failure_calibration.json"
-
-
-def load_calibration(path=None) -> dict:
-    """``{tracker name: FailureParams}`` from a calibration file.
-
-    Parameters
-    ----------
-    path : str or Path, optional
-        The JSON file ``experiments/calibrate_failure.py`` wrote; default the committed one,
-        ``trackbook/data/failure_calibration.json``.
-
-    Raises
-    ------
-    FileNotFoundError
-        When there is no such file, naming the command that makes it.
-    """
-    path = Path(CALIBRATION_FILE if path is None else path)
-    if not path.is_file():
-        raise FileNotFoundError(f"no calibration file {path}; make it with: python "
-                                "experiments/calibrate_failure.py (--out FILE to write "
-                                "elsewhere).")
-    fields = [f.name for f in dataclasses.fields(FailureParams)]
-    rows = json.loads(path.read_text(encoding="utf-8"))["rows"]
-    return {r["tracker"]: FailureParams(**{k: r[k] for k in fields}) for r in rows}
 
 
 __all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID",

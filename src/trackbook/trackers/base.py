@@ -1,9 +1,18 @@
 """The contract every tracker keeps: OpenCV's ``init(frame, bbox)`` / ``update(frame)``.
 
-Subclasses implement ``_init(frame, box)`` and ``_update(frame) -> (ok, box)`` only. This class
-owns everything that must be the same for every tracker: the params dataclass, the seeded
-``numpy.random.Generator`` (re-created on every ``init`` so a re-run repeats exactly), the input
-checks that refuse bad input naming a fix, and the last line of defence against a NaN or empty box.
+A tracker implements ``_init(frame, box)`` and either the two halves of a frame,
+``_locate(frame) -> (box, confidence)`` and ``_learn(frame, box)``, or the whole frame,
+``_update(frame) -> (ok, box)``. This class owns everything that must be the same for every
+tracker: the params dataclass, the seeded ``numpy.random.Generator`` (re-created on every
+``init`` so a re-run repeats exactly), the input checks that refuse bad input naming a fix, the
+last line of defence against a NaN or empty box and, for a tracker written in halves, the two
+layers that stand between locating and learning:
+
+- the **failure-detection layer** (always on): the frame's confidence is judged by
+  :class:`~trackbook.trackers.failure.FailureDetector` with the tracker's calibrated
+  thresholds; a frame judged lost keeps the last box and teaches the model nothing;
+- the **re-detection layer** (opt-in, the ``-redetect`` names): while lost, the tracker's own
+  appearance model scores boxes over the whole frame and the search restarts from the best.
 """
 
 from __future__ import annotations
@@ -15,6 +24,7 @@ import numpy as np
 
 from .._checks import check_box_in_frame, check_frame, check_seed, positional_seed_error
 from ..params import make_params
+from .failure import FailureDetector, FailureParams, calibrated_params
 
 
 def readonly_attr(name: str, doc: str | None = None) -> property:
@@ -169,19 +179,34 @@ class Tracker:
     #: A frame whose values span at most this many grey levels (all black, all white, one
     #: grey) carries no information: trackers report it lost instead of scoring it.
     flat_range: ClassVar[int] = 2
+    #: Whether the re-detection layer is on (the ``-redetect`` names, see :func:`redetecting`).
+    redetect: ClassVar[bool] = False
+    #: Most boxes the re-detection layer scores per lost frame (its cost per frame).
+    redetect_boxes: ClassVar[int] = 300
 
-    def __init__(self, *args, seed: int | None = 0, **params):
+    def __init__(self, *args, seed: int | None = 0, failure: FailureParams | bool = True,
+                 **params):
         if args:
             cls = type(self).__name__
             raise positional_seed_error(f"{cls}(seed={args[0]!r})", f"{cls}()")
         check_seed(seed)
         self.seed = seed
         self._params = make_params(self.Params, params)
+        if failure is True:
+            failure = calibrated_params(self.name)
+        elif failure is not False and not isinstance(failure, FailureParams):
+            raise TypeError(f"{self.name}: failure={failure!r}; give True (the calibrated "
+                            "thresholds), False (no failure layer: the algorithm alone) or a "
+                            "trackbook.trackers.failure.FailureParams.")
+        #: The failure layer's thresholds, or None when the layer is off (``failure=False``).
+        self.failure_params = failure or None
         self.rng = np.random.default_rng(seed)
         self._shape = None
         self.bbox = None
         self.ok = False
         self.frame_index = 0
+        self._judged_confidence = None
+        self._detector = None
 
     @property
     def params(self):
@@ -195,6 +220,9 @@ class Tracker:
         self._shape = frame.shape
         self.rng = np.random.default_rng(self.seed)
         self.frame_index = 0
+        self._judged_confidence = None
+        self._detector = None if self.failure_params is None else \
+            FailureDetector(self.failure_params)
         self._init(frame, box)
         self.bbox = tuple(float(v) for v in box)
         self.ok = True
@@ -210,7 +238,10 @@ class Tracker:
                 "all frames of one clip must have the same size (call init again for a new clip)."
             )
         self.frame_index += 1
-        ok, box = self._update(frame)
+        if self._in_halves():
+            ok, box = self._locate_judge_learn(frame)
+        else:
+            ok, box = self._update(frame)
         box = np.asarray(box, dtype=float).reshape(4)
         if not np.all(np.isfinite(box)) or box[2] <= 0 or box[3] <= 0:
             # A tracker must never hand a NaN or empty box to the caller: keep the last good one.
@@ -218,6 +249,57 @@ class Tracker:
         self.bbox = tuple(float(v) for v in box)
         self.ok = bool(ok)
         return self.ok, self.bbox
+
+    # -- the two layers between locating and learning --------------------------------------
+    def _in_halves(self) -> bool:
+        """Whether this tracker is written as ``_locate`` + ``_learn`` (else ``_update``)."""
+        return type(self)._locate is not Tracker._locate
+
+    def _locate_judge_learn(self, frame):
+        """One frame of a tracker written in halves: locate -> judge -> learn (or re-detect).
+
+        1. ``_locate`` finds the target near where it was and says how sure it is; a frame
+           whose values span at most ``flat_range`` grey levels is lost whatever it says
+           (nothing to match).
+        2. The failure layer judges the confidence against the tracker's own recent ones
+           (:class:`~trackbook.trackers.failure.FailureDetector`); a paper's own rule, the
+           third value ``_locate`` may return (MOSSE's PSR < 7), can only add a loss.
+        3. On target: ``_learn`` moves the tracker to the box and updates the model. Lost: the
+           last box stays, the model learns nothing and, for a ``-redetect`` name only, the
+           whole frame is searched with the tracker's own model (:meth:`_redetect`).
+        """
+        out = self._locate(frame)
+        box, conf = out[0], out[1]
+        own_ok = bool(out[2]) if len(out) > 2 else True
+        conf = float(conf)
+        self._judged_confidence = conf
+        flat = self._is_flat(frame)
+        # a flat frame is judged as a frame with no confidence at all (NaN: lost)
+        judged = True if self._detector is None else \
+            self._detector.step(float("nan") if flat else conf)
+        box = np.asarray(box, dtype=float).reshape(4)
+        good = bool(np.all(np.isfinite(box)) and box[2] > 0 and box[3] > 0)
+        if own_ok and judged and good and not flat:
+            self._learn(frame, box)
+            return True, box
+        if self.redetect:
+            self._redetect(frame)
+        return False, np.asarray(self.bbox, dtype=float)
+
+    def _redetect(self, frame) -> None:
+        """The re-detection layer: score boxes of the last size on a grid over the whole frame
+        (at most ``redetect_boxes`` of them, plus the last box) with :meth:`_score_boxes` and
+        restart the local search from the best with :meth:`_relocate`. The failure layer
+        still decides when the target is found again: the next frames' confidences."""
+        if self._is_flat(frame):
+            return
+        last = np.asarray(self.bbox, dtype=float)
+        boxes = np.vstack([last[None], whole_frame_boxes(frame.shape, last[2:],
+                                                         self.redetect_boxes)])
+        scores = np.asarray(self._score_boxes(frame, boxes), dtype=float)
+        if scores.shape != (len(boxes),) or not np.isfinite(scores).any():
+            return
+        self._relocate(frame, boxes[int(np.nanargmax(scores))])
 
     def state(self) -> TrackerState:
         """What to draw of this tracker after the last frame (see :class:`TrackerState`).
@@ -241,8 +323,9 @@ class Tracker:
         float or None
             Larger is surer; None when the tracker has none. A number the last ``update``
             stored, never one computed here, so ``state()`` costs nothing and changes nothing.
+            For a tracker written in halves, the confidence ``_locate`` returned.
         """
-        return None
+        return self._judged_confidence
 
     def _drawn(self) -> dict:
         """The :class:`TrackerState` fields this tracker has once started, by name.
@@ -270,6 +353,63 @@ class Tracker:
         return int(frame.max()) - int(frame.min()) <= self.flat_range
 
     # -- what subclasses implement ---------------------------------------------------------
+    def _locate(self, frame: np.ndarray):  # pragma: no cover
+        """Find the target in the next frame, without learning from it (first half of a frame).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The next frame, BGR, of the same shape as ``init``'s; read-only by convention.
+
+        Returns
+        -------
+        box : sequence of 4 floats
+            ``(x, y, w, h)`` where the algorithm puts the target.
+        confidence : float
+            How sure the algorithm is of ``box``, larger is surer, on the algorithm's own
+            scale (a peak-to-sidelobe ratio, a Bhattacharyya coefficient, ...); finite on every
+            frame. The failure layer judges it.
+        own_ok : bool, optional
+            A third value, for an algorithm whose paper prints its own failure rule (MOSSE's
+            PSR < 7): False reports the frame lost whatever the failure layer says.
+
+        The tracker's state may move (a particle filter's particles), but the model of the
+        target and the position the next search starts from change only in :meth:`_learn`.
+        """
+        raise NotImplementedError
+
+    def _learn(self, frame: np.ndarray, box: np.ndarray) -> None:  # pragma: no cover
+        """Accept ``box`` on a frame judged on target: move there and update the model.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The frame ``_locate`` just saw.
+        box : (4,) float array
+            The box ``_locate`` returned.
+        """
+        raise NotImplementedError
+
+    def _score_boxes(self, frame: np.ndarray, boxes: np.ndarray) -> np.ndarray:  # pragma: no cover
+        """For the re-detection layer: how well each box matches the model, larger is better.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+        boxes : (n, 4) float array
+            Candidate boxes ``(x, y, w, h)``; the first is the last box.
+
+        Returns
+        -------
+        (n,) float array
+            Only the order matters (the best box is relocated to). Must not change the model.
+        """
+        raise NotImplementedError(f"{self.name} cannot re-detect: it has no _score_boxes.")
+
+    def _relocate(self, frame: np.ndarray, box: np.ndarray) -> None:  # pragma: no cover
+        """For the re-detection layer: restart the local search at ``box`` (no learning)."""
+        raise NotImplementedError(f"{self.name} cannot re-detect: it has no _relocate.")
+
     def _init(self, frame: np.ndarray, box: np.ndarray) -> None:  # pragma: no cover
         """Take the model of the target from the first frame (a subclass implements it).
 
@@ -308,3 +448,39 @@ class Tracker:
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}(seed={self.seed!r}, params={self.params!r})"
+
+
+def whole_frame_boxes(frame_shape, size, max_boxes: int) -> np.ndarray:
+    """Boxes of ``size = (w, h)`` centred on a grid over the whole frame, at most ``max_boxes``.
+
+    The grid step is ``sqrt(W H / max_boxes)`` in both directions, so the centres cover the
+    frame evenly whatever its shape; a box may stick out of the frame by up to half its size
+    (a target at the edge is found too).
+    """
+    H, W = frame_shape[:2]
+    step = max(np.sqrt(W * H / max(int(max_boxes), 1)), 1.0)
+    xs = np.arange(step / 2, W, step)
+    ys = np.arange(step / 2, H, step)
+    X, Y = np.meshgrid(xs, ys)
+    w, h = (float(v) for v in size)
+    n = X.size
+    return np.column_stack([X.ravel() - w / 2, Y.ravel() - h / 2, np.full(n, w),
+                            np.full(n, h)])[:max_boxes]
+
+
+def redetecting(cls: type[Tracker]) -> type[Tracker]:
+    """The re-detecting variant of a tracker written in halves: ``<name>-redetect``.
+
+    The same algorithm, the same failure layer and thresholds; while lost, the re-detection
+    layer (:meth:`Tracker._redetect`) searches the whole frame with the tracker's own
+    appearance model. Register the result to give it its name.
+    """
+    if not issubclass(cls, Tracker) or type.__getattribute__(cls, "_locate") is Tracker._locate:
+        raise TypeError(f"{cls.__name__} is not written as _locate + _learn; only such a "
+                        "tracker can take the re-detection layer.")
+    doc = (f"{cls.name} with the re-detection layer: while lost, the whole frame is searched "
+           f"with its own appearance model (:meth:`Tracker._redetect`).\n\nSee "
+           f":class:`{cls.__module__}.{cls.__qualname__}`.")
+    return type(f"{cls.__name__}Redetect", (cls,),
+                {"name": f"{cls.name}-redetect", "redetect": True, "__doc__": doc,
+                 "__module__": cls.__module__})

@@ -14,9 +14,16 @@ from __future__ import annotations
 
 import collections
 import dataclasses
+import functools
+import json
 import math
+from pathlib import Path
 
 import numpy as np
+
+#: The thresholds ``experiments/calibrate_failure.py`` chose for every tracker: package data,
+#: read by :func:`calibrated_params` when a tracker is made.
+CALIBRATION_FILE = Path(__file__).resolve().parents[1] / "data" / "failure_calibration.json"
 
 #: 1 / Phi^-1(3/4): scales the median absolute deviation to a Gaussian's standard deviation.
 MAD_TO_SIGMA = 1.482602218505602
@@ -193,9 +200,51 @@ class FailureDetector:
         return np.array([self.step(c) for c in np.asarray(confidences, float).ravel()], bool)
 
 
+def load_calibration(path=None) -> dict:
+    """``{tracker name: FailureParams}`` from a calibration file.
+
+    Parameters
+    ----------
+    path : str or Path, optional
+        The JSON file ``experiments/calibrate_failure.py`` wrote; default the committed one,
+        ``trackbook/data/failure_calibration.json``.
+
+    Raises
+    ------
+    FileNotFoundError
+        When there is no such file, naming the command that makes it.
+    """
+    path = Path(CALIBRATION_FILE if path is None else path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no calibration file {path}; make it with: python "
+                                "experiments/calibrate_failure.py (--out FILE to write "
+                                "elsewhere).")
+    fields = [f.name for f in dataclasses.fields(FailureParams)]
+    rows = json.loads(path.read_text(encoding="utf-8"))["rows"]
+    return {r["tracker"]: FailureParams(**{k: r[k] for k in fields}) for r in rows}
+
+
+@functools.lru_cache(maxsize=1)
+def _committed() -> dict:
+    return load_calibration() if CALIBRATION_FILE.is_file() else {}
+
+
+def calibrated_params(name: str) -> FailureParams:
+    """The committed thresholds of tracker ``name``, or :class:`FailureParams`' defaults.
+
+    A re-detecting variant (``kcf-redetect``) uses the thresholds of the algorithm it wraps
+    (``kcf``): the layer judges the same confidence. A tracker the calibration has not seen
+    (a student's own) gets the defaults until it is calibrated.
+    """
+    table = _committed()
+    base = name[:-len("-redetect")] if name.endswith("-redetect") else name
+    return table.get(name) or table.get(base) or FailureParams()
+
+
 def judge(confidences, params: FailureParams | None = None) -> np.ndarray:
     """``ok`` per frame of one confidence series: ``FailureDetector(params).run(confidences)``."""
     return FailureDetector(params).run(confidences)
 
 
-__all__ = ["FailureDetector", "FailureParams", "judge", "robust_reference"]
+__all__ = ["CALIBRATION_FILE", "FailureDetector", "FailureParams", "calibrated_params", "judge",
+           "load_calibration", "robust_reference"]
