@@ -1,7 +1,9 @@
 """Calibrate the failure rule for every tracker on the calibration scenes.
 
 Every tracker of ``trackbook.trackers.available()`` (and OpenCV's ``opencv-mil`` unless
-``--no-mil``: about 100 ms a frame) runs over ``trackbook.clips.calibration_set`` (seven kinds
+``--no-mil``: about 100 ms a frame; not the ``-redetect`` variants, which share their
+algorithm's thresholds), with its failure layer off (``failure=False``), runs over
+``trackbook.clips.calibration_set`` (seven kinds
 of disappearance: leaving the frame, an occluder, a camera cut, a fade to black, shrinking
 away, heavy blur, a look-alike while the target is covered). For every frame after the first
 the script records the tracker's own confidence (``tracker.state().confidence``), the IoU
@@ -11,8 +13,14 @@ with the ground truth and whether the target is absent; then
 while flagging at most 1 % of the frames on target (IoU > 0.5, at least half of the target
 in view, not the first 3 frames after a return: the rule needs 3 frames to trust it) lost.
 
+With the real sequences present (``../shared/data/sequences``; ``--no-sequences`` skips
+them), each tracker also runs over them and the confidence's ROC is taken for "on target"
+(IoU > 0.5) against "off target" (IoU = 0: the box has left the target), the only negatives
+sequences without absent frames have.
+
 It writes ``src/trackbook/data/failure_calibration.json`` (tracker -> thresholds,
-achieved rates, ROC AUC of the confidence; the set's seed and size; the library version and
+achieved rates, ROC AUC and thinned ROC curve of the confidence, the same on the real
+sequences; the set's seed and size; the library version and
 ``git describe``) and prints a table tracker x kind: share of absent frames flagged / share
 of on-target frames flagged (false losses) / ROC AUC of the confidence.
 
@@ -41,7 +49,7 @@ import trackbook
 from trackbook import trackers
 from trackbook.clips.failure_scenes import KINDS, calibration_set
 from trackbook.evaluation.runner import evaluate_many
-from trackbook.evaluation.failure import calibrate, detection_rates, roc_auc
+from trackbook.evaluation.failure import calibrate, detection_rates, roc_auc, roc_curve
 from trackbook.evaluation.metrics import iou as box_iou
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -92,7 +100,8 @@ def record(names, scenes, seed: int = 0, log=None) -> dict:
     out = {n: [] for n in names}
     for k, sc in enumerate(scenes):
         t0 = time.perf_counter()
-        made = [trackers.create(n, seed=seed) for n in names]
+        # the algorithm alone (failure=False): the layer's thresholds are what is being chosen
+        made = [trackers.create(n, seed=seed, failure=False) for n in names]
         conf = np.full((len(made), len(sc.clip)), np.nan)
         index = {id(t): j for j, t in enumerate(made)}
 
@@ -117,11 +126,63 @@ def record(names, scenes, seed: int = 0, log=None) -> dict:
     return out
 
 
-def _auc(runs) -> float:
+def _classes(runs):
     on = [r.confidence[r.on_target] for r in runs]
     off = [r.confidence[r.absent] for r in runs]
-    on, off = np.concatenate(on or [[]]), np.concatenate(off or [[]])
+    return np.concatenate(on or [[]]), np.concatenate(off or [[]])
+
+
+def _auc(runs) -> float:
+    on, off = _classes(runs)
     return roc_auc(on, off) if on.size and off.size else math.nan
+
+
+#: Points kept of each ROC curve in the JSON (enough to draw it).
+ROC_POINTS = 60
+
+
+def thin_roc(on, off) -> dict:
+    """The ROC curve of confidences ``on`` (positives) against ``off``, thinned to at most
+    ``ROC_POINTS`` points spread evenly along its false-positive axis (ends kept)."""
+    if not (np.size(on) and np.size(off)):
+        return {"fpr": [], "tpr": []}
+    fpr, tpr, _ = roc_curve(on, off)
+    keep = np.unique(np.r_[0, np.searchsorted(fpr, np.linspace(0, 1, ROC_POINTS)).clip(
+        0, fpr.size - 1), fpr.size - 1])
+    return {"fpr": [round(float(v), 5) for v in fpr[keep]],
+            "tpr": [round(float(v), 5) for v in tpr[keep]]}
+
+
+def record_sequences(names, seqs, seed: int = 0, log=None) -> dict:
+    """On real sequences (no absent frames): ``{tracker: (conf on target, conf off target)}``
+    where on target is IoU > 0.5 and off target IoU = 0 (the box has left the target)."""
+    out = {n: ([], []) for n in names}
+    for name, path in seqs.items():
+        t0 = time.perf_counter()
+        clip = trackbook.clips.load(str(path))
+        made = [trackers.create(n, seed=seed, failure=False) for n in names]
+        conf = np.full((len(made), len(clip)), np.nan)
+        index = {id(t): j for j, t in enumerate(made)}
+
+        def hook(i, tracker, frame, box, conf=conf, index=index):
+            if i > 0:
+                conf[index[id(tracker)], i] = confidence_of(tracker)
+
+        try:
+            results = evaluate_many([(t, None, {}) for t in made], clip, on_frame=hook)
+        finally:
+            for t in made:
+                close = getattr(t, "close", None)
+                if callable(close):
+                    close()
+        for j, (n, r) in enumerate(zip(names, results)):
+            iou = np.nan_to_num(box_iou(r.boxes, clip.groundtruth), nan=0.0)[1:]
+            c = conf[j, 1:]
+            out[n][0].append(c[iou > ON_TARGET_IOU])
+            out[n][1].append(c[iou == 0.0])
+        if log:
+            log(f"sequence {name} ({len(clip)} frames): {time.perf_counter() - t0:.1f} s")
+    return {n: (np.concatenate(a), np.concatenate(b)) for n, (a, b) in out.items()}
 
 
 def _rates(runs, params) -> dict:
@@ -144,7 +205,14 @@ def summarise(name: str, runs, **options) -> dict:
             "absent_lost": cal.absent_lost, "false_lost": cal.false_lost,
             "feasible": cal.feasible, "meets_target": cal.meets_target,
             "n_absent": cal.n_absent, "n_on": cal.n_on, "roc_auc": _auc(runs),
-            "per_kind": per_kind}
+            "roc": thin_roc(*_classes(runs)), "per_kind": per_kind}
+
+
+def summarise_real(row: dict, on, off) -> dict:
+    """Add the real sequences' ROC (on target against off target) to a tracker's row."""
+    auc = roc_auc(on, off) if on.size and off.size else math.nan
+    return {**row, "real_roc_auc": auc, "real_n_on": int(on.size), "real_n_off": int(off.size),
+            "real_roc": thin_roc(on, off)}
 
 
 def _cell(v, fmt="{:.2f}") -> str:
@@ -197,6 +265,8 @@ def parse(argv):
     ap.add_argument("--no-mil", action="store_true", help="leave out opencv-mil (slow)")
     ap.add_argument("--out", default=str(OUT), help="the JSON file to write")
     ap.add_argument("--force", action="store_true", help="overwrite --out if it exists")
+    ap.add_argument("--no-sequences", action="store_true",
+                    help="skip the real sequences' ROC (on target against off target)")
     return ap.parse_args(argv)
 
 
@@ -215,7 +285,9 @@ def main(argv=None) -> int:
                   file=sys.stderr)
             return 2
     else:
-        names = trackers.available(reference=not a.no_mil)
+        # a -redetect variant judges the same confidence with the same thresholds
+        names = [n for n in trackers.available(reference=not a.no_mil)
+                 if not n.endswith("-redetect")]
     if a.no_mil:
         names = [n for n in names if n != "opencv-mil"]
     out = Path(a.out)
@@ -234,6 +306,10 @@ def main(argv=None) -> int:
         return 2
     options = {"m": 3, "window": 30, "warmup": 5, "target": 0.95, "max_false": 0.01}
     rows = [summarise(n, runs[n], **options) for n in names]
+    seqs = trackbook.clips.find_sequences() if not a.no_sequences else {}
+    if seqs:
+        real = record_sequences(names, seqs, log=log)
+        rows = [summarise_real(r, *real[r["tracker"]]) for r in rows]
     doc = {"name": "failure_calibration",
            "description": "thresholds of the failure rule per tracker, calibrated on the "
                           "calibration scenes (trackbook.clips.calibration_set)",
@@ -242,6 +318,7 @@ def main(argv=None) -> int:
            "seed": a.seed, "per_kind": per_kind, "scenes": len(scenes), "kinds": list(KINDS),
            "frames": int(sum(len(r.confidence) for r in runs[names[0]])) if names else 0,
            "on_target_iou": ON_TARGET_IOU, "on_target_min_visible": MIN_VISIBLE, **options,
+           "sequences": sorted(seqs),
            "version": trackbook.__version__, "git": git_describe(), "rows": rows}
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(_json_safe(doc), indent=1) + "\n")
