@@ -265,8 +265,9 @@ class Tracker:
            (:class:`~trackbook.trackers.failure.FailureDetector`); a paper's own rule, the
            third value ``_locate`` may return (MOSSE's PSR < 7), can only add a loss.
         3. On target: ``_learn`` moves the tracker to the box and updates the model. Lost: the
-           last box stays, the model learns nothing and, for a ``-redetect`` name only, the
-           whole frame is searched with the tracker's own model (:meth:`_redetect`).
+           last box is reported, the model learns nothing, the local search follows its own
+           answer (:meth:`_follow`) and, for a ``-redetect`` name only, the whole frame is
+           searched with the tracker's own model (:meth:`_redetect`).
         """
         out = self._locate(frame)
         box, conf = out[0], out[1]
@@ -274,32 +275,53 @@ class Tracker:
         conf = float(conf)
         self._judged_confidence = conf
         flat = self._is_flat(frame)
-        # a flat frame is judged as a frame with no confidence at all (NaN: lost)
+        # A flat frame, or one the paper's own rule calls lost, is judged as a frame with no
+        # confidence at all (NaN: lost), so that its confidence never enters the reference
+        # the next frames are judged against.
         judged = True if self._detector is None else \
-            self._detector.step(float("nan") if flat else conf)
+            self._detector.step(float("nan") if flat or not own_ok else conf)
         box = np.asarray(box, dtype=float).reshape(4)
         good = bool(np.all(np.isfinite(box)) and box[2] > 0 and box[3] > 0)
         if own_ok and judged and good and not flat:
             self._learn(frame, box)
             return True, box
+        if good and not flat:
+            self._follow(frame, box)
         if self.redetect:
-            self._redetect(frame)
+            self._redetect(frame, box if good and not flat else None)
         return False, np.asarray(self.bbox, dtype=float)
 
-    def _redetect(self, frame) -> None:
+    def _follow(self, frame, box) -> None:
+        """Hook: on a lost frame, let the local search start from ``box`` next time, without
+        learning (default: :meth:`_relocate` when the tracker has one, else nothing).
+
+        The reported box stays the last one judged on target, but the algorithm keeps
+        tracking its best local answer: a target that moved while it was judged lost (a
+        false loss, an occluder passing) stays inside the next search window. A tracker
+        whose state already moves in ``_locate`` (a particle filter's particles) overrides
+        it to do nothing.
+        """
+        if type(self)._relocate is not Tracker._relocate:
+            self._relocate(frame, box)
+
+    def _redetect(self, frame, located=None) -> None:
         """The re-detection layer: score boxes of the last size on a grid over the whole frame
-        (at most ``redetect_boxes`` of them, plus the last box) with :meth:`_score_boxes` and
-        restart the local search from the best with :meth:`_relocate`. The failure layer
-        still decides when the target is found again: the next frames' confidences."""
+        (at most ``redetect_boxes`` of them) and the box the local search just found
+        (``located``) with :meth:`_score_boxes`, and restart the local search from the best
+        with :meth:`_relocate` when it is not the located box. The failure layer still
+        decides when the target is found again: the next frames' confidences."""
         if self._is_flat(frame):
             return
         last = np.asarray(self.bbox, dtype=float)
-        boxes = np.vstack([last[None], whole_frame_boxes(frame.shape, last[2:],
+        here = last if located is None else np.asarray(located, dtype=float)
+        boxes = np.vstack([here[None], whole_frame_boxes(frame.shape, here[2:],
                                                          self.redetect_boxes)])
         scores = np.asarray(self._score_boxes(frame, boxes), dtype=float)
         if scores.shape != (len(boxes),) or not np.isfinite(scores).any():
             return
-        self._relocate(frame, boxes[int(np.nanargmax(scores))])
+        best = int(np.nanargmax(scores))
+        if best > 0:
+            self._relocate(frame, boxes[best])
 
     def state(self) -> TrackerState:
         """What to draw of this tracker after the last frame (see :class:`TrackerState`).
@@ -374,7 +396,8 @@ class Tracker:
             PSR < 7): False reports the frame lost whatever the failure layer says.
 
         The tracker's state may move (a particle filter's particles), but the model of the
-        target and the position the next search starts from change only in :meth:`_learn`.
+        target and the position the next search starts from change only in :meth:`_learn`
+        (on target) or :meth:`_follow` (lost).
         """
         raise NotImplementedError
 
