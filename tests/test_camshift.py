@@ -16,6 +16,8 @@ same termination criteria (COUNT | EPS, 10, 1), with ``window_rule="opencv"``:
 
 from __future__ import annotations
 
+import copy
+
 import cv2
 import numpy as np
 import pytest
@@ -233,3 +235,53 @@ def test_scale_follows_the_target():
     for f in frames[1:]:
         ok, box = t.update(f)
     assert ok and box[2] == pytest.approx(40, rel=0.05)
+
+
+def _model(t):
+    return [np.array(t.hist, copy=True), np.array(t.window, float)]
+
+
+def test_locate_has_no_side_effect_on_the_model():
+    frames, box0 = _square_frames(4)
+    t = trackers.create("camshift")
+    t.init(frames[0], box0)
+    t.update(frames[1])
+    before = _model(t)
+    u = copy.deepcopy(t)
+    a, b = u._locate(frames[2]), u._locate(frames[2])
+    np.testing.assert_array_equal(a[0], b[0])
+    assert a[1] == b[1] and np.isfinite(a[1])
+    for m0, m1 in zip(before, _model(u)):
+        np.testing.assert_array_equal(m0, m1)
+
+
+def test_a_lost_frame_does_not_change_the_model():
+    frames, box0 = _square_frames(8)
+    t = trackers.create("camshift")
+    t.init(frames[0], box0)
+    for f in frames[1:6]:
+        t.update(f)
+    before, box = _model(t), t.bbox
+    ok, _ = t.update(np.full_like(frames[0], 100))
+    assert not ok and t.bbox == box and np.isfinite(t.state().confidence)
+    for m0, m1 in zip(before, _model(t)):
+        np.testing.assert_array_equal(m0, m1)
+
+
+def test_redetect_finds_a_target_that_jumped_across_the_frame():
+    """tests/_jump.py: the canonical name loses the target at A and stays lost there;
+    ``camshift-redetect`` restarts the window on the densest box and tracks it at B (the box's
+    size follows M00, so only its overlap with B's box is asked)."""
+    from ._jump import A, iou, jump
+    clip, box_b = jump()
+    for name in ("camshift", "camshift-redetect"):
+        t = trackers.create(name, seed=0)
+        t.init(clip.frames[0], clip.groundtruth[0])
+        oks = [t.update(f)[0] for f in clip.frames[1:]]
+        box = np.asarray(t.bbox)
+        if name == "camshift":
+            centre = box[:2] + box[2:] / 2
+            assert not any(oks[15:]) and np.allclose(centre, np.add(A, (12, 15)), atol=3)
+        else:
+            assert all(oks[-5:]) and iou(box, box_b) > 0.5, (oks, box)
+

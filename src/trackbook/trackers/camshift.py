@@ -24,7 +24,7 @@ import numpy as np
 
 from ..filters import camshift as cs
 from ..params import NOT_PRINTED, param
-from .base import Tracker
+from .base import Tracker, redetecting
 from .registry import register
 
 _OPENCV_SAMPLE = "OpenCV's camshift sample"
@@ -66,12 +66,6 @@ class CamShiftParams:
         paper=1.2,   # Bradski 1998: a face's window is s wide and 1.2 s high
         why="1.2 is Bradski's for faces, which are taller than wide; the book's targets "
             "have any shape, so the window is square")
-    lost_below: float = param(
-        0.3, 0.0, 1.0, 0.05, doc="lost when M00 of the window falls below this fraction of "
-        "the first frame's",
-        paper=NOT_PRINTED, paper_value=0.0,   # Bradski gives no lost rule
-        why="the book's rule: Bradski prints none; with less than 30 % of the first "
-            "frame's probability mass under the window the target's hues are gone")
     background_weighted: bool = param(
         True, doc="weigh each hue bin by min(1, o*/o_u), o the hues around the first box "
         "(Comaniciu et al. 2003)",
@@ -80,12 +74,6 @@ class CamShiftParams:
             "any background of the target's hue (yellow-ball's floor); hues common around "
             "the first box are weighed down (mean AUC over the 8 sample clips 0.29 without, "
             "0.70 with)")
-    redetect: bool = param(
-        True, doc="while lost, also start the search at the densest window of the whole "
-        "probability image",
-        paper=NOT_PRINTED, paper_value=False,
-        why="the book's addition: a target that leaves the window's reach (across the "
-            "border, behind an occluder) is otherwise never found again")
 
 
 @register
@@ -109,13 +97,13 @@ class CamShiftTracker(Tracker):
     from the given box). 1 while as much of the target's colour is under the window as at the
     start, 0 on a frame with no pixel of its hues (a constant frame included); always finite.
 
-    Lost rule
-    ---------
-    The book's (Bradski prints none): a constant frame, or a confidence below ``lost_below``,
-    is lost; the box stays where it was and the window returns to the last good one. With
-    ``redetect``, a frame whose search from the last window fails also starts one at the
-    window of the first frame's size holding the most probability in the whole image (a box
-    filter over ``P``), and takes it when its confidence reaches ``lost_below``.
+    Failure and re-detection
+    ------------------------
+    Bradski prints no failure rule: the failure-detection layer decides ``ok`` from the
+    confidence above (a constant frame is lost); on a frame judged lost the box and the
+    search window stay where they were. ``camshift-redetect`` adds the re-detection layer:
+    while lost, boxes over the whole frame are scored by the probability mass of ``P`` they
+    hold (:meth:`_score_boxes`) and the search window restarts at the best.
 
     Drawn: ``search_window`` (the next frame's window) and ``ellipse`` (cx, cy, hx, hy,
     angle): half-axes 2 σ across and along the long axis of ``P``, angle in degrees as
@@ -147,9 +135,8 @@ class CamShiftTracker(Tracker):
         # of the box centre from the centroid, in units of the box's size
         self._offset = (0.0, 0.0) if res.m00 <= 0 else (
             (x + w / 2 - (res.center[0] + 0.5)) / w, (y + h / 2 - (res.center[1] + 0.5)) / h)
-        self.confidence = 1.0 if res.m00 > 0 else 0.0
         self.window = res.window if res.m00 > 0 else start
-        self._good_window = self.window
+        self._located = None
         self.ellipse = (x + w / 2, y + h / 2, w / 2, h / 2, 0.0)
         self._box = np.array([x, y, w, h])
 
@@ -167,48 +154,63 @@ class CamShiftTracker(Tracker):
     def _score(self, res) -> float:
         return res.m00 / self._m00_first if self._m00_first > 0 else 0.0
 
-    def _densest_window(self, prob):
-        """The window of the first box's size holding the most probability (a box filter)."""
-        w, h = (max(int(round(v)), 1) for v in self._size0)
-        mass = cv2.boxFilter(prob.astype(np.float32), -1, (w, h), normalize=False,
-                             borderType=cv2.BORDER_CONSTANT)
-        i, j = np.unravel_index(int(np.argmax(mass)), mass.shape)
-        return self._int_box((j - w // 2, i - h // 2, w, h), prob.shape)
-
-    def _update(self, frame):
-        if self._is_flat(frame) or self._m00_first <= 0:
-            self.confidence = 0.0
-            self.window = self._good_window
-            return False, self._box
+    def _locate(self, frame):
+        """CamShift from the last search window on the frame's back-projection; the box from
+        the converged window (size from ``M00``, centre from the centroid). Returns the box
+        and ``M00 / M00_1``; the window moves only in ``_learn``."""
+        self._located = None
+        if self._m00_first <= 0:
+            # the first box had no trusted hue: nothing to place, every frame is lost
+            return np.full(4, np.nan), 0.0
+        if self._is_flat(frame):
+            return self._box, 0.0           # a flat frame is lost whatever it scores
         prob = cs.back_projection(frame, self.hist, **self._hist_args())
         res = self._run(prob, self.window)
-        conf = self._score(res)
-        if conf < self.params.lost_below and self.params.redetect:
-            other = self._run(prob, self._densest_window(prob))
-            if self._score(other) > conf:
-                res, conf = other, self._score(other)
-        self.confidence = float(conf)
-        if conf < self.params.lost_below or not np.isfinite(res.center[0]):
-            self.window = self._good_window
-            return False, self._box
-        self.window = self._good_window = res.window
-        cx, cy, hx, hy, angle = res.ellipse
-        self.ellipse = (cx + 0.5, cy + 0.5, hx, hy, angle)   # pixel j covers [j, j + 1)
+        conf = float(self._score(res))
+        if not np.isfinite(res.center[0]):
+            return np.full(4, np.nan), conf    # no mass under the window: nothing to place
         scale = float(np.clip(np.sqrt(conf), 0.25, 4.0))
         w, h = self._size0[0] * scale, self._size0[1] * scale
         cx = res.center[0] + 0.5 + self._offset[0] * w
         cy = res.center[1] + 0.5 + self._offset[1] * h
-        self._box = np.array([cx - w / 2, cy - h / 2, w, h])
-        return True, self._box
+        self._located = res
+        return np.array([cx - w / 2, cy - h / 2, w, h]), conf
 
-    def _last_confidence(self) -> float:
-        """``M00 / M00_1`` of the last frame, stored by ``_update``."""
-        return float(self.confidence)
+    def _learn(self, frame, box):
+        """Accept the converged window of ``_locate`` as the next search window (CamShift's
+        histogram is the first frame's: there is no appearance model to update)."""
+        res = self._located
+        self.window = res.window
+        cx, cy, hx, hy, angle = res.ellipse
+        self.ellipse = (cx + 0.5, cy + 0.5, hx, hy, angle)   # pixel j covers [j, j + 1)
+        self._box = np.asarray(box, dtype=float)
+
+    def _score_boxes(self, frame, boxes):
+        """For re-detection: the probability mass of the back-projection ``P`` inside each box
+        relative to the first frame's ``M00`` (one integral image; the histogram untouched)."""
+        if self._m00_first <= 0:
+            return np.zeros(len(boxes))
+        prob = cs.back_projection(frame, self.hist, **self._hist_args())
+        ii = cv2.integral(prob.astype(np.float64))
+        H, W = prob.shape[:2]
+        b = np.asarray(boxes, dtype=float)
+        x0 = np.clip(np.round(b[:, 0]), 0, W).astype(int)
+        y0 = np.clip(np.round(b[:, 1]), 0, H).astype(int)
+        x1 = np.clip(np.round(b[:, 0] + b[:, 2]), 0, W).astype(int)
+        y1 = np.clip(np.round(b[:, 1] + b[:, 3]), 0, H).astype(int)
+        mass = ii[y1, x1] - ii[y0, x1] - ii[y1, x0] + ii[y0, x0]
+        return mass / self._m00_first
+
+    def _relocate(self, frame, box):
+        """Restart the mean-shift search with the window at ``box``."""
+        self.window = self._int_box(box, frame.shape)
 
     def _drawn(self) -> dict:
         """The next search window and the last ellipse (``Tracker.state()``)."""
         return {**super()._drawn(), "search_window": tuple(float(v) for v in self.window),
                 "ellipse": tuple(float(v) for v in self.ellipse)}
 
+
+register(redetecting(CamShiftTracker))
 
 __all__ = ["CamShiftParams", "CamShiftTracker"]

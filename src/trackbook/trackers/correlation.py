@@ -14,36 +14,18 @@
     f̂(z) = k̂^{xz} ⊙ α̂; the model (α̂ and the features x) is linearly interpolated with
     rate η. No scale search: the paper's KCF has none.
 
-Lost rule (both)
-----------------
-In order, on every frame:
-
-1. A frame whose grey levels span at most ``flat_range`` (all black, all white) carries
-   nothing to match: ``ok=False``, the box stays, the model is not updated.
-2. The filter's peak moves the box. A box with less than ``min_visible`` of its area in the
-   frame (:func:`~trackbook.trackers.lost.visible_fraction`) is a target leaving: lost.
-3. A peak whose confidence (the peak-to-sidelobe ratio, PSR) reaches the threshold must also
-   match the first frame's kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012,
-   :class:`~trackbook.trackers.lost.ColourCheck`, when ``colour_check``): the match may not
-   fall far below its recent range (:class:`~trackbook.trackers.lost.MatchGate`) unless the
-   box stands out by colour from the boxes around it. Passed: ``ok=True`` and the model
-   learns the frame. Nothing else updates the model.
-4. Otherwise, with ``redetect``, the whole frame is searched: first by colour
-   (:meth:`~trackbook.trackers.lost.ColourCheck.search`, about 325 histograms), the best
-   box taken if its colours pass the gate, it is in view and the filter answers there with
-   a PSR at the threshold; else by the filter itself over overlapping tiles of the window's
-   size (a bounded number per frame, swept round robin), the best tile taken if its PSR
-   reaches ``redetect_factor`` x the threshold and its colours pass the gate.
-5. Otherwise a peak below the threshold whose box is in view and stands out by colour from
-   the boxes around it is kept, ``ok=True`` without learning (the filter's template has
-   faded; the target is still the best colour match around). Anything else: ``ok=False``,
-   the box stays.
-
-The gate has no absolute floor: under a sudden change of light every colour match drops,
-and the target is told from a drift by its range and by standing out. The paper preset runs
-only the rule Bolme et al. 2010 give for MOSSE (PSR below 7 is lost) and, for KCF
-(Henriques et al. 2015, no lost rule), never reports a loss: ``min_visible = 0``, no colour
-check, no re-detection.
+Failure and re-detection (both)
+-------------------------------
+Each frame is located (the response's peak moves the box, the PSR of the response is the
+confidence) and then judged by the failure-detection layer
+(:class:`~trackbook.trackers.failure.FailureDetector`, the tracker's calibrated thresholds); a
+frame whose grey levels span at most ``flat_range`` is lost whatever the PSR. The model learns
+only on frames judged on target; a lost frame keeps the last box. MOSSE adds the rule Bolme et
+al. 2010 print: a PSR below ``psr_threshold`` (7) is a failure, and the filter is not updated.
+KCF (Henriques et al. 2015) prints no failure rule. ``mosse-redetect`` and ``kcf-redetect``
+add the re-detection layer: while lost, windows over the whole frame are scored by the PSR of
+the filter's response there (:meth:`~trackbook.trackers.base.Tracker._redetect`) and the
+search restarts from the best.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                              # doctest: +SKIP
@@ -62,57 +44,15 @@ from ..features.gradient_cells import orientation_cells
 from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..params import NOT_PRINTED, param
-from .base import Tracker, readonly
-from .lost import ColourCheck, MatchGate, visible_fraction
+from .base import Tracker, readonly, redetecting
 from .registry import register
 
 #: Random affine perturbations of the first patch: rotation up to ±this/2 rad and each
 #: entry of the linear part up to ±this/2 (the spread of OpenCV's ``mosse.py`` sample).
 PERTURBATION = 0.2
 
-#: At most about this many re-detection tiles cover a frame.
-MAX_TILES = 400
-#: Patch pixels searched per lost frame (a bounded cost per frame; see ``_redetect``).
-TILE_PIXELS = 150_000
 _REF_CODE = ("the authors' reference code (run_tracker.m, 'parameters according to the "
              "paper')")
-
-
-def _redetect_param(threshold_name: str):
-    return param(
-        True, doc="search the whole frame in tiles while the target is lost",
-        paper=NOT_PRINTED, paper_value=False,   # in neither paper
-        why=f"the book's addition: without it a target that leaves the view and reappears "
-            f"outside the search window is never found again; a tile must pass "
-            f"redetect_factor x {threshold_name}")
-
-
-def _redetect_factor_param():
-    return param(
-        1.5, 1.0, 5.0, 0.1, doc="a re-detected tile's confidence must reach this times the "
-        "threshold",
-        paper=NOT_PRINTED,   # not in the paper
-        why="the book's addition: among dozens of tiles one background tile can pass the "
-            "plain threshold by chance; a margin keeps the absent target lost")
-
-
-def _min_visible_param():
-    return param(
-        0.5, 0.0, 1.0, 0.05, doc="a box with less than this fraction of its area in the frame "
-        "is lost (the target is leaving)",
-        paper=NOT_PRINTED, paper_value=0.0,   # neither paper has a border rule
-        why="the book's rule, as every tracker's: a filter keeps finding a peak on the "
-            "background left in its window when the target leaves across the border")
-
-
-def _colour_check_param():
-    return param(
-        True, doc="check the box against the first frame's kernel colour histogram (eq. 1 "
-        "of Lee et al. 2012) and search the frame by colour while lost",
-        paper=NOT_PRINTED, paper_value=False,   # in neither paper
-        why="the book's rule, as opencv-mil's: a filter that has drifted onto texture, or "
-            "onto an occluder, can still answer with a sharp peak; the target's colours "
-            "are not there")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -139,10 +79,6 @@ class MosseParams:
         paper=NOT_PRINTED,   # the paper's regulariser is not quoted here with a value
         why="1e-5 as in OpenCV's mosse.py sample: with unit-norm patches B averages 1 per "
             "frequency, so λ only guards frequencies with no energy")
-    redetect: bool = _redetect_param("psr_threshold")
-    redetect_factor: float = _redetect_factor_param()
-    min_visible: float = _min_visible_param()
-    colour_check: bool = _colour_check_param()
 
 
 @dataclasses.dataclass(frozen=True)
@@ -172,38 +108,25 @@ class KcfParams:
         why="the book's 8 signed bins of 03_hog (exact octant binning) instead of FHOG's "
             "31 channels, so the features are the HOG cells the reader already knows; "
             "paper preset: 9 signed bins of the same cells, not FHOG")
-    psr_threshold: float = param(
-        7.0, 0.0, 50.0, 0.5, doc="PSR of the response below this: target lost, no update",
-        paper=NOT_PRINTED, paper_value=0.0,   # the paper's KCF never declares a loss
-        why="the book's choice: MOSSE's PSR rule and threshold of 7 (Bolme et al. 2010) on "
-            "KCF's response, its sidelobe excluding ±3 σ_y around the peak; the peak value "
-            "separated target from background less well on the lost-and-found probe")
-    redetect: bool = _redetect_param("psr_threshold")
-    redetect_factor: float = _redetect_factor_param()
-    min_visible: float = _min_visible_param()
-    colour_check: bool = _colour_check_param()
 
 
 class _CorrelationTracker(Tracker):
-    """What both trackers share: the window around the centre, the lost rule, re-detection.
+    """What both trackers share: the window around the centre, locating, learning, scoring.
 
     Confidence: ``state().confidence`` is ``confidence`` below, the peak-to-sidelobe ratio
-    PSR = (g_max - mu_s) / sigma_s of the response that placed the box (the re-detected
-    window's when re-detection found the target, else the window at the last position; see
-    :func:`trackbook.filters.correlation.psr`); 0 on a constant frame (nothing matched).
+    PSR = (g_max - mu_s) / sigma_s of the response at the last position (see
+    :func:`trackbook.filters.correlation.psr`); 0 on a constant frame (nothing matched). The
+    failure-detection layer judges it and decides ``ok``.
 
     Attributes (read-only, for drawing)
     -----------------------------------
     response : the last response map (cyclic: index 0 is "no move")
-    confidence : the last frame's confidence (PSR or peak value)
+    confidence : the last frame's confidence (PSR)
     search_window : (x, y, w, h) of the last window searched
     """
 
     #: Minimum side of the sampled window, in px of the patch.
     min_side = 8
-    #: Whether a peak at ``redetect_factor`` x the threshold or above is kept whatever the
-    #: colour says (see each tracker's "Lost rule").
-    firm_peak_vouches = False
 
     # -- geometry ----------------------------------------------------------------------
     def _window_box(self, centre):
@@ -215,21 +138,6 @@ class _CorrelationTracker(Tracker):
         boxes = np.array([self._window_box(c) for c in centres], dtype=float)
         return sample_patches(gray, boxes, self._patch_size)
 
-    def _tile_centres(self, shape):
-        """Centres of the re-detection tiles: every half target size, windows kept in frame."""
-        H, W = shape[:2]
-        ww, wh = self._window
-        # Half a target size apart, but never more than about MAX_TILES tiles (a tiny box in
-        # a large frame would otherwise make tens of thousands).
-        spread = np.sqrt(W * H / MAX_TILES)
-        sx, sy = max(self._size[0] / 2.0, spread, 1.0), max(self._size[1] / 2.0, spread, 1.0)
-        x0, x1 = min(ww / 2.0, W / 2.0), max(W - ww / 2.0, W / 2.0)
-        y0, y1 = min(wh / 2.0, H / 2.0), max(H - wh / 2.0, H / 2.0)
-        xs = np.append(np.arange(x0, x1, sx), x1)
-        ys = np.append(np.arange(y0, y1, sy), y1)
-        X, Y = np.meshgrid(xs, ys)
-        return np.column_stack([X.ravel(), Y.ravel()])
-
     def _drawn(self) -> dict:
         """The last search window (``Tracker.state()``)."""
         sw = getattr(self, "search_window", None)
@@ -237,139 +145,76 @@ class _CorrelationTracker(Tracker):
                 "search_window": None if sw is None else tuple(float(v) for v in sw)}
 
     def _box(self):
-        w, h = self._size
-        return np.array([self._centre[0] - w / 2.0, self._centre[1] - h / 2.0, w, h])
-
-    # -- the loop ------------------------------------------------------------------------
-    def _init(self, frame, box):
-        x, y, w, h = (float(v) for v in box)
-        self._size = (w, h)
-        self._centre = (x + w / 2.0, y + h / 2.0)
-        self._setup_geometry(w, h)
-        gray = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32)
-        self._train_first(gray)
-        self.confidence = float("inf")
-        self.response = np.zeros(self._response_shape)
-        self.search_window = self._window_box(self._centre)
-        self._sweep = 0
-        self._colour = ColourCheck(frame, box) if self.params.colour_check else None
-        # No absolute floor: under a sudden change of light every colour match drops, and
-        # the target is told from a drift by standing out from the boxes around it.
-        self._gate = MatchGate(floor=0.0)
-
-    def _update(self, frame):
-        if self._is_flat(frame):
-            self.confidence = 0.0
-            return False, self._box()
-        gray = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32)
-        feats = self._features(self._patches(gray, [self._centre]))
-        resp = self._responses(feats)[0]
-        conf = float(self._confidence(resp[None])[0])
-        self.response, self.confidence = resp, conf
-        self.search_window = self._window_box(self._centre)
-        dy, dx = cf.peak_offset(resp)
-        centre = self._moved(self._centre, dy, dx)
-        sure = conf >= self._threshold()
-        in_view = self._in_view(centre, frame.shape)
-        firm = self.firm_peak_vouches and \
-            conf >= self.params.redetect_factor * self._threshold()
-        if sure and in_view and (firm or self._colour_ok(frame, centre, True)):
-            self._centre = centre
-            self._learn(gray)
-            return True, self._box()
-        if self.params.redetect:
-            found = self._redetect(frame, gray)
-            if found is not None:
-                self._centre = found
-                self._sweep = 0
-                return True, self._box()
-        if not sure and in_view and self._colour_ok(frame, centre, False):
-            self._centre = centre
-            return True, self._box()
-        return False, self._box()
-
-    def _last_confidence(self) -> float:
-        """The PSR of the last frame's response (``confidence``), stored by ``_update``."""
-        return float(self.confidence)
+        return self._box_at(self._centre)
 
     def _box_at(self, centre):
         w, h = self._size
         return np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h])
 
-    def _in_view(self, centre, shape):
-        """Whether at least ``min_visible`` of the box at ``centre`` is in the frame."""
-        return visible_fraction(self._box_at(centre), shape) >= self.params.min_visible
+    def _gray(self, frame):
+        """The frame in grey levels (float32), converted once per frame: ``_locate`` and
+        ``_learn`` see the same frame."""
+        if self._gray_of is not frame:
+            self._gray_cache = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32)
+            self._gray_of = frame
+        return self._gray_cache
 
-    def _colour_ok(self, frame, centre, sure):
-        """The colour half of the lost rule. A sure peak (PSR at the threshold or above) must
-        match the first frame's colours (``MatchGate``: not poor, not far below its recent
-        range unless it stands out from the boxes around it); an unsure peak is kept only
-        when its colours pass the gate *and* stand out (the filter's template has faded, the
-        target is still the best colour match around)."""
-        if self._colour is None:
-            return sure
-        box = self._box_at(centre)
-        rho = float(self._colour.match(frame, box[None])[0])
+    # -- the two halves of a frame ----------------------------------------------------------
+    def _init(self, frame, box):
+        x, y, w, h = (float(v) for v in box)
+        self._size = (w, h)
+        self._centre = (x + w / 2.0, y + h / 2.0)
+        self._setup_geometry(w, h)
+        self._gray_of = None
+        self._train_first(self._gray(frame))
+        self.confidence = float("inf")
+        self.response = np.zeros(self._response_shape)
+        self.search_window = self._window_box(self._centre)
 
-        def stands_out():
-            return self._colour.stands_out(frame, box, rho, floor=0.0)
+    def _locate(self, frame):
+        """The filter's response in the window at the last position; its peak places the box.
 
-        if sure:
-            return not self._gate.lost(rho, stands_out)
-        return stands_out() and not self._gate.lost(rho, lambda: True)
+        Returns the box, the PSR of the response and, for MOSSE, whether the PSR reaches
+        ``psr_threshold`` (Bolme et al.'s failure rule; KCF prints none: always True). The
+        model and the position the next search starts from are not changed.
+        """
+        self.search_window = self._window_box(self._centre)
+        if self._is_flat(frame):
+            # nothing to correlate with: the response is zero, its PSR 0 (psr's convention)
+            self.response, self.confidence = np.zeros(self._response_shape), 0.0
+            return self._box(), 0.0, False
+        feats = self._features(self._patches(self._gray(frame), [self._centre]))
+        resp = self._responses(feats)[0]
+        conf = float(self._confidence(resp[None])[0])
+        self.response, self.confidence = resp, conf
+        centre = self._moved(self._centre, *cf.peak_offset(resp))
+        return self._box_at(centre), conf, self._own_ok(conf)
+
+    def _learn(self, frame, box):
+        """Move to ``box`` and update the filter with the window there (the paper's rule)."""
+        self._centre = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
+        feats = self._features(self._patches(self._gray(frame), [self._centre]))[0]
+        self._update_model(feats)
+
+    def _score_boxes(self, frame, boxes):
+        """The PSR of the filter's response in the window centred on each box (one batch of
+        FFTs, the model untouched): the re-detection layer's score."""
+        boxes = np.asarray(boxes, dtype=float)
+        centres = boxes[:, :2] + boxes[:, 2:] / 2.0
+        feats = self._features(self._patches(self._gray(frame), centres))
+        return np.asarray(self._confidence(self._responses(feats)), dtype=float)
+
+    def _relocate(self, frame, box):
+        """Restart the search at ``box``'s centre (the next frame's window is there)."""
+        self._centre = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
 
     def _moved(self, centre, dy, dx):
         s = self._step
         return (centre[0] + dx * s, centre[1] + dy * s)
 
-    def _redetect(self, frame, gray):
-        """While lost: the best colour match of the frame (``ColourCheck.search``, bounded),
-        taken when its colours pass the gate and the filter answers there at the threshold;
-        else the filter over the frame's tiles (``_tile_sweep``)."""
-        if self._colour is not None:
-            box, rho = self._colour.search(frame, max_boxes=300, size=self._size)
-            c = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
-            if self._in_view(c, frame.shape) and not self._gate.lost(rho):
-                resp = self._responses(self._features(self._patches(gray, [c])))[0]
-                conf = float(self._confidence(resp[None])[0])
-                found = self._moved(c, *cf.peak_offset(resp))
-                if conf >= self._threshold() and self._in_view(found, frame.shape):
-                    self.response, self.confidence = resp, conf
-                    self.search_window = self._window_box(c)
-                    return found
-        return self._tile_sweep(frame, gray)
-
-    def _tile_sweep(self, frame, gray):
-        """Search the frame's tiles for the target; the tiles are swept ``TILE_PIXELS`` of
-        patch a frame at a time (round robin), so a lost frame costs a bounded time and a
-        full sweep of a large frame takes a few frames. The best tile must pass
-        ``redetect_factor`` x the threshold, and the colour gate when it is on."""
-        centres = self._tile_centres(gray.shape)
-        n = len(centres)
-        k = int(min(n, max(1, TILE_PIXELS // (self._patch_size[0] * self._patch_size[1]))))
-        pick = (self._sweep + np.arange(k)) % n
-        self._sweep = int((self._sweep + k) % n)
-        centres = centres[pick]
-        feats = self._features(self._patches(gray, centres))
-        resp = self._responses(feats)
-        conf = self._confidence(resp)
-        i = int(np.argmax(conf))
-        if not conf[i] >= self.params.redetect_factor * self._threshold():
-            return None
-        dy, dx = cf.peak_offset(resp[i])
-        found = self._moved(centres[i], dy, dx)
-        if not self._in_view(found, frame.shape):
-            return None
-        if self._colour is not None and self._gate.lost(
-                float(self._colour.match(frame, self._box_at(found)[None])[0])):
-            return None
-        self.response, self.confidence = resp[i], float(conf[i])
-        self.search_window = self._window_box(centres[i])
-        return found
-
-    def _learn(self, gray):
-        feats = self._features(self._patches(gray, [self._centre]))[0]
-        self._update_model(feats)
+    def _own_ok(self, conf) -> bool:
+        """A failure rule the paper prints (none by default)."""
+        return True
 
     # -- what each tracker implements -----------------------------------------------------
     def _setup_geometry(self, w, h):  # pragma: no cover
@@ -387,9 +232,6 @@ class _CorrelationTracker(Tracker):
     def _confidence(self, responses):  # pragma: no cover
         raise NotImplementedError
 
-    def _threshold(self):  # pragma: no cover
-        raise NotImplementedError
-
     def _update_model(self, feats):  # pragma: no cover
         raise NotImplementedError
 
@@ -403,13 +245,13 @@ class MosseTracker(_CorrelationTracker):
     and unit norm, cosine window. Training: A = Σ G ⊙ F*, B = Σ F ⊙ F* over
     ``n_perturbations`` random affine warps of the first patch, then A_i = η G ⊙ F_i* +
     (1 − η) A_{i−1} and B_i likewise on every accepted frame; H* = A / (B + λ).
-    Lost rule
-    ---------
-    The module's rule, with the PSR threshold ``psr_threshold`` (7, Bolme et al.'s). The
-    window is the target's box alone, so a PSR of ``redetect_factor`` x the threshold or more
-    is the target's own grey pattern: such a peak is kept without asking the colours (the log
-    and unit-norm preprocessing make the filter blind to a change of light; the colour
-    histogram is not).
+
+    Failure
+    -------
+    Bolme et al.'s rule: a PSR below ``psr_threshold`` (7) is an occlusion or a tracking
+    failure, and the filter is not updated on that frame (the third value of ``_locate``).
+    Besides it, the failure-detection layer decides ``ok`` from the PSR. ``mosse-redetect``
+    adds the re-detection layer: while lost, the whole frame is searched by the filter's PSR.
 
     Confidence
     ----------
@@ -422,10 +264,6 @@ class MosseTracker(_CorrelationTracker):
 
     name = "mosse"
     Params = MosseParams
-    # The window is the target's box alone: a firm peak is the target's own grey pattern
-    # (log and unit-norm preprocessing make it blind to a change of light, which the colour
-    # histogram is not).
-    firm_peak_vouches = True
 
     def _setup_geometry(self, w, h):
         ww, wh = max(w, self.min_side), max(h, self.min_side)
@@ -470,8 +308,9 @@ class MosseTracker(_CorrelationTracker):
     def _confidence(self, responses):
         return np.atleast_1d(cf.psr(responses))
 
-    def _threshold(self):
-        return self.params.psr_threshold
+    def _own_ok(self, conf) -> bool:
+        """Bolme et al. 2010: a PSR below ``psr_threshold`` (7) is a failure, no update."""
+        return conf >= self.params.psr_threshold
 
     def _update_model(self, F):
         eta = self.params.eta
@@ -496,12 +335,13 @@ class KcfTracker(_CorrelationTracker):
     times a cosine window. Labels: a Gaussian of σ_y = sqrt(w h) · ``output_sigma_factor`` /
     cell cells. Training: α̂ = ŷ / (k̂^{xx} + λ) with the Gaussian kernel correlation;
     detection f(z) = ifft2(k̂^{xz} ⊙ α̂); model α̂ ← (1 − η) α̂ + η α̂_new, x̂ likewise.
-    Lost rule
-    ---------
-    The module's rule, with the PSR threshold ``psr_threshold`` on KCF's response (its
-    sidelobe excluding ±3 σ_y around the peak). Every accepted peak must pass the colour
-    check, however high its PSR: the padded window is mostly background, which keeps matching
-    the model while an occluder covers the target.
+
+    Failure
+    -------
+    Henriques et al. print no failure rule: the failure-detection layer decides ``ok`` from
+    the PSR below, and the model is not updated on a frame judged lost. ``kcf-redetect`` adds
+    the re-detection layer: while lost, windows over the whole frame are scored by the PSR of
+    the KCF response there and the search restarts from the best.
 
     Confidence
     ----------
@@ -547,14 +387,14 @@ class KcfTracker(_CorrelationTracker):
     def _confidence(self, responses):
         return np.atleast_1d(cf.psr(responses, self._exclude))
 
-    def _threshold(self):
-        return self.params.psr_threshold
-
     def _update_model(self, xf):
         p = self.params
         alphaf, _ = cf.kcf_train(xf, self._yf, p.kernel_sigma, p.lam)
         self._alphaf = (1 - p.eta) * self._alphaf + p.eta * alphaf
         self._xf = (1 - p.eta) * self._xf + p.eta * xf
 
+
+register(redetecting(MosseTracker))
+register(redetecting(KcfTracker))
 
 __all__ = ["MosseTracker", "KcfTracker", "MosseParams", "KcfParams"]

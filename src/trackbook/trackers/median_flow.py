@@ -14,27 +14,22 @@ On every frame:
    published filter: about half survive); the box moves by the median of their displacements
    and scales by the median of the ratios of their pairwise distances after and before.
 
-The book's additions, so that "lost" means lost (each can be switched off):
+The failure-detection layer judges the confidence below on every frame besides the paper's
+rule (step 2): a frame it judges lost, or a frame whose grey levels span at most
+``flat_range``, keeps the last box, and the next frame's flow starts from the last frame
+judged on target and its box (the last frame is the only model Median Flow has).
+``median-flow-redetect`` adds the re-detection layer: while lost, boxes of the last size over
+the whole frame are scored by their zero-mean NCC with the first frame's patch (Median Flow
+has no appearance model of its own; TLD, Kalal et al.'s later tracker, pairs it with a
+detector) and the flow restarts from the best.
 
-- ``normalise``: each frame's grey levels are given one mean and standard deviation before
-  the flow, so a camera's exposure change does not break brightness constancy;
-- a frame whose grey levels span at most ``flat_range`` is lost (nothing to track), and a box
-  with less than ``min_visible`` of its area in the frame is lost (the target is leaving);
-- ``redetect``: while lost, the flow is still run from the last box, and resumes tracking
-  only if its box passes the rules above and its patch, resampled to the first frame's box
-  size, has an NCC of at least ``resume_ncc`` with the first frame's patch (a box left on an
-  occluder or on the background moves consistently forward and backward, so the FB rule
-  alone would call it found). Otherwise the first frame's patch, resized to the last box,
-  is matched over the whole frame (:func:`trackbook.filters.template_matching.ncc_map`); a
-  peak of at least ``redetect_ncc`` places the box there and tracking resumes. Median Flow
-  has no detector: TLD (Kalal et al.'s later tracker) pairs it with one; this is the
-  plainest.
+The book's addition ``normalise`` gives each frame's grey levels one mean and standard
+deviation before the flow, so a camera's exposure change does not break brightness constancy.
 
-Confidence: ``state().confidence`` is minus the median FB error (pixels) of the grid on the
-frame the box was placed by the flow; on a frame where no flow placed it (a flat frame, a
-frame after a flat one, a lost frame, a median FB that is infinite because more than half the
-points were lost) it is minus the frame's diagonal, the largest distance in the frame; on a
-re-detected frame minus ``fb_threshold`` (accepted, but not by the flow).
+Confidence: ``state().confidence`` is minus the median FB error (pixels) of the grid on a
+frame where the flow placed the box; where it did not (a flat frame, a median FB above
+``fb_threshold`` or infinite because more than half the points were lost, fewer than two
+points kept) it is minus the frame's diagonal, the largest distance in the frame.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                       # doctest: +SKIP
@@ -51,10 +46,10 @@ import cv2
 import numpy as np
 
 from ..filters import lucas_kanade as lk
+from ..features.patches import sample_patches
 from ..filters import template_matching as tm
 from ..params import NOT_PRINTED, param
-from .base import Tracker
-from .lost import visible_fraction
+from .base import Tracker, redetecting
 from .registry import register
 
 
@@ -89,39 +84,14 @@ class MedianFlowParams:
         why="the book's addition: a camera's exposure jump (robot-corridor-day's mean grey "
             "level falls from 120 to 66 in one frame) breaks brightness constancy for every "
             "point at once, and the FB rule then fails a target that did not move")
-    min_visible: float = param(
-        0.5, 0.0, 1.0, 0.05, doc="a box with less than this fraction of its area in the "
-        "frame is lost (the target is leaving)",
-        paper=NOT_PRINTED, paper_value=0.0,
-        why="the book's rule, as every tracker's: points at the border are lost one by one "
-            "and the rest follow the background left in the box")
-    resume_ncc: float = param(
-        0.3, -1.0, 1.0, 0.05, doc="while lost, the flow from the last box resumes tracking "
-        "only if the box's NCC with the first frame's patch reaches this",
-        paper=NOT_PRINTED,
-        why="the book's addition (part of redetect): while the target is hidden the box "
-            "rests on the occluder or background, whose flow is consistent forward and "
-            "backward; their NCC with "
-            "the first patch is 0.2 on the lost-matrix occluder scene, the target's mostly "
-            "above 0.3 on the sample clips (its 5th percentile on shelves 0.33)")
-    redetect: bool = param(
-        True, doc="while lost, resume by the flow (resume_ncc) or by matching the first "
-        "frame's patch over the whole frame (redetect_ncc)",
-        paper=NOT_PRINTED, paper_value=False,
-        why="the book's addition: Median Flow has no detector, so a target that left the "
-            "view is never found again without one")
-    redetect_ncc: float = param(
-        0.6, 0.0, 1.0, 0.05, doc="a re-detected window's NCC with the first frame's patch "
-        "must reach this", paper=NOT_PRINTED,
-        why="the book's addition (redetect): the best window of a frame without the target "
-            "reaches an NCC of 0.32 (edge-exit scene) to 0.50 (occluder scene) with the first "
-            "patch; the returning target is found on the first frame it is whole")
 
 
 @register
 class MedianFlowTracker(Tracker):
     """Median Flow (Kalal, Mikolajczyk & Matas 2010); the module docstring has the steps, the
-    book's additions and the confidence.
+    failure rule (the paper's median FB > ``fb_threshold``, then the failure-detection layer),
+    the book's addition and the confidence; ``median-flow-redetect`` adds the re-detection
+    layer.
 
     Attributes (read-only, for drawing)
     -----------------------------------
@@ -144,17 +114,14 @@ class MedianFlowTracker(Tracker):
     def _init(self, frame, box):
         g = self._grey(frame)
         self._pyr = lk.pyramid(g, self.params.levels)
+        self._from = np.asarray(box, float)        # the box the next flow starts from
         x, y, w, h = box
         self._template = cv2.getRectSubPix(g, (max(int(round(w)), 3), max(int(round(h)), 3)),
                                            (x + w / 2.0 - 0.5, y + h / 2.0 - 0.5))
-        self._lost = False
         self._diag = float(np.hypot(*frame.shape[:2]))
-        self._confidence = -self._diag
+        self._located = None
         self.fb_error = float("inf")
         self.points = np.zeros((0, 2))
-
-    def _last_confidence(self):
-        return self._confidence
 
     def _grid(self, box):
         x, y, w, h = box
@@ -162,15 +129,6 @@ class MedianFlowTracker(Tracker):
         t = (np.arange(n) + 0.5) / n
         gx, gy = np.meshgrid(x + t * w, y + t * h)
         return np.stack([gx.ravel(), gy.ravel()], 1)
-
-    def _template_ncc(self, gray, box) -> float:
-        """NCC of ``box``'s patch, resampled to the first frame's box size, with its patch."""
-        x, y, w, h = box
-        th, tw = self._template.shape
-        patch = cv2.getRectSubPix(gray, (max(int(round(w)), 3), max(int(round(h)), 3)),
-                                  (x + w / 2.0 - 0.5, y + h / 2.0 - 0.5))
-        patch = cv2.resize(patch, (tw, th), interpolation=cv2.INTER_AREA)
-        return float(tm.patch_ncc(patch[None], self._template[None])[0])
 
     def _flow(self, pyr, box):
         """One Median Flow step from the last frame's pyramid to ``pyr``: the new box, or None
@@ -195,49 +153,48 @@ class MedianFlowTracker(Tracker):
         before = np.linalg.norm(a[i] - a[j], axis=1)
         after = np.linalg.norm(b[i] - b[j], axis=1)
         s = float(np.median(after[before > 0] / before[before > 0]))
-        self.points = b
+        self.points = b.copy()
         x, y, w, h = box
         cx, cy = x + w / 2.0 + d[0], y + h / 2.0 + d[1]
         return np.array([cx - s * w / 2.0, cy - s * h / 2.0, s * w, s * h])
 
-    def _redetect(self, gray):
-        """The best window of the first patch, resized to the last box, over the frame."""
-        H, W = gray.shape
-        _, _, w, h = self.bbox
-        w, h = int(round(min(max(w, 3), W))), int(round(min(max(h, 3), H)))
-        t = cv2.resize(self._template, (w, h), interpolation=cv2.INTER_AREA)
-        r = tm.ncc_map(gray, t)
-        bx, by = tm.best_match(r, "ncc")
-        if r[by, bx] < self.params.redetect_ncc:
-            return None
-        return np.array([bx, by, w, h], float)
-
-    def _update(self, frame):
-        p = self.params
+    def _locate(self, frame):
+        """One Median Flow step from the last frame judged on target (its pyramid and box) to
+        ``frame``. Returns the box, minus the median FB error (minus the diagonal where the
+        flow placed no box) and whether the paper's rule passed (median FB at most
+        ``fb_threshold``, at least two points kept)."""
         self.points = np.zeros((0, 2))
         self.fb_error = float("inf")
-        self._confidence = -self._diag
+        self._located = None
         if self._is_flat(frame):
-            self._pyr = None       # no flow from a flat frame: the target must be found again
-            self._lost = True
-            return False, self.bbox
-        g = self._grey(frame)
-        pyr = lk.pyramid(g, p.levels)
-        box = None
-        if self._pyr is not None and (p.redetect or not self._lost):
-            box = self._flow(pyr, np.asarray(self.bbox, float))
-            if box is not None and (visible_fraction(box, frame.shape) < p.min_visible or (
-                    self._lost and self._template_ncc(g, box) < p.resume_ncc)):
-                box = None
-            if box is not None:
-                self._confidence = -self.fb_error
-        if box is None and self._lost and p.redetect:
-            box = self._redetect(g)
-            if box is not None:
-                self._confidence = -p.fb_threshold
-        self._pyr = pyr
-        self._lost = box is None
+            return self._from, -self._diag, False
+        pyr = lk.pyramid(self._grey(frame), self.params.levels)
+        box = self._flow(pyr, self._from)
         if box is None:
             self.points = np.zeros((0, 2))
-            return False, self.bbox
-        return True, box
+            return self._from, -self._diag, False
+        self._located = pyr
+        return box, -self.fb_error, True
+
+    def _learn(self, frame, box):
+        """The next flow starts from this frame and ``box``."""
+        self._pyr = self._located
+        self._from = np.asarray(box, float)
+
+    def _score_boxes(self, frame, boxes):
+        """For re-detection: the zero-mean NCC of each box's patch, resampled to the first
+        frame's box size, with the first frame's patch (vectorised; nothing is changed)."""
+        g = self._grey(frame)
+        th, tw = self._template.shape
+        patches = sample_patches(g, np.asarray(boxes, float), (tw, th))
+        return tm.patch_ncc(patches, np.broadcast_to(self._template, patches.shape))
+
+    def _relocate(self, frame, box):
+        """Restart the flow from ``frame`` with ``box``."""
+        self._pyr = lk.pyramid(self._grey(frame), self.params.levels)
+        self._from = np.asarray(box, float)
+
+
+register(redetecting(MedianFlowTracker))
+
+__all__ = ["MedianFlowParams", "MedianFlowTracker"]
