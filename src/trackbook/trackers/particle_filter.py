@@ -186,9 +186,12 @@ class ParticleFilterTracker(Tracker):
         box : (4,) float array
             The box ``_locate`` returned, ``state_to_box(self._located)``.
 
-        A learning subclass calls ``super()._learn(frame, box)`` and then updates its model
-        (``color-hog-ipca`` adds the estimate to its subspaces); the fixed-model trackers only
-        record the estimate.
+        Returns
+        -------
+        None
+            A learning subclass calls ``super()._learn(frame, box)`` and then updates its
+            model (``color-hog-ipca`` adds the estimate to its subspaces); the fixed-model
+            trackers only record the estimate.
         """
         self.estimate = np.array(self._located, dtype=float)
 
@@ -246,7 +249,20 @@ class ParticleFilterTracker(Tracker):
         """A whole frame for a subclass still written as a wrapper of ``_update`` (``ok,
         box = super()._update(frame)``): ``_locate``, then ``_learn`` on every frame with an
         estimate, without the failure layer. A subclass that does not override ``_update``
-        runs in halves (``_locate`` -> failure layer -> ``_learn``) instead."""
+        runs in halves (``_locate`` -> failure layer -> ``_learn``) instead.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame, BGR.
+
+        Returns
+        -------
+        ok : bool
+            False on a constant frame or when every likelihood is zero (no estimate).
+        box : (4,) array
+            The estimate's box, or the last box when ``ok`` is False.
+        """
         box, conf = self._locate(frame)[:2]
         self._judged_confidence = float(conf)
         box = np.asarray(box, dtype=float)
