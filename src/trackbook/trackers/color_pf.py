@@ -28,7 +28,7 @@ import numpy as np
 
 from ..features.color import HSV_BINS, hsv_bin_index_u8, kernel_weights, weighted_histograms
 from ..features.patches import sample_patches
-from ..filters.lee2012_models import (W, H, box_to_state, clamp_states,
+from ..filters.lee2012_models import (VX, VY, W, H, box_to_state, clamp_states,
                                       gaussian_likelihood, predict_eq9, similarity,
                                       states_to_boxes)
 from ..filters.particle import effective_sample_size
@@ -121,7 +121,9 @@ class ColorPF(ParticleFilterTracker):
     ``state().confidence`` is the best particle's Bhattacharyya coefficient of the last frame,
     max_i rho_i, rho_i = sum_u sqrt(h_u(x_i) h_u^ref) = 1 - D^2_i (eq. 10-11), in [0, 1]; 0 on
     a constant frame (not scored). The estimate itself, the weighted mean of the states, is not
-    scored again. The paper's trackers have no lost state (their tracking "failed for a while"
+    scored again. While lost the particles move by eq. 9 from where they are, each lost
+    frame from rest (velocities set to 0 before the prediction). The paper's trackers have
+    no lost state (their tracking "failed for a while"
     [quote: lee2012.failed_for_a_while]): ``ok`` comes from the failure-detection layer
     (:class:`~trackbook.trackers.failure.FailureDetector`) judging that confidence. While lost
     the filter runs on (see :class:`ParticleFilterTracker`, "While lost"); ``color-pf-redetect``
@@ -163,6 +165,11 @@ class ColorPF(ParticleFilterTracker):
 
     def predict(self, particles):
         p = self.params
+        if not self.ok:
+            # the last frame was judged lost: its particles' velocities were not measured on
+            # the target, and eq. 9's velocity noise, added to them frame after frame, would
+            # carry the cloud away; the particles start each lost frame at rest where they are
+            particles[:, VX:VY + 1] = 0.0
         new = predict_eq9(particles, self.rng, (p.size_noise, p.size_noise, p.vx_noise, p.vy_noise))
         return clamp_states(new, self._shape, p.min_size)
 

@@ -57,9 +57,11 @@ class ParticleFilterTracker(Tracker):
     While lost
     ----------
     The filter goes on as it is: every frame the particles are selected by the last weights
-    and moved by the motion model from where they are, velocities included (a velocity in a
-    particle's state is part of that state), and weighed; only the reported box (the last one
-    kept) and the learning stop. That is the filter, not a search: searching the whole frame
+    and moved by the motion model from where they are, and weighed; only the reported box (the
+    last one kept) and the learning stop. What a velocity does while lost is the motion
+    model's (``predict`` reads ``self.ok``, the previous frame's judgement): the colour
+    trackers start each lost frame's particles at rest, the centre filters add no measured
+    motion (the estimate did not move). That is the filter, not a search: searching the whole frame
     is the re-detection layer of the ``-redetect`` names, which scores boxes with
     :meth:`_score_boxes` (the likelihood's match of a particle placed at each box) and
     restarts the particles around the best with :meth:`_relocate`.
