@@ -229,18 +229,17 @@ class EdgeRayX(EdgeRayPF):
         top = np.max(L) if np.isfinite(L).any() else 0.0
         return np.where(np.isfinite(L), np.exp(L - top), 0.0)
 
-    def _update(self, frame):
-        was_lost = self.lost
-        ok, box = super()._update(frame)
+    def _locate(self, frame):
+        box, conf = super()._locate(frame)
         p = self.params
-        if ok and p.top_frac < 1.0:
+        if p.top_frac < 1.0 and np.all(np.isfinite(box)):
+            # the estimate from the top fraction of the particles by weight (the velocity
+            # follows from it when the frame is accepted, in _learn)
             w = self.weights
             n = max(1, int(round(p.top_frac * len(w))))
             idx = np.argpartition(-w, n - 1)[:n]
             ww = w[idx] / w[idx].sum()
-            new = ww @ self._particles[idx]
-            if not was_lost:
-                self.velocity = self.velocity + (new - self.estimate)
-            self.estimate = new
-            box = self.state_to_box(self.estimate)
-        return ok, box
+            self._located = ww @ self._particles[idx]
+            box = self.state_to_box(self._located)
+            self.colour_rho = conf = float(self._colour.match(frame, np.asarray(box)[None])[0])
+        return box, conf

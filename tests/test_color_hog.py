@@ -195,9 +195,9 @@ def test_relative_gate_refuses_an_occlusion(clip):
         frames[i][max(0, y - 20):y + h + 20, max(0, x - 20):x + w + 20] = 128
     counts = {}
     for k in (0.0, 2.0):
-        # lost_below=0: the lost gate off, to see the learning gate alone (the lost gate also
-        # stops learning: a lost frame is not learned, see the next test)
-        t = trackers.create("color-hog-ipca", seed=0, T=10, gate_k=k, lost_below=0.0)
+        # failure=False: the failure-detection layer off, to see the learning gate alone (the
+        # failure layer also stops learning: a lost frame is not learned, see the next test)
+        t = trackers.create("color-hog-ipca", seed=0, T=10, gate_k=k, failure=False)
         t.init(frames[0], clip.groundtruth[0])
         for i in range(1, 20):
             t.update(frames[i])
@@ -210,8 +210,8 @@ def test_relative_gate_refuses_an_occlusion(clip):
 
 
 def test_lost_frames_are_not_learned(clip):
-    """With the lost gate at its default, the occluded frames are reported lost and none of
-    them joins the subspaces, even with the learning gate off."""
+    """With the failure-detection layer at its calibrated thresholds, the occluded frames are
+    reported lost and none of them joins the subspaces, even with the learning gate off."""
     frames = [f.copy() for f in clip.frames[:30]]
     for i in range(20, 30):
         x, y, w, h = clip.groundtruth[i].astype(int)

@@ -222,24 +222,20 @@ def test_velocity_gain_scales_the_motion_added_to_the_prediction(name):
         np.testing.assert_allclose(t.velocity, g * (np.asarray(t.estimate) - before), atol=1e-12)
 
 
-def test_the_paper_preset_runs_without_the_books_lost_rule(monkeypatch):
-    """The colour check and the whole-frame colour search are the book's: the paper preset
-    switches them off, and then neither is ever called."""
-    from trackbook.trackers.edge_ray import EdgeRayPF
+def test_confidence_is_the_colour_match_of_the_estimate_against_the_first_box():
+    """The edge likelihood cannot say "gone": the confidence is the failure layer's generic
+    one, rho between the kernel colour histograms of the estimate's box and of the first box
+    (eq. 1 of Lee et al. 2012), computed here from the histograms directly."""
+    from trackbook.trackers.lost import ColourCheck
 
-    assert trackers.create("edge-ray-pf", preset="paper").params.lost_check is False
-    assert trackers.create("edge-ray-pf").params.lost_check is True
-    assert "lost_check" in {r["param"] for r in trackers.departures("edge-ray-pf")}
-
-    def never(*a, **k):
-        raise AssertionError("the book's lost rule ran in the paper preset")
-
-    monkeypatch.setattr(EdgeRayPF, "_confirmed", never)
-    monkeypatch.setattr(EdgeRayPF, "_search", never)
     clip = clips.load("patterned-object")
-    t = trackers.create("edge-ray-pf", preset="paper", seed=0)
+    t = trackers.create("edge-ray-pf", seed=0)
     t.init(clip.frames[0], clip.groundtruth[0])
-    black = np.zeros_like(clip.frames[1])
-    for f in [*clip.frames[1:6], black, black, *clip.frames[6:9]]:
+    h0 = ColourCheck.histograms(clip.frames[0], np.asarray(clip.groundtruth[0], float)[None])[0]
+    for f in clip.frames[1:6]:
         ok, box = t.update(f)
-        assert np.all(np.isfinite(box))
+        h = ColourCheck.histograms(f, np.asarray(box, float)[None])[0]
+        assert ok
+        assert t.state().confidence == pytest.approx(float(np.sum(np.sqrt(h * h0))), abs=1e-9)
+
+

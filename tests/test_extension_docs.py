@@ -50,7 +50,7 @@ def test_the_overridden_hooks_are_found():
     hooks = _overridden_hooks()
     # the hooks every particle tracker of the book fills in, and a few optional ones
     assert {"model", "initial_particles", "predict", "likelihood", "box_to_state",
-            "state_to_box", "on_lost", "refine", "_update", "_init"} <= hooks
+            "state_to_box", "respread", "refine", "_locate", "_learn", "_init"} <= hooks
 
 
 @pytest.mark.parametrize("name", sorted(_overridden_hooks()))
@@ -67,30 +67,23 @@ def test_every_overridden_hook_has_a_numpydoc_docstring(name):
     assert "Returns\n-------" in doc, name
 
 
-def test_on_lost_says_when_it_is_called():
-    doc = inspect.getdoc(ParticleFilterTracker.on_lost)
-    assert "every particle scored zero" not in doc
-    for reason in ("flat", "min_total_likelihood", "distance gate"):
-        assert reason in doc, reason
-
-
-def test_on_lost_is_called_as_its_docstring_says():
+def test_learn_is_called_only_on_frames_judged_on_target():
     from trackbook import clips
     from trackbook.trackers.color_pf import ColorPF
 
     class Counting(ColorPF):              # not registered: only this test uses it
-        def on_lost(self):
-            calls.append((self.lost, tuple(self.estimate)))
-            super().on_lost()
+        def _learn(self, frame, box):
+            calls.append(tuple(box))
+            super()._learn(frame, box)
 
     calls = []
     clip = clips.load("red-cube")
     t = Counting(seed=0)
     t.init(clip.frames[0], clip.groundtruth[0])
-    ok, _ = t.update(clip.frames[1])
-    assert ok and calls == []                         # a tracked frame: not called
+    ok, box = t.update(clip.frames[1])
+    assert ok and calls == [box]                      # a tracked frame: learned, that box
     before = tuple(t.estimate)
     ok, box = t.update(clip.frames[2] * 0)            # a black frame: lost
-    assert not ok
-    assert calls == [(True, before)]                  # called once, lost, last estimate kept
-    assert box == tuple(float(v) for v in t.state_to_box(before))
+    assert not ok and len(calls) == 1                 # not learned
+    assert tuple(t.estimate) == before                # the estimate stays
+    assert box == calls[0]                            # and so does the box

@@ -1,15 +1,12 @@
-"""The shared pieces of the lost rules (``trackers/lost.py``, ``scatter_grid``), checked
+"""The shared pieces of the lost rules (``trackers/lost.py``), checked
 against hand-worked cases and slow loops."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 from trackbook.trackers.lost import ColourCheck, MatchGate, visible_fraction
-from trackbook.trackers.particle_filter import scatter_grid
 
 
 def test_visible_fraction_by_hand():
@@ -18,20 +15,6 @@ def test_visible_fraction_by_hand():
     assert visible_fraction((190, 10, 20, 20), shape) == 0.5        # half past the right edge
     assert visible_fraction((-10, -10, 20, 20), shape) == 0.25      # a quarter in the corner
     assert visible_fraction((200, 10, 20, 20), shape) == 0.0        # wholly outside
-
-
-@settings(max_examples=60, deadline=None)
-@given(st.integers(1, 300), st.integers(10, 640), st.integers(10, 480), st.integers(0, 2**31))
-def test_scatter_grid_covers_the_frame_evenly(k, W, H, seed):
-    pts = scatter_grid(k, (W, H), np.random.default_rng(seed))
-    assert pts.shape == (k, 2)
-    assert np.all(pts >= 0) and np.all(pts[:, 0] <= W) and np.all(pts[:, 1] <= H)
-    # one point per grid cell at most: the cells of the points are distinct
-    nx = int(np.ceil(np.sqrt(k * W / H)))
-    ny = int(np.ceil(k / nx))
-    cx = np.minimum((pts[:, 0] / W * nx).astype(int), nx - 1)
-    cy = np.minimum((pts[:, 1] / H * ny).astype(int), ny - 1)
-    assert len(set(zip(cx.tolist(), cy.tolist()))) == k
 
 
 def test_match_gate_by_hand():

@@ -16,8 +16,8 @@ PRINTED = {
     "ratio_low": 0.8,     # section 3.2, after eq. 5: "the range of Ratio is 0.8-1.2"
     "ratio_high": 1.2,    # same sentence
 }
-NOT_IN_PAPER = {"sigma", "velocity_gain", "lost_growth", "resampler", "canny_low",
-                "canny_high", "blur", "max_ray", "adapt_scale", "model_rate", "lost_check"}
+NOT_IN_PAPER = {"sigma", "velocity_gain", "resampler", "canny_low",
+                "canny_high", "blur", "max_ray", "adapt_scale", "model_rate"}
 
 
 def test_eight_rays_at_45_degrees():
@@ -34,9 +34,9 @@ def test_fields_are_the_printed_and_the_not_printed():
     assert_fields_are("edge-ray-pf", PRINTED, NOT_IN_PAPER)
     # the two filters it compares with: the paper names them and prints none of their settings
     # (its 999 particles are the proposed filter's: the paper preset gives them 999 as a reading)
-    shared = {"sigma", "velocity_gain", "lost_growth", "resampler"}
+    shared = {"sigma", "velocity_gain", "resampler"}
     for name in ("hsi-color-pf", "hog-pf"):
-        assert_fields_are(name, {}, shared | {"n_particles", "obs_sigma", "lost_below", "lost_k"})
+        assert_fields_are(name, {}, shared | {"n_particles", "obs_sigma"})
         assert trackers.create(name, preset="paper").params.n_particles == 999
 
 

@@ -20,8 +20,7 @@ PRINTED = {
     "resampler": "multinomial",  # pseudocode: one r ~ U[0, 1] per particle, smallest c_i >= r
     "init": "frame",           # pseudocode, t = 0: particles spread uniformly over the image
 }
-NOT_IN_PAPER = {"min_size",     # eq. 9 has no floor on w and h
-                "lost_below", "lost_k"}   # the trackers of the paper have no lost state
+NOT_IN_PAPER = {"min_size"}     # eq. 9 has no floor on w and h
 
 
 def test_fields_are_the_printed_and_the_not_printed():

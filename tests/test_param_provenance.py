@@ -96,7 +96,8 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
 
 
 def _oracle(tracker: str, field: str) -> tuple[str, str | None]:
-    found = FIELDS.get(tracker, {}).get(field)
+    # a re-detecting variant (``kcf-redetect``) has the params of the algorithm it wraps
+    found = FIELDS.get(tracker.removesuffix("-redetect"), {}).get(field)
     return found[::-1] if found else ("not printed", None)
 
 

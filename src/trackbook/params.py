@@ -2,7 +2,7 @@
 
 Every tracker declares its knobs one way: a frozen dataclass (``@dataclasses.dataclass(
 frozen=True)``, subclassing another tracker's params to extend them) whose fields are made with
-:func:`param` or a helper that returns one (``resampler_param``, ``lost_below_param`` ...).
+:func:`param` or a helper that returns one (``resampler_param`` ...).
 The metadata (allowed range, slider range, step, one-line doc) is what the widgets turn into
 sliders, so a new knob shows up in the book's playground without touching the widget code.
 

@@ -154,11 +154,10 @@ LEE2012_LEARNING = (
 #: The search for a better edge observation model (lab notes on Kim et al. 2016): each variant
 #: of ``edge-ray-x`` (defined in experiments/kim2016_edge_variants.py) switches on one
 #: departure from the paper; then the library's ``velocity_gain`` for the three trackers.
-#: The edge trackers run without the book's lost rule (``lost_check=False``): that rule checks
-#: the estimate's colour and re-finds a lost target by a colour search, which would hide what
-#: the edge model alone does, the question of this search.
+#: The edge trackers run without re-detection (the canonical names): a whole-frame search
+#: would hide what the edge model alone does, the question of this search.
 def _e(label, tracker="edge-ray-x", **params) -> Config:
-    return _c(label, tracker, lost_check=False, **params)
+    return _c(label, tracker, **params)
 
 
 KIM2016_EDGES = (

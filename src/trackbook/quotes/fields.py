@@ -47,9 +47,12 @@ def backing(tracker: str, field: str) -> tuple[str, str] | None:
 
 def table() -> dict[str, dict[str, tuple[str, str]]]:
     """``{tracker: {field: (quote key, state)}}`` of every registered tracker's backed
-    fields (trackers with none are left out)."""
+    fields (trackers with none are left out; a re-detecting variant, ``<name>-redetect``, has
+    the fields of ``<name>`` and is not listed again)."""
     out = {}
     for name in _trackers.available():
+        if name.endswith("-redetect"):
+            continue
         P = getattr(_trackers.get(name), "Params", None)
         if not dataclasses.is_dataclass(P):
             continue

@@ -4,7 +4,7 @@
 The paper names them only ("HSI colour model based particle filter", "particle filter using
 HOG") [quote: kim2016.baselines]. To compare observation models and nothing else, both share everything with
 ``edge-ray-pf`` (state (x, y), fixed box, random walk plus the estimated motion, eq. 7
-estimate, resampling, lost handling: :class:`CentreParticleFilter`) and weigh a particle by
+estimate, resampling, behaviour while lost: :class:`CentreParticleFilter`) and weigh a particle by
 
     w = exp(-D^2 / (2 sigma^2)),   D^2 = 1 - rho(q, p)
 
@@ -21,7 +21,6 @@ import numpy as np
 from ..features.color import bhattacharyya_coefficient
 from ..params import NOT_PRINTED, param
 from .centre_pf import CentreParticleFilter, CentrePFParams
-from .particle_filter import lost_below_param, lost_k_param
 
 
 @dataclasses.dataclass(frozen=True)
@@ -36,9 +35,6 @@ class AppearanceParams(CentrePFParams):
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
         "their settings [quote: kim2016.baselines]; 0.2 is the book's choice (02_particle_filters, 03_hog)")
-    # The book's distance gate (02_particle_filters): the paper's trackers have no lost state.
-    lost_below: float = lost_below_param()
-    lost_k: float = lost_k_param()
 
 
 class AppearancePF(CentreParticleFilter):
@@ -50,7 +46,10 @@ class AppearancePF(CentreParticleFilter):
     particles, weights, likelihoods, estimate, lost : see ``ParticleFilterTracker``.
 
     Confidence: ``state().confidence`` is the best particle's Bhattacharyya coefficient of the
-    last frame, max_i rho(q, p_i) = 1 - min_i D^2_i, in [0, 1]; 0 on a constant frame.
+    last frame, max_i rho(q, p_i) = 1 - min_i D^2_i, in [0, 1]; 0 on a constant frame. The
+    paper's trackers have no lost state: ``ok`` comes from the failure-detection layer judging
+    that confidence; the ``-redetect`` names add the re-detection layer (boxes over the whole
+    frame scored by the same rho).
     """
 
     Params = AppearanceParams
@@ -71,5 +70,5 @@ class AppearancePF(CentreParticleFilter):
     def likelihood(self, frame, particles):
         feats = self.features(frame, self._boxes(particles))
         d2 = 1.0 - bhattacharyya_coefficient(feats, self.reference)
-        self._match = np.clip(1.0 - d2, 0.0, 1.0)        # rho, for the lost gate
+        self._match = np.clip(1.0 - d2, 0.0, 1.0)        # rho, the confidence
         return np.exp(-np.clip(d2, 0.0, None) / (2.0 * self.params.obs_sigma ** 2))

@@ -4,7 +4,7 @@ Kim, Kim & Choi 2016 track the state X = {x, y} (eq. 3) with a fixed box, and co
 edge observation model with an HSI-colour and a HOG particle filter. To make that comparison
 about the observation model alone, all three trackers share this class: the same state, the
 same motion model (random walk plus the estimated motion), the same resampling and estimate
-(eq. 7), and the same behaviour when every particle scores zero. Each subclass only says how
+(eq. 7), and the same behaviour when every particle scores zero (no estimate: lost). Each subclass only says how
 a particle is weighted (``likelihood``).
 """
 
@@ -40,10 +40,6 @@ class CentrePFParams:
         "prediction", paper=NOT_PRINTED, paper_value=1.0,
         why="the prediction step of section 3 moves the particles 'by the object's displacement' with no factor; "
         "the book reads that as g = 1")
-    lost_growth: float = param(
-        1.5, 1.0, 4.0, 0.1, "spread factor per consecutive lost frame", paper=NOT_PRINTED,
-        paper_value=1.0, why="the book's addition for frames where every weight is 0; "
-        "the paper has no lost state (1 = off)")
     resampler: str = resampler_param(
         "resampling scheme", paper=NOT_PRINTED,
         why="Table 2 says 'resample with the updated weights' without a scheme; "
@@ -55,39 +51,30 @@ class CentreParticleFilter(ParticleFilterTracker):
 
     Params (:class:`CentrePFParams`, which a subclass's ``Params`` extends): ``n_particles``,
     ``sigma`` (the random-walk standard deviation in pixels), ``velocity_gain``,
-    ``lost_growth`` (the spread is multiplied by this on every consecutive lost frame),
     ``resampler``.
 
     Motion model: ``x_t = x_{t-1} + v + N(0, sigma^2)``, with ``v = g (C_t - C_{t-1})`` the
-    last change of the estimate times the gain ``g = velocity_gain`` (1 by default, the
-    book's reading of the paper's prediction step, which prints no gain; 0 right after ``init`` and after a lost frame). A gain below 1 damps a velocity
-    measured from two noisy estimates (``03_hog`` measures it). After a frame in which all
-    particles weighed zero, the particles are drawn afresh around the last estimate with the
-    widened spread ``sigma * lost_growth^k`` (k lost frames in a row, capped at a quarter of
-    the frame), so the filter searches a growing area until the target returns.
+    last change of the accepted estimate times the gain ``g = velocity_gain`` (1 by default,
+    the book's reading of the paper's prediction step, which prints no gain). A gain below 1
+    damps a velocity measured from two noisy estimates (``03_hog`` measures it).
 
-    Lost rule: that of ``ParticleFilterTracker`` (flat frames, all weights zero, and for the
-    appearance filters the distance gate); while lost the search is the widening spread
-    around the last estimate, up to a quarter of the frame's larger side (which covers the
-    whole frame), at the cost of a tracked frame (N particles).
+    While lost (frames the failure-detection layer judges lost) the estimate does not move,
+    so the motion it measures is zero: the particles move by the random walk alone, from
+    where they are; and the first accepted frame after a lost spell sets ``v = 0`` (the jump
+    back is a relocation, not a motion). ``v = 0`` also right after ``init``.
 
     Attributes
     ----------
     velocity : (2,) the estimated motion per frame added in the prediction.
-    spread : the random-walk sigma used in the last prediction.
+    spread : the random-walk sigma of the prediction (``sigma``).
     scale : the box scale relative to the initial box (1 unless a subclass estimates it).
     """
-
-    #: Recovery is the widening spread around the last estimate (``lost_growth``), not a
-    #: scatter over the frame: Kim et al.'s trackers keep their own lost search.
-    scatter_fraction = 0.0
 
     def model(self, frame, box):
         self._size = np.asarray(box[2:4], dtype=float)
         self.velocity = np.zeros(2)
         self.spread = float(self.params.sigma)
         self.scale = 1.0
-        self._lost_run = 0
 
     def initial_particles(self, frame, box):
         c = self.box_to_state(box)
@@ -98,31 +85,17 @@ class CentreParticleFilter(ParticleFilterTracker):
         return np.clip(xy, 0.0, self._frame_wh - 1e-6)
 
     def predict(self, particles):
-        sigma = float(self.params.sigma)
-        if self.lost:
-            cap = max(sigma, 0.25 * float(self._frame_wh.max()))
-            self.spread = min(sigma * float(self.params.lost_growth) ** self._lost_run, cap)
-            centre = np.broadcast_to(self.estimate, particles.shape)
-            moved = centre + self.rng.normal(0.0, self.spread, size=particles.shape)
-        else:
-            self.spread = sigma
-            moved = particles + self.velocity + self.rng.normal(0.0, sigma, size=particles.shape)
+        # a lost frame kept the estimate where it was: its measured motion is zero
+        v = self.velocity if self.ok else 0.0
+        moved = particles + v + self.rng.normal(0.0, self.spread, size=particles.shape)
         return self._clip(moved)
 
-    def _update(self, frame):
-        was_lost = self.lost
+    def _learn(self, frame, box):
         previous = np.array(self.estimate, dtype=float)
-        ok, box = super()._update(frame)
-        if ok:
-            self._lost_run = 0
-            # right after a lost spell the jump back is a relocation, not a motion
-            g = float(self.params.velocity_gain)
-            self.velocity = np.zeros(2) if was_lost else g * (self.estimate - previous)
-        return ok, box
-
-    def on_lost(self):
-        self._lost_run += 1
-        self.velocity = np.zeros(2)
+        super()._learn(frame, box)
+        # right after a lost spell the jump back is a relocation, not a motion
+        g = float(self.params.velocity_gain)
+        self.velocity = g * (self.estimate - previous) if self.ok else np.zeros(2)
 
     def box_to_state(self, box):
         b = np.asarray(box, dtype=float)

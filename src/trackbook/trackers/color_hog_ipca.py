@@ -53,6 +53,7 @@ from ..features.color import bhattacharyya_coefficient
 from ..filters.lee2012_models import similarity
 from ..learning.incremental_svd import IncrementalSVD
 from ..params import NOT_PRINTED, param
+from .base import redetecting
 from .color_hog_pf import ColorHogPF, ColorHogPFParams
 from .registry import register
 
@@ -200,7 +201,10 @@ class ColorHogIPCA(ColorHogPF):
     ``exponent`` says), D_i = ||z_i - U U^T z_i|| the reconstruction error of the particle's
     colour feature in the learned subspace (eq. 12-13; beta = ``anchor``), so the confidence
     is one minus the (anchored) reconstruction error, clipped to [0, 1]; 0 on a constant
-    frame. The HOG term is not in it.
+    frame. The HOG term is not in it. ``ok`` comes from the failure-detection layer judging
+    it, and only frames judged on target are learned (``_learn``): a lost frame does not
+    enter the subspaces. ``color-hog-ipca-redetect`` adds the re-detection layer (boxes over
+    the whole frame scored by the same match, without learning from them).
     """
 
     name = "color-hog-ipca"
@@ -242,12 +246,6 @@ class ColorHogIPCA(ColorHogPF):
         return d2
 
     # -- learning ------------------------------------------------------------------------
-    def _update(self, frame):
-        ok, box = super()._update(frame)
-        if ok:
-            self._learn(frame, box)
-        return ok, box
-
     def _fused_similarity(self, d2) -> float:
         p = self.params
         s_c = float(similarity(d2["color"], p.sigma_color)[0])
@@ -295,7 +293,9 @@ class ColorHogIPCA(ColorHogPF):
         return True
 
     def _learn(self, frame, box):
-        """Collect the features at the estimated state; SVD at T, incremental updates after."""
+        """Accept the estimate (a frame the failure layer judged on target), then collect its
+        features; SVD at T, incremental updates after. A frame judged lost teaches nothing."""
+        super()._learn(frame, box)
         p = self.params
         self._n_frames_seen += 1
         if self._n_frames_seen % p.learn_every:
@@ -360,3 +360,6 @@ class ColorHogIPCA(ColorHogPF):
         rep = super().frame_report()
         rep["learning"] = float(self.learning)
         return rep
+
+
+register(redetecting(ColorHogIPCA))

@@ -3,7 +3,7 @@ references, no learning (chapter ``03_hog``; Lee et al. compare it as a baseline
 [quote: lee2012.baselines], after Jin et al. 2010).
 
 Everything but the measurement is :class:`~trackbook.trackers.color_pf.ColorPF`'s: the state
-and motion of eq. 8-9, the initial particles, the resampling and the lost rules.
+and motion of eq. 8-9, the initial particles, the resampling and the confidence.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import numpy as np
 from ..features.hog import gray_patches, hog_of_patches
 from ..filters.lee2012_models import fuse, gaussian_likelihood, similarity, states_to_boxes
 from ..params import param
+from .base import redetecting
 from .color_pf import ColorPF, ColorPFParams
 from .registry import register
 
@@ -49,11 +50,11 @@ class ColorHogPF(ColorPF):
     ``features`` returns ``"color"`` (eq. 1) and ``"hog"`` (eq. 2-5) of every box, both from one
     resampling of the boxes to ``PATCH_SIZE``; ``similarities`` and ``reference`` have both keys.
 
-    Lost rule: that of ``ParticleFilterTracker`` (flat frames, the distance gate with its
-    second look, the scatter while lost); the gate's match is the colour term 1 - D^2_color.
-
-    Confidence: that match of the best particle, max_i rho_color,i (the colour
-    Bhattacharyya coefficient, as ``color-pf``'s); the HOG term is not in it.
+    Confidence: the colour match of the best particle, max_i rho_color,i = 1 - D^2_color,i
+    (the colour Bhattacharyya coefficient, as ``color-pf``'s): whether the target is there at
+    all; the HOG term, which swings with small misalignments and on small boxes, is not in it.
+    ``ok`` comes from the failure-detection layer judging it; ``color-hog-pf-redetect`` adds
+    the re-detection layer (boxes over the whole frame scored by that colour match).
     """
 
     name = "color-hog-pf"
@@ -74,8 +75,11 @@ class ColorHogPF(ColorPF):
         d2 = self._distances2(self.features(frame, states_to_boxes(particles)))
         self._similarities = {"color": similarity(d2["color"], p.sigma_color),
                               "hog": similarity(d2["hog"], p.sigma_hog)}
-        # the match 1 - D^2 of the lost gate is the colour term alone: whether the target is
+        # the match 1 - D^2 (the confidence) is the colour term alone: whether the target is
         # there at all; HOG's match swings with small misalignments and on small boxes
         self._match = np.clip(1.0 - d2["color"], 0.0, 1.0)
         return fuse(gaussian_likelihood(d2["color"], p.sigma_color),
                     gaussian_likelihood(d2["hog"], p.sigma_hog), p.alpha)   # eq. 14
+
+
+register(redetecting(ColorHogPF))

@@ -33,8 +33,8 @@ from ..filters.lee2012_models import (VX, VY, W, H, box_to_state, clamp_states,
                                       states_to_boxes)
 from ..filters.particle import effective_sample_size
 from ..params import NOT_PRINTED, param
-from .particle_filter import (ParticleFilterTracker, lost_below_param, lost_k_param,
-                              resampler_param)
+from .base import redetecting
+from .particle_filter import ParticleFilterTracker, resampler_param
 from .registry import register
 
 #: Patch every box is resized to before its features are taken (section II): 16 x 24 px.
@@ -94,10 +94,6 @@ class ColorPFParams:
                             paper=NOT_PRINTED,
                             why="eq. 9 has no floor, but a box must cover pixels to have a "
                             "histogram: every side stays >= 4 px (in the paper preset too)")
-    # The book's distance gate (02_particle_filters): the paper's trackers have no lost state,
-    # though their tracking "failed for a while" [quote: lee2012.failed_for_a_while].
-    lost_below: float = lost_below_param()
-    lost_k: float = lost_k_param()
 
 
 
@@ -120,12 +116,18 @@ class ColorPF(ParticleFilterTracker):
     similarities : dict of (N,) arrays ``exp(-D^2 / 2 sigma^2)`` per feature ("color", ...).
     reference : dict of the reference features ("color": (256,), ...).
 
-    Confidence
-    ----------
+    Confidence and failure
+    ----------------------
     ``state().confidence`` is the best particle's Bhattacharyya coefficient of the last frame,
-    max_i rho_i, rho_i = sum_u sqrt(h_u(x_i) h_u^ref) = 1 - D^2_i (eq. 10-11): the number the
-    distance gate reads, in [0, 1]; 0 on a constant frame (not scored). The estimate itself,
-    the weighted mean of the states, is not scored again.
+    max_i rho_i, rho_i = sum_u sqrt(h_u(x_i) h_u^ref) = 1 - D^2_i (eq. 10-11), in [0, 1]; 0 on
+    a constant frame (not scored). The estimate itself, the weighted mean of the states, is not
+    scored again. While lost the particles move by eq. 9 from where they are, each lost
+    frame from rest (velocities set to 0 before the prediction). The paper's trackers have
+    no lost state (their tracking "failed for a while"
+    [quote: lee2012.failed_for_a_while]): ``ok`` comes from the failure-detection layer
+    (:class:`~trackbook.trackers.failure.FailureDetector`) judging that confidence. While lost
+    the filter runs on (see :class:`ParticleFilterTracker`, "While lost"); ``color-pf-redetect``
+    adds the re-detection layer, which scores boxes over the whole frame by the same rho.
     """
 
     name = "color-pf"
@@ -148,23 +150,26 @@ class ColorPF(ParticleFilterTracker):
 
     def initial_particles(self, frame, box):
         p = self.params
+        if p.init != "frame":
+            return self.respread(frame, box)
+        # Pseudocode, t = 0: N particles spread uniformly and independently over the image,
+        # each with the initial box size.
         n = p.n_particles
         s0 = box_to_state(box)
         states = np.tile(s0, (n, 1))
         Hf, Wf = frame.shape[:2]
-        if p.init == "frame":
-            # Pseudocode, t = 0: N particles spread uniformly and independently over the image,
-            # each with the initial box size.
-            w, h = s0[W], s0[H]
-            states[:, 0] = self.rng.uniform(min(w / 2, Wf / 2), max(Wf - w / 2, Wf / 2), n)
-            states[:, 1] = self.rng.uniform(min(h / 2, Hf / 2), max(Hf - h / 2, Hf / 2), n)
-        else:
-            states[:, 0] += self.rng.uniform(-s0[W] / 4, s0[W] / 4, n)
-            states[:, 1] += self.rng.uniform(-s0[H] / 4, s0[H] / 4, n)
+        w, h = s0[W], s0[H]
+        states[:, 0] = self.rng.uniform(min(w / 2, Wf / 2), max(Wf - w / 2, Wf / 2), n)
+        states[:, 1] = self.rng.uniform(min(h / 2, Hf / 2), max(Hf - h / 2, Hf / 2), n)
         return clamp_states(states, frame.shape, p.min_size)
 
     def predict(self, particles):
         p = self.params
+        if not self.ok:
+            # the last frame was judged lost: its particles' velocities were not measured on
+            # the target, and eq. 9's velocity noise, added to them frame after frame, would
+            # carry the cloud away; the particles start each lost frame at rest where they are
+            particles[:, VX:VY + 1] = 0.0
         new = predict_eq9(particles, self.rng, (p.size_noise, p.size_noise, p.vx_noise, p.vy_noise))
         return clamp_states(new, self._shape, p.min_size)
 
@@ -190,10 +195,16 @@ class ColorPF(ParticleFilterTracker):
     def state_to_box(self, state):
         return states_to_boxes(state)[0]
 
-    def on_lost(self):
-        # Nothing looked like the target: forget the velocities, which are what carried the
-        # particles away.
-        self._particles[:, VX:VY + 1] = 0.0
+    def respread(self, frame, box):
+        """The re-detection layer's restart: at rest within a quarter box of ``box`` (the
+        ``"box"`` start, whatever ``init`` says: the box was just found)."""
+        p = self.params
+        n = p.n_particles
+        s0 = box_to_state(box)
+        states = np.tile(s0, (n, 1))
+        states[:, 0] += self.rng.uniform(-s0[W] / 4, s0[W] / 4, n)
+        states[:, 1] += self.rng.uniform(-s0[H] / 4, s0[H] / 4, n)
+        return clamp_states(states, frame.shape, p.min_size)
 
     # -- read-only views for the book ------------------------------------------------------
     @property
@@ -209,3 +220,6 @@ class ColorPF(ParticleFilterTracker):
         particles and the effective sample size (before the next resampling)."""
         return {"mean_likelihood": float(np.mean(self._likelihoods)),
                 "ess": effective_sample_size(self._weights)}
+
+
+register(redetecting(ColorPF))

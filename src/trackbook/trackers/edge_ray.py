@@ -26,7 +26,8 @@ import numpy as np
 from ..features import edge_rays as er
 from ..params import NOT_PRINTED, param
 from .centre_pf import CentreParticleFilter, CentrePFParams
-from .lost import ColourCheck, MatchGate, visible_fraction
+from .base import redetecting
+from .lost import ColourCheck
 from .registry import register
 
 
@@ -65,13 +66,6 @@ class EdgeRayParams(CentrePFParams):
         why="the paper builds M in the first frame [quote: kim2016.edge_model_eight_rays] "
         "and leaves its update to further research [quote: kim2016.model_not_updated]; the "
         "book's option, off by default")
-    lost_check: bool = param(
-        True, doc="the book's lost rule: the estimate must be in view and match the first "
-        "frame's colours; while lost, a whole-frame colour search restarts the filter",
-        paper=NOT_PRINTED, paper_value=False,
-        why="the book's addition (the docstring's Lost rule): edge rays alone cannot say that "
-        "the target is gone; off, only the frame's rules remain (every weight zero, a flat "
-        "frame)")
 
 
 @register
@@ -85,37 +79,24 @@ class EdgeRayPF(CentreParticleFilter):
     ratios : (N,) Ratio of eq. 5 of the last frame's particles.
     edges : (H, W) bool Canny edge map of the last frame.
     particles, weights, likelihoods, estimate, lost : see ``ParticleFilterTracker``.
-    colour_rho : rho of the estimate's colour histogram against the first frame's (lost rule).
-
-    Lost rule
-    ---------
-    Edge rays cannot say that the target is gone: a textured background has edges everywhere
-    and many particles fall inside the Ratio window. So besides the rules of
-    ``ParticleFilterTracker`` (every weight zero, a constant frame), a frame is lost when less
-    than ``min_visible`` of the estimate's box is inside the frame, or when the first frame's
-    colours match the estimate's poorly (the kernel colour histogram, HSV 8 x 8 x 4, of eq. 1
-    of Lee et al. 2012): rho below 0.5, or below 0.7 and far outside its recent range
-    (:class:`~trackbook.trackers.lost.MatchGate`) unless it stands out from the boxes around
-    it (the second look of ``ParticleFilterTracker``: a sudden change of light). The edge rays alone still place the box;
-    the colour only vetoes it. While lost, the spread widens (``lost_growth``) and the whole
-    frame is searched by colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most
-    325 histograms a frame, paid only while lost); a box that passes the gate restarts the
-    filter there (``ok=True``). ``lost_check=False`` (the paper preset) leaves only the rules of
-    ``ParticleFilterTracker``.
+    colour_rho : the confidence of the last frame (see "Confidence").
 
     Confidence
     ----------
-    ``state().confidence`` is the edge likelihood of the best particle of the last frame,
-    max_i w_i with w_i = 1 - sum_j |pDis_j - mDis_j| / sum_j mDis_j (eq. 6, 0 outside the
-    Ratio window), in [0, 1]; 0 on a constant frame (not scored). It cannot say that the
-    target is gone on a textured background: edges everywhere put some particle's rays near
-    the model's, so a frame without the target can score as high as one with it (the reason
-    for the colour lost rule above, which the confidence does not include).
+    The edge likelihood cannot say that the target is gone: a textured background has edges
+    everywhere and some particle's rays fall near the model's, so a frame without the target
+    can weigh as much as one with it. The confidence is therefore the failure layer's
+    generic one, the appearance match of the estimate against the first frame's model: the
+    Bhattacharyya coefficient rho between the kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of
+    Lee et al. 2012) of the estimate's box and that of the first box
+    (:meth:`~trackbook.trackers.lost.ColourCheck.match`), in [0, 1]; on a frame without an
+    estimate (every particle outside the Ratio window), that of the last box. The colour
+    never moves the box: the edge rays alone place it. ``ok`` comes from the
+    failure-detection layer judging that confidence; ``edge-ray-pf-redetect`` adds the
+    re-detection layer, which scores boxes over the whole frame by the same colour match.
     """
 
     name = "edge-ray-pf"
-    #: Less than this fraction of the box in the frame: the target is leaving (lost).
-    min_visible = 0.5
     Params = EdgeRayParams
 
     def model(self, frame, box):
@@ -132,7 +113,6 @@ class EdgeRayPF(CentreParticleFilter):
         self.particle_rays = np.zeros((0, 8))
         self.ratios = np.zeros(0)
         self._colour = ColourCheck(frame, box)
-        self._colour_gate = MatchGate()
         self.colour_rho = 1.0
 
     def _drawn(self) -> dict:
@@ -164,64 +144,34 @@ class EdgeRayPF(CentreParticleFilter):
         self.ratios = er.ratio(self.particle_rays, m)
         return er.edge_weight(self.particle_rays, m, (p.ratio_low, p.ratio_high))
 
-    def _update(self, frame):
-        previous = np.array(self.estimate, dtype=float)
-        ok, box = super()._update(frame)
-        if not self.params.lost_check:
-            return self._adapt(ok, box)
-        if ok and not self._confirmed(frame, box):
-            # the edges placed the box, but it is not on the target (see "Lost rule")
-            self.estimate, self.lost = previous, True
-            self.on_lost()
-            ok, box = False, self.state_to_box(previous)
-        if not ok and not self._is_flat(frame):
-            ok, box = self._search(frame, box)
-            return ok, box
-        return self._adapt(ok, box)
+    def _locate(self, frame):
+        """The SIR cycle of Table 2 (edge likelihood), with the colour confidence."""
+        box, _ = super()._locate(frame)
+        at = box if np.all(np.isfinite(box)) else np.asarray(self.bbox, dtype=float)
+        self.colour_rho = float(self._colour.match(frame, np.asarray(at, float)[None])[0])
+        return box, self.colour_rho
 
-    def _adapt(self, ok, box):
-        """The book's options on a frame that is not lost: the scale and the model M."""
+    def _learn(self, frame, box):
+        """Accept the estimate, then the book's options: the scale and the model M."""
+        super()._learn(frame, box)
         p = self.params
-        if ok and (p.adapt_scale or p.model_rate > 0):
-            if p.adapt_scale:
-                # the weighted mean Ratio says how much larger the median ray is than the model's
-                r = float(self.weights @ self.ratios)
-                self.scale = float(np.clip(self.scale * r, 0.25, 4.0))
-            if p.model_rate > 0:
-                here = self._rays(self.estimate[None, :])[0] / self.scale
-                self.model_rays = (1 - p.model_rate) * self.model_rays + p.model_rate * here
-            box = self.state_to_box(self.estimate)
-        return ok, box
+        if p.adapt_scale:
+            # the weighted mean Ratio says how much larger the median ray is than the model's
+            r = float(self.weights @ self.ratios)
+            self.scale = float(np.clip(self.scale * r, 0.25, 4.0))
+        if p.model_rate > 0:
+            here = self._rays(self.estimate[None, :])[0] / self.scale
+            self.model_rays = (1 - p.model_rate) * self.model_rays + p.model_rate * here
 
-    def _confirmed(self, frame, box) -> bool:
-        """The lost rule's checks of an estimate the edges accepted: in view, colour match."""
-        if visible_fraction(box, frame.shape) < self.min_visible:
-            return False
-        b = np.asarray(box, float)
-        rho = self.colour_rho = float(self._colour.match(frame, b[None])[0])
-        return not self._colour_gate.lost(rho, lambda: self._colour.stands_out(frame, b, rho))
-
-    def _search(self, frame, box):
-        """Lost: search the whole frame by colour; restart the filter on a box that passes."""
-        found, rho = self._colour.search(frame, max_boxes=300, size=self._size * self.scale)
-        if visible_fraction(found, frame.shape) < self.min_visible or self._colour_gate.lost(rho):
-            return False, box
-        self.colour_rho = rho
-        c = self.box_to_state(found)
-        n = self._particles.shape[0]
-        self._particles = self._clip(c + self.rng.normal(0.0, self.params.sigma, size=(n, 2)))
-        self._weights = np.full(n, 1.0 / n)
-        self.estimate, self.lost, self._lost_run = c, False, 0
-        self.velocity = np.zeros(2)
-        return True, self.state_to_box(c)
-
-    def _last_confidence(self) -> float:
-        """The best particle's edge likelihood of eq. 6 (see "Confidence")."""
-        lik = self._likelihoods
-        return float(lik.max()) if lik.size else 0.0
+    def _score_boxes(self, frame, boxes):
+        """The confidence's colour match (rho against the first box's histogram) of each box."""
+        return self._colour.match(frame, np.asarray(boxes, dtype=float))
 
     def frame_report(self) -> dict:
         """Per-frame numbers: the fraction of particles inside the Ratio window, the scale."""
         p = self.params
         inside = (self.ratios >= p.ratio_low) & (self.ratios <= p.ratio_high)
         return {"accepted": float(inside.mean()) if inside.size else 0.0, "scale": self.scale}
+
+
+register(redetecting(EdgeRayPF))

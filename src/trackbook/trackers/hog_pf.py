@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from ..features.hog import hog_descriptors
 from .appearance_pf import AppearancePF
+from .base import redetecting
 from .registry import register
 
 
@@ -15,13 +16,14 @@ class HOGPF(AppearancePF):
     """Baseline (2) of Kim et al. 2016: HOG (Lee et al. 2012, 192 values) particle filter.
 
     Confidence: the best particle's Bhattacharyya coefficient of the HOGs, max_i rho(q, p_i),
-    in [0, 1]; 0 on a constant frame.
+    in [0, 1]; 0 on a constant frame. ``ok`` comes from the failure-detection layer;
+    ``hog-pf-redetect`` adds the re-detection layer.
     """
 
     name = "hog-pf"
-    #: No second look: a textured background's HOG stands out from its surroundings as much
-    #: as the target's does, so only the distance gate decides (see ``ParticleFilterTracker``).
-    gate_contrast = 0.0
 
     def features(self, frame, boxes):
         return hog_descriptors(frame, boxes)
+
+
+register(redetecting(HOGPF))

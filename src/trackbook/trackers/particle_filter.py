@@ -2,7 +2,8 @@
 
 The estimation steps it calls (weights, resamplers, estimate) are pure functions in
 :mod:`trackbook.filters.particle`; this class only strings them together behind the
-``init``/``update`` contract of :class:`trackbook.trackers.base.Tracker`.
+``init``/``update`` contract of :class:`trackbook.trackers.base.Tracker`, as the two halves of
+a frame: ``_locate`` (the SIR cycle) and ``_learn`` (accept the estimate).
 """
 
 from __future__ import annotations
@@ -12,20 +13,8 @@ import numpy as np
 
 from ..filters.particle import (RESAMPLER_NAMES, check_indices, get_resampler,
                                 normalize_weights, weighted_mean)
-from ..params import NOT_PRINTED, param
+from ..params import param
 from .base import Tracker, readonly_attr
-
-
-def lost_below_param():
-    """The ``lost_below`` field of a particle tracker's params (the distance gate, see
-    :class:`ParticleFilterTracker`); a function so every params class gets its own field."""
-    return param(0.7, 0.0, 1.0, 0.05, "a frame can be lost only if its best match 1 - D^2 is "
-                 "below this (0 = no distance gate)", paper=NOT_PRINTED, paper_value=0.0,
-                 why="the papers' trackers have no lost state (Lee et al. 2012's tracking "
-                 "'failed for a while' [quote: lee2012.failed_for_a_while] and went on); the "
-                 "book's gate: a frame is lost only when its match is poor and also far "
-                 "outside the recent frames' range (lost_k), so a slow drift of the look is "
-                 "not a loss")
 
 
 def resampler_param(doc: str, paper="multinomial", default: str = "multinomial", **kw):
@@ -35,57 +24,53 @@ def resampler_param(doc: str, paper="multinomial", default: str = "multinomial",
     return param(default, doc=doc, choices=RESAMPLER_NAMES, paper=paper, **kw)
 
 
-def lost_k_param():
-    """The ``lost_k`` field: how far above the recent range a lost frame's D^2 lies."""
-    return param(3.0, 0.5, 20.0, 0.5, "... and its D^2 above median + k max(1.4826 MAD, "
-                 "median / 2) of recent frames", paper=NOT_PRINTED,
-                 why="the papers' trackers have no lost state [quote: "
-                 "lee2012.failed_for_a_while]; 3 robust standard deviations, the "
-                 "book's choice (only used when lost_below > 0)")
-
-
-def scatter_grid(k: int, frame_wh, rng) -> np.ndarray:
-    """``k`` points spread evenly over a frame of size ``frame_wh = (W, H)``: a grid of about
-    ``k`` cells of the frame's aspect, ``k`` distinct cells drawn at random, one uniform point
-    in each (a jittered grid: no part of the frame is left out, as i.i.d. uniform points may)."""
-    W, H = (float(v) for v in frame_wh)
-    nx = max(1, int(np.ceil(np.sqrt(k * W / H))))
-    ny = max(1, int(np.ceil(k / nx)))
-    cells = rng.choice(nx * ny, size=k, replace=False)
-    u = rng.uniform(0.0, 1.0, size=(k, 2))
-    return np.column_stack([(cells % nx + u[:, 0]) / nx * W, (cells // nx + u[:, 1]) / ny * H])
-
-
 class ParticleFilterTracker(Tracker):
     """Sequential importance resampling (SIR, Condensation) as in Lee et al. 2012's
     pseudocode, for subclasses.
 
-    Each ``update``: select (resample by the previous weights) -> predict -> [refine] ->
-    weight -> normalise -> estimate. A subclass fills in these public hooks:
+    Each frame, :meth:`_locate` runs one cycle: select (resample by the previous weights) ->
+    predict -> [refine] -> weigh -> normalise -> estimate (the weighted mean), and returns the
+    estimate's box with the tracker's confidence, the best particle's match (see
+    "Confidence"). The failure-detection layer of :class:`~trackbook.trackers.base.Tracker`
+    judges that confidence; on a frame judged on target :meth:`_learn` accepts the estimate
+    (and a learning subclass updates its model there), on a frame judged lost the last box
+    stays and nothing is learned. A subclass fills in these public hooks:
 
     - ``initial_particles(frame, box) -> (N, d) states`` and ``model(frame, box)`` (take the
       reference, e.g. the first frame's histogram; called first by ``init``),
     - ``predict(particles) -> particles`` (the motion model, using ``self.rng``),
-    - ``likelihood(frame, particles) -> (N,)`` unnormalised, >= 0 (and, for the distance
-      gate, ``self._match = 1 - D^2`` of every particle),
+    - ``likelihood(frame, particles) -> (N,)`` unnormalised, >= 0, which also sets
+      ``self._match``, the (N,) matches ``1 - D^2`` of the particles (the confidence),
     - ``box_to_state(box) -> (d,)`` and ``state_to_box(state) -> (x, y, w, h)``,
 
-    and may override ``on_lost()`` (called at the end of every frame ``update`` reports
-    lost, whatever the reason, e.g. to forget velocities or count the lost frames that widen
-    the spread) and ``refine(frame, particles) -> particles`` (move the predicted particles
+    and may override ``refine(frame, particles) -> particles`` (move the predicted particles
     before weighting, e.g. uphill by mean-shift as Cho & Kang 2005 do; the default leaves them
-    where the motion model put them). Each hook's docstring states what it receives and must
-    return. The params dataclass must have ``n_particles`` and ``resampler`` (made with
-    :func:`resampler_param`); ``lost_below`` and ``lost_k`` (:func:`lost_below_param`,
-    :func:`lost_k_param`) switch the distance gate on.
+    where the motion model put them) and ``respread(frame, box) -> (N, d)`` (the particles the
+    re-detection layer restarts from; default ``initial_particles``). Each hook's docstring
+    states what it receives and must return. A subclass that learns overrides ``_learn``
+    (calling ``super()._learn(frame, box)`` first); ``_drawn()`` says what ``state()`` shows
+    (particles and weights here). The params dataclass must have ``n_particles`` and
+    ``resampler`` (made with :func:`resampler_param`). The colour trackers add
+    ``features(frame, boxes) -> dict`` (see :class:`trackbook.trackers.color_pf.ColorPF`),
+    from which their ``likelihood`` is computed.
 
-    Further hooks for trackers that need them: ``_scatter_reset(particles, idx)`` (clear what
-    scattered particles must not keep), ``_stands_out(frame, particles)`` (the gate's second
-    look), ``_drawn()`` (what ``state()`` shows; particles and weights here), and ``_init`` /
-    ``_update`` themselves, which a subclass may wrap (call ``super()`` and add to it, e.g. to
-    learn from the estimate) but should not replace. The class attributes below tune the lost
-    rule. The colour trackers add ``features(frame, boxes) -> dict`` (see
-    :class:`trackbook.trackers.color_pf.ColorPF`), from which their ``likelihood`` is computed.
+    While lost
+    ----------
+    The filter goes on as it is: every frame the particles are selected by the last weights
+    and moved by the motion model from where they are, and weighed; only the reported box (the
+    last one kept) and the learning stop. What a velocity does while lost is the motion
+    model's (``predict`` reads ``self.ok``, the previous frame's judgement): the colour
+    trackers start each lost frame's particles at rest, the centre filters add no measured
+    motion (the estimate did not move). That is the filter, not a search: searching the whole frame
+    is the re-detection layer of the ``-redetect`` names, which scores boxes with
+    :meth:`_score_boxes` (the likelihood's match of a particle placed at each box) and
+    restarts the particles around the best with :meth:`_relocate`.
+
+    A frame whose grey levels span at most ``flat_range`` (all black, all white, one grey)
+    carries no information (no colour to compare, no gradient for a HOG or an edge): it is
+    not scored (every likelihood 0, confidence 0) and the failure layer reports it lost. When
+    every likelihood is zero or not finite, the weighted mean is 0 / 0: there is no estimate
+    and ``_locate`` returns a NaN box, which the base reports lost with the last box.
 
     What the frame assumes
     ----------------------
@@ -96,85 +81,27 @@ class ParticleFilterTracker(Tracker):
     when the effective sample size is low must return the identity ``np.arange(N)`` on the
     frames it skips. Even then the frame rebuilds the weights from the likelihood alone, so a
     skipped frame forgets the previous weights instead of multiplying them in (the textbook
-    w_t proportional to w_(t-1) p(z_t | x_t^i) needs a subclass that overrides ``_update``).
+    w_t proportional to w_(t-1) p(z_t | x_t^i) needs a subclass that overrides ``_locate``).
     A resampler that returns anything else fails with a ``ValueError`` saying so. Register
     your own with :func:`trackbook.filters.particle.register_resampler`; the ``resampler``
     param accepts every name registered when the tracker is made.
+
+    Confidence
+    ----------
+    The best particle's match of the frame, max_i (1 - D^2_i) (:attr:`best_match`; the
+    Bhattacharyya coefficient rho for a histogram model), in [0, 1]; 0 on a constant frame
+    (not scored) and for a model that sets no match. The estimate itself is not scored again.
 
     Attributes
     ----------
     particles : (N, d) array, the particles after the last update (read-only view).
     weights : (N,) normalised weights of the last update.
     likelihoods : (N,) the unnormalised likelihoods of the last update.
-    estimate : (d,) the weighted-mean state.
-    lost : bool, whether the last frame was lost (all weights zero, a constant frame, or the
-        distance gate below).
+    estimate : (d,) the weighted-mean state of the last frame judged on target.
+    lost : bool, whether the last frame was judged lost (``not ok``).
     match : (N,) how well each particle of the last frame matches the target, 1 - D^2 in
-        [0, 1] (the Bhattacharyya coefficient rho for a histogram model); NaN where a
-        tracker's model has no such number.
-
-    Lost rule
-    ---------
-    A frame whose grey levels span at most ``flat_range`` (a constant frame: all black, all
-    white, one grey) carries no information at all -- no colour to compare, no gradient for a
-    HOG or an edge -- so it is not scored: ``update`` returns ``ok=False``, keeps the last
-    estimate and calls ``on_lost()``, instead of following the least-bad particle. So does a
-    frame whose likelihoods are all zero or not finite (or sum to at most
-    ``min_total_likelihood``). (The likelihood alone cannot tell: the HOG of a gradient-free patch is
-    a flat histogram that scores above a real but hard frame.)
-
-    Second rule, the distance gate (trackers whose params have ``lost_below`` > 0): a frame is
-    lost when its *best* particle both matches poorly, ``1 - D^2 < lost_below``, and is far
-    outside the recent range, ``D^2 > med + lost_k * max(1.4826 MAD, med / 2)`` over the
-    best ``D^2`` of the last ``gate_window`` frames that were not lost (the first five frames
-    always pass). The gate is on the distance, not on the likelihood: ``exp(-D^2 / 2 sigma^2)``
-    of a given match changes by orders of magnitude with sigma, ``D^2`` does not. Both tests
-    are needed: a box still on a pedestrian can match only moderately (a HOG that swings with
-    small misalignments, a colour distance that rises as the light changes). The colour + HOG
-    trackers gate on the colour term alone (whether the target is there at all). After
-    ``gate_patience`` lost frames in a row the recent range is forgotten and rebuilt, so a
-    target whose look changed for good is not reported lost for ever.
-
-    Second look (``gate_contrast`` > 0): before the gate calls a frame lost, the best
-    particle's match is compared with the median match of eight boxes of its size around it
-    (``probe_offsets``, 1.5 box sizes away; ``_stands_out``). A match of at least
-    ``contrast_floor`` that beats its surroundings by ``gate_contrast`` is the target under a
-    sudden change of light (every match drops, the target's stays the best around), not a
-    target that has gone: the frame is kept. A target that left, or is covered, leaves no
-    such peak. Only frames the gate would call lost pay for the look (one more likelihood of
-    eight boxes); ``hog-pf`` has none (a textured background's HOG stands out as much).
-
-    Leaving across the border: the boxes are kept inside the frame, so the visible part of a
-    leaving target shrinks in them and the match drops with it: the same two rules report it.
-
-    Recovery: while lost, every prediction restarts ``scatter_fraction`` of the particles at
-    rest, at the size of the first box, on a jittered grid over the whole frame
-    (``scatter_grid``: one particle per cell, so the whole frame is covered at a cost bounded
-    by N); of the rest, half keep what the last frame's weights selected (the search closes in
-    on a good match over a few frames) and half wait at rest at the last estimate, for a target
-    that reappears where it vanished. ``ok=True`` comes back only when the best match passes
-    the gate again. On a frame that is never lost nothing is scattered and no random number
-    is drawn for it, so trackers that never lose the target run exactly as without the rule.
+        [0, 1]; NaN where a tracker's model has no such number.
     """
-
-    #: Below this the weights are treated as carrying no information (frame "lost").
-    min_total_likelihood = 0.0
-    #: While lost, this fraction of the particles is scattered over the whole frame.
-    scatter_fraction = 0.8
-    #: The distance gate's memory: best D^2 of this many recent frames that were not lost.
-    gate_window = 30
-    #: After this many lost frames in a row the gate forgets its range and rebuilds it.
-    gate_patience = 30
-    #: A frame the gate would call lost is kept when the best particle's match beats the
-    #: median of the boxes around it by this much (0 = no second look).
-    gate_contrast = 0.12
-    #: ... but never when that best match is below this (a sliver at the border, a look-alike).
-    contrast_floor = 0.5
-    #: Where the second look's boxes are, in box sizes from the best particle's centre.
-    probe_offsets = ((-1.5, 0), (1.5, 0), (0, -1.5), (0, 1.5), (-1.5, -1.5), (1.5, -1.5),
-                     (-1.5, 1.5), (1.5, 1.5))
-    #: Per-frame records a probe's ``_likelihood`` call must not overwrite.
-    _probe_keeps = ("_similarities", "_report", "_rho", "_likelihoods")
 
     def _init(self, frame, box):
         """Start the filter: ``model``, then ``initial_particles`` with uniform weights.
@@ -199,15 +126,132 @@ class ParticleFilterTracker(Tracker):
         self._weights = np.full(n, 1.0 / n)
         self._likelihoods = np.ones(n)
         self.estimate = self.box_to_state(box)
-        self.lost = False
+        self._located = np.array(self.estimate, dtype=float)
         self._match = np.ones(n)
-        self._start_state = np.asarray(self.box_to_state(box), dtype=float)
-        self._gate_d2 = []          # best D^2 of recent frames that were not lost
-        self._lost_in_a_row = 0
+
+    @property
+    def lost(self) -> bool:
+        """Whether the last frame was judged lost (``not ok``)."""
+        return not self.ok
+
+    def _locate(self, frame):
+        """One SIR cycle: select, predict, refine, weigh, normalise, estimate (no learning).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame, BGR.
+
+        Returns
+        -------
+        box : (4,) array
+            ``state_to_box`` of the weighted-mean estimate; NaN when every likelihood is zero
+            or not finite (no estimate: the base reports the frame lost, last box kept).
+        confidence : float
+            The best particle's match (see "Confidence").
+
+        The particles, weights and likelihoods move (they are the filter's state, lost or
+        not); ``estimate`` changes only in :meth:`_learn`.
+        """
+        name = self.params.resampler
+        idx = check_indices(get_resampler(name)(self._weights, self.rng), len(self._weights),
+                            name)
+        particles = self.predict(np.array(self._particles[idx], dtype=float))
+        particles = np.asarray(self.refine(frame, particles), dtype=float)
+        self._match = np.full(particles.shape[0], np.nan)   # a subclass's likelihood fills it
+        if self._is_flat(frame):
+            lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
+        else:
+            lik = np.asarray(self.likelihood(frame, particles), dtype=float)
+        w, informative = normalize_weights(lik)
+        self._particles, self._likelihoods, self._weights = particles, lik, w
+        if informative:
+            self._located = weighted_mean(particles, w)
+            box = np.asarray(self.state_to_box(self._located), dtype=float)
+        else:
+            # every weight zero: the weighted mean is 0 / 0, there is no estimate this frame
+            box = np.full(4, np.nan)
+        return box, self._confidence()
+
+    def _confidence(self) -> float:
+        """max_i match_i of the frame just weighed (see "Confidence"); 0 when unknown."""
+        m = self.best_match
+        return m if np.isfinite(m) else 0.0
+
+    def _learn(self, frame, box):
+        """Accept the frame's estimate (a frame judged on target): ``estimate`` becomes it.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The frame ``_locate`` just weighed.
+        box : (4,) float array
+            The box ``_locate`` returned, ``state_to_box(self._located)``.
+
+        Returns
+        -------
+        None
+            A learning subclass calls ``super()._learn(frame, box)`` and then updates its
+            model (``color-hog-ipca`` adds the estimate to its subspaces); the fixed-model
+            trackers only record the estimate.
+        """
+        self.estimate = np.array(self._located, dtype=float)
+
+    def _score_boxes(self, frame, boxes):
+        """The likelihood's match (1 - D^2, rho for a histogram) of a particle placed at each
+        box, for the re-detection layer; the tracker's state is restored afterwards, so
+        scoring changes nothing.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+        boxes : (n, 4) float array
+
+        Returns
+        -------
+        (n,) float array
+        """
+        states = np.array([self.box_to_state(b) for b in np.asarray(boxes, dtype=float)])
+        saved = dict(self.__dict__)             # the likelihood records per-frame numbers
+        try:
+            self._match = np.full(len(states), np.nan)
+            self.likelihood(frame, states)
+            return np.array(self._match, dtype=float)
+        finally:
+            self.__dict__.clear()
+            self.__dict__.update(saved)
+
+    def _relocate(self, frame, box):
+        """For the re-detection layer: the particles restart around ``box`` at rest
+        (``respread``) with uniform weights; the estimate stays until a frame is accepted."""
+        self._particles = np.asarray(self.respread(frame, np.asarray(box, dtype=float)),
+                                     dtype=float)
+        n = self._particles.shape[0]
+        self._weights = np.full(n, 1.0 / n)
+
+    def respread(self, frame, box):
+        """Hook: the particles the re-detection layer restarts from, around ``box`` at rest
+        (default ``initial_particles(frame, box)``).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            This frame.
+        box : (4,) float array
+            The box the re-detection layer found.
+
+        Returns
+        -------
+        (N, d) array
+            As ``initial_particles``; draw the noise from ``self.rng``.
+        """
+        return self.initial_particles(frame, box)
 
     def _update(self, frame):
-        """One SIR cycle: select, [scatter while lost], predict, refine, weigh, normalise,
-        estimate, and the lost rule.
+        """A whole frame for a subclass still written as a wrapper of ``_update`` (``ok,
+        box = super()._update(frame)``): ``_locate``, then ``_learn`` on every frame with an
+        estimate, without the failure layer. A subclass that does not override ``_update``
+        runs in halves (``_locate`` -> failure layer -> ``_learn``) instead.
 
         Parameters
         ----------
@@ -217,47 +261,22 @@ class ParticleFilterTracker(Tracker):
         Returns
         -------
         ok : bool
-            False on a lost frame (then ``on_lost`` has been called).
+            False on a constant frame or when every likelihood is zero (no estimate).
         box : (4,) array
-            ``state_to_box`` of the weighted-mean estimate, or of the last good estimate on
-            a lost frame.
-
-        A subclass may wrap it, ``ok, box = super()._update(frame)`` followed by its own
-        bookkeeping (learning from the estimate, a velocity), rather than replace it.
+            The estimate's box, or the last box when ``ok`` is False.
         """
-        name = self.params.resampler
-        idx = check_indices(get_resampler(name)(self._weights, self.rng), len(self._weights),
-                            name)
-        particles = self._particles[idx]
-        if self.lost and self.scatter_fraction > 0:
-            particles = self._scatter(np.array(particles, dtype=float))
-        particles = self.predict(particles)
-        particles = np.asarray(self.refine(frame, particles), dtype=float)
-        self._match = np.full(particles.shape[0], np.nan)   # a subclass's likelihood fills it
-        if self._is_flat(frame):
-            lik = np.zeros(particles.shape[0])      # a constant frame: nothing to score
-        else:
-            lik = np.asarray(self.likelihood(frame, particles), dtype=float)
-        w, informative = normalize_weights(lik)
-        if informative and lik.sum() <= self.min_total_likelihood:
-            informative = False
-        if informative and self._gated_out() and not self._stands_out(frame, particles):
-            informative = False                     # the distance gate (see "Lost rule")
-        self._lost_in_a_row = 0 if informative else self._lost_in_a_row + 1
-        self._particles, self._likelihoods = particles, lik
-        if not informative:
-            # Nothing in this frame looks like the target: keep the last estimate and let the
-            # subclass react (on_lost). The weights are uniform when the likelihoods said
-            # nothing, this frame's own when the gate called it lost; the next update resamples
-            # by them and, being lost, scatters part of the particles.
-            self._weights = w
-            self.lost = True
-            self.on_lost()
-            return False, self.state_to_box(self.estimate)
-        self._weights = w
-        self.lost = False
-        self.estimate = weighted_mean(particles, w)
-        return True, self.state_to_box(self.estimate)
+        box, conf = self._locate(frame)[:2]
+        self._judged_confidence = float(conf)
+        box = np.asarray(box, dtype=float)
+        ok = bool(np.all(np.isfinite(box))) and not self._is_flat(frame)
+        if ok:
+            self._learn(frame, box)
+        self.ok = ok                    # ``lost`` reads it; the base sets the same value after
+        return ok, (box if ok else np.asarray(self.bbox, dtype=float))
+
+    def _in_halves(self) -> bool:
+        """Halves unless a subclass wraps ``_update`` (then that wrapper runs the frame)."""
+        return type(self)._update is ParticleFilterTracker._update
 
     # read-only views for the book's drawings -------------------------------------------
     def _drawn(self) -> dict:
@@ -282,161 +301,6 @@ class ParticleFilterTracker(Tracker):
         """max over particles of ``match`` (1 - D^2) in the last frame; NaN if unknown."""
         m = self._match
         return float(np.nanmax(m)) if m.size and np.isfinite(m).any() else float("nan")
-
-    def _last_confidence(self) -> float:
-        """The confidence ``state()`` reports: the best particle's match of the last frame.
-
-        Returns
-        -------
-        float
-            max_i (1 - D^2_i) (:attr:`best_match`, the number the distance gate reads), in
-            [0, 1]; 0, the lowest match, on a constant frame, which is not scored. Read from
-            what the last ``update`` stored, so calling it changes nothing.
-        """
-        m = self.best_match
-        return m if np.isfinite(m) else 0.0
-
-    def on_lost(self):
-        """Hook: react to a lost frame (default: nothing).
-
-        ``_update`` calls it at the end of every frame it reports lost (``ok=False``): a flat
-        frame (see ``flat_range``), likelihoods that carry no information (all zero or not
-        finite, or a sum at most ``min_total_likelihood``), or a frame the distance gate calls
-        lost (see "Lost rule" in the class docstring). It is not called on frames that are
-        tracked.
-
-        When it is called, ``self.lost`` is True; ``self._particles`` holds this frame's
-        predicted (and refined) particles and may be edited in place; ``self._weights`` are
-        uniform (no information) or this frame's normalised likelihoods (gated out);
-        ``self.estimate`` is still the last good estimate, which ``update`` returns; and
-        ``self._lost_in_a_row`` counts this frame. The next ``update`` resamples by
-        ``self._weights``, scatters ``scatter_fraction`` of the particles over the frame and
-        calls ``predict`` with ``self.lost`` still True. ``ColorPF`` zeroes the particles'
-        velocities here; ``CentreParticleFilter`` counts the lost frames that widen its
-        spread.
-
-        Returns
-        -------
-        None
-            The return value is ignored.
-        """
-
-    def _gated_out(self) -> bool:
-        """The distance gate of the class docstring: True if this frame's best match is both
-        below ``lost_below`` and far above the recent range of ``D^2``. Records the frame's
-        ``D^2`` in the range when it passes."""
-        below = float(getattr(self.params, "lost_below", 0.0))
-        m = self._match
-        if below <= 0 or not (m.size and np.isfinite(m).any()):
-            return False
-        d2 = 1.0 - float(np.nanmax(m))
-        hist = self._gate_d2
-        if self._lost_in_a_row >= self.gate_patience:
-            hist.clear()                    # the look changed for good: rebuild the range
-        if self._outside_range(1.0 - d2):
-            return True
-        hist.append(d2)
-        del hist[:-self.gate_window]
-        return False
-
-    def _outside_range(self, match: float) -> bool:
-        """The distance gate's test of one match ``1 - D^2``, without recording it: below
-        ``lost_below`` and ``D^2`` above ``med + lost_k max(1.4826 MAD, med / 2)`` of the
-        recent range (never before five frames have passed)."""
-        below = float(getattr(self.params, "lost_below", 0.0))
-        hist = self._gate_d2
-        if below <= 0 or len(hist) < 5 or not match < below:
-            return False
-        d2 = 1.0 - float(match)
-        v = np.asarray(hist)
-        med = float(np.median(v))
-        spread = max(1.4826 * float(np.median(np.abs(v - med))), med / 2.0)
-        return d2 > med + float(getattr(self.params, "lost_k", 3.0)) * spread
-
-    def _stands_out(self, frame, particles) -> bool:
-        """The gate's second look (see "Lost rule"): whether the best particle's match is at
-        least ``contrast_floor`` and beats the median match of the ``probe_offsets`` boxes
-        around it, of its own size, by at least ``gate_contrast``. Computed only on frames the
-        distance gate would call lost.
-
-        Parameters
-        ----------
-        frame : (H, W, 3) uint8 array
-            This frame.
-        particles : (N, d) array
-            This frame's weighted particles; ``self._match`` holds their matches.
-
-        Returns
-        -------
-        bool
-            True keeps the frame (not lost). Override to return False for a tracker whose
-            features stand out on any textured background; the probes' ``likelihood`` call
-            must leave ``self._match`` and the attributes named in ``_probe_keeps`` as
-            they were (this method restores them).
-        """
-        m = self._match
-        i = int(np.nanargmax(m))
-        best = float(m[i])
-        if self.gate_contrast <= 0 or best < self.contrast_floor:
-            return False
-        box = np.asarray(self.state_to_box(particles[i]), dtype=float)
-        centres = box[:2] + box[2:] / 2 + np.asarray(self.probe_offsets) * box[2:]
-        inside = np.all((centres >= 0) & (centres < self._frame_wh), axis=1)
-        if inside.sum() < 2:
-            return False
-        probes = np.repeat(particles[i:i + 1], int(inside.sum()), axis=0)
-        probes[:, 0:2] += centres[inside] - (box[:2] + box[2:] / 2)
-        saved = {k: getattr(self, k) for k in self._probe_keeps if hasattr(self, k)}
-        self.likelihood(frame, probes)
-        around = float(np.nanmedian(self._match))
-        for k, v in saved.items():
-            setattr(self, k, v)
-        self._match = m
-        self._contrast = best - around
-        return best - around >= self.gate_contrast
-
-    def _scatter(self, particles):
-        """Recovery while lost (see "Lost rule"): a random ``scatter_fraction`` of the
-        particles restart at rest at the size of the first box, on a jittered grid over the
-        whole frame (one particle per grid cell, so the frame is covered evenly at a cost
-        bounded by N); of the others, half keep what the last frame's weights selected (so the
-        search closes in on a good match over a few frames) and half restart at rest at the
-        last estimate (all of them after a frame with nothing to weigh, uniform weights).
-        ``_scatter_reset`` clears what else should not carry over."""
-        n = particles.shape[0]
-        k = int(round(self.scatter_fraction * n))
-        if k <= 0:
-            return particles
-        # at rest: the state of a box (zero velocity, unit size change); columns 0-1 are the
-        # centre in every tracker here
-        home = self.box_to_state(self.state_to_box(self.estimate))
-        order = self.rng.permutation(n)
-        idx = order[:k]
-        if np.ptp(self._weights) == 0:
-            particles[:] = home
-        else:
-            particles[order[k:k + (n - k) // 2]] = home  # half of the rest waits where it left
-        particles[idx] = self._start_state
-        particles[idx, 0:2] = scatter_grid(k, self._frame_wh, self.rng)
-        self._scatter_reset(particles, idx)
-        return particles
-
-    def _scatter_reset(self, particles, idx):
-        """Hook: clear the parts of scattered particles' states that should not carry over
-        (default: nothing).
-
-        Parameters
-        ----------
-        particles : (N, d) array
-            The particles being scattered while lost; edit in place.
-        idx : (k,) int array
-            The rows just restarted on the grid over the frame (at the first box's state,
-            centre moved).
-
-        Returns
-        -------
-        None
-        """
 
     def refine(self, frame, particles):
         """Hook: move the predicted particles before they are weighted (default: don't).
@@ -489,7 +353,7 @@ class ParticleFilterTracker(Tracker):
         -------
         (N, d) array
             N states (N usually ``self.params.n_particles``), columns 0-1 the centre (x, y):
-            the lost rule's scatter and the drawings rely on it. Draw any noise from
+            ``respread`` and the drawings rely on it. Draw any noise from
             ``self.rng``. They start with uniform weights.
         """
         raise NotImplementedError
@@ -525,10 +389,10 @@ class ParticleFilterTracker(Tracker):
         -------
         (N,) array
             Unnormalised weights >= 0 (``update`` normalises them; all zero or not finite
-            means a lost frame). For the distance gate also set ``self._match`` to the
-            (N,) matches ``1 - D^2`` in [0, 1]; left NaN, the gate is off. It is also called
-            on the eight probe boxes of the gate's second look, so keep per-frame records
-            in attributes named in ``_probe_keeps``.
+            means no estimate this frame). Also set ``self._match`` to the (N,) matches
+            ``1 - D^2`` in [0, 1] (the confidence; left NaN, the confidence is 0). It is also
+            called by ``_score_boxes`` on boxes of the re-detection layer, which restores
+            every attribute afterwards.
         """
         raise NotImplementedError
 
