@@ -67,7 +67,6 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
     },
     "kalman-covariance": {
         **_LEE2015,
-        "fallback": ("lee2015.research_in_window", "reading"),
         "q": ("lee2015.q_identity", "printed"),
         "r": ("lee2015.r_identity", "printed"),
         # the 24 x 24 region is printed for the search-rate measurement, not for a model window
