@@ -17,7 +17,6 @@ PRINTED = {
         "q": 1.0,              # sec. 2.2: Q = I (4 x 4) printed
         "r": 1.0,              # sec. 2.2: R = I (2 x 2) printed
         "init_size": 24,       # sec. 3, after Table 1: "moving in a 24x24 area"
-        "fallback": "window",  # sec. 2.3: if it does not converge, search again in the Kalman window
         "features": "xyIIxIy",  # sec. 2.1, eq. 2: [x y I Ix ...], signed gradients
     },
     "covariance": {
@@ -28,9 +27,8 @@ PRINTED = {
 NOT_IN_PAPER = {
     "covariance": {"stride", "search_radius", "threshold", "global_stride", "eps",
                    "model_update"},
-    "kalman-covariance": {"stride", "search_radius", "threshold", "global_stride", "eps",
-                          "model_update", "p0", "gate", "min_radius", "manoeuvre_gate",
-                          "manoeuvre_sigma", "motion_threshold"},
+    "kalman-covariance": {"stride", "search_radius", "threshold", "eps", "model_update", "p0",
+                          "gate", "min_radius", "motion_threshold"},
 }
 
 
@@ -48,33 +46,45 @@ def test_paper_preset_is_the_printed_method(name):
 
 def test_paper_preset_has_no_book_additions():
     p = trackers.create("kalman-covariance", preset="paper").params
-    assert p.manoeuvre_gate == 0.0        # the manoeuvre re-search is off
     assert p.model_update == 0.0          # the model is never updated
-    assert p.fallback == "window"         # never the whole frame
+    # the manoeuvre re-search and a whole-frame search are not part of the name at all
+    for key in ("manoeuvre_gate", "manoeuvre_sigma", "fallback", "global_stride"):
+        assert not hasattr(p, key), key
+    m = trackers.create("kalman-covariance-manoeuvre", preset="paper").params
+    assert m.manoeuvre_gate == 0.0        # the variant's paper preset switches it off
 
 
 def test_book_departures_are_listed_with_a_why():
     rows = {r["param"]: r for r in trackers.departures("kalman-covariance")}
-    for key in ("threshold", "gate", "fallback", "features", "manoeuvre_gate"):
+    for key in ("threshold", "gate", "features"):
         assert key in rows and rows[key]["why"].strip(), key
     assert "q" not in rows and "r" not in rows     # Q = I, R = I as printed
     assert not is_departure(fields("kalman-covariance")["init_size"])
+    rows = {r["param"]: r for r in trackers.departures("kalman-covariance-manoeuvre")}
+    assert rows["manoeuvre_gate"]["why"].strip()
 
 
-def test_kalman_paper_preset_never_searches_the_whole_frame():
-    # A target that vanishes: the book's tracker searches the whole frame, the paper's only
-    # searches again inside its Kalman window, so it evaluates far fewer windows.
+@pytest.mark.parametrize("preset", ["book", "paper"])
+def test_kalman_covariance_never_searches_the_whole_frame(preset):
+    # A target that vanishes: the paper's proposed tracker searches again only inside its
+    # Kalman window [quote: lee2015.research_in_window]; the baseline searches the whole frame
+    # [quote: lee2015.whole_frame_search].
     frame = np.full((120, 160, 3), 90, np.uint8)
     frame[40:64, 60:84] = (40, 60, 200)
     frame[45:50, 65:70] = 250
     empty = np.full_like(frame, 90)
     empty[::7] = 30
     counts = {}
-    for preset in ("book", "paper"):
-        t = trackers.create("kalman-covariance", preset=preset)
+    for name in ("kalman-covariance", "covariance"):
+        t = trackers.create(name, preset=preset)
         t.init(frame, (60, 40, 24, 24))
-        t.update(empty)
-        counts[preset] = t.frame_report()["candidates"]
-        area = t.search_window[2] * t.search_window[3]
-        assert counts[preset] >= 1 and area < frame.shape[0] * frame.shape[1]
-    assert counts["paper"] < counts["book"]
+        ok, _ = t.update(empty)
+        assert not ok                        # no window matches: d_F above the threshold
+        counts[name] = t.frame_report()["candidates"]
+    t = trackers.create("kalman-covariance", preset=preset)
+    t.init(frame, (60, 40, 24, 24))
+    t.update(empty)
+    sw = t.search_window
+    # every candidate's centre lies in the Kalman window: at most its (2r + 1)^2 centres
+    assert counts["kalman-covariance"] <= (sw[2] - 24 + 1) * (sw[3] - 24 + 1)
+    assert counts["kalman-covariance"] < counts["covariance"]

@@ -67,7 +67,6 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
     },
     "kalman-covariance": {
         **_LEE2015,
-        "fallback": ("lee2015.research_in_window", "reading"),
         "q": ("lee2015.q_identity", "printed"),
         "r": ("lee2015.r_identity", "printed"),
         # the 24 x 24 region is printed for the search-rate measurement, not for a model window
@@ -93,6 +92,15 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
         "flow_iterations": ("cho2005.flow_eq8", "reading"),
     },
 }
+# A variant has the fields of the tracker it varies: the re-detecting names, and the book's
+# manoeuvre variant of kalman-covariance (its own two fields are not in the paper).
+for _base, _variants in {"covariance": ["covariance-redetect"],
+                         "kalman-covariance": ["kalman-covariance-redetect",
+                                               "kalman-covariance-manoeuvre",
+                                               "kalman-covariance-manoeuvre-redetect"],
+                         "mean-shift": ["mean-shift-redetect"]}.items():
+    for _v in _variants:
+        FIELDS[_v] = dict(FIELDS[_base])
 
 
 def _oracle(tracker: str, field: str) -> tuple[str, str | None]:

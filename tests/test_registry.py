@@ -21,8 +21,11 @@ from trackbook.trackers.reference import REFERENCE
 # another): written out here, not read from the registry under test.
 BOOK_GROUPS = [["color-pf", "color-hog-pf", "color-hog-ipca"],                  # lee2012
                ["hsi-color-pf", "hog-pf", "edge-ray-pf"],                       # kim2016
-               ["covariance", "kalman-covariance"],                             # lee2015
-               ["condensation", "mean-shift", "condensation-mean-shift"],       # cho2005
+               ["covariance", "covariance-redetect", "kalman-covariance",       # lee2015
+                "kalman-covariance-redetect", "kalman-covariance-manoeuvre",
+                "kalman-covariance-manoeuvre-redetect"],
+               ["condensation", "mean-shift", "mean-shift-redetect",            # cho2005
+                "condensation-mean-shift"],
                ["camshift"],                                                    # bradski1998
                ["mosse", "kcf"],                                                # correlation
                ["median-flow"]]                                                 # kalal2010

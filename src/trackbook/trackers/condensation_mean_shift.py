@@ -40,7 +40,7 @@ from ..filters.mean_shift import (BANDWIDTHS, bin_image, ellipse_rho, mean_shift
 from ..filters.optical_flow import motion_vector, pyramid
 from .particle_filter import ParticleFilterTracker, resampler_param
 from ..params import NOT_PRINTED, param
-from .base import Tracker, readonly, readonly_attr
+from .base import Tracker, readonly, readonly_attr, redetecting
 from .registry import register
 
 #: Names of the seven components of a candidate (eq. 1).
@@ -103,14 +103,6 @@ class EllipseColourParams:
                                "at the ellipse's edge in every direction; with the printed a the "
                                "edge pixels keep Hy^2/a^2 to Hx^2/a^2 (1/2 on a circle), a kernel "
                                "cut off at the edge")
-    min_rho: float = param(0.3, 0.0, 1.0, 0.05,
-                           "best rho below this: the frame is reported lost (ok=False) and the "
-                           "search widens to the whole frame",
-                           paper=NOT_PRINTED, paper_value=0.0,
-                           why="the paper's trackers have no lost state, though it reports "
-                               "mean-shift failing after targets overlap [quote: "
-                               "cho2005.multi_mean_shift_fails]; the book flags frames whose "
-                               "best rho is below 0.3 (0 = off)")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -141,6 +133,14 @@ class CondensationParams(EllipseColourParams):
                                why="eq. 1 has a size change a but no spread; the book fixes the "
                                    "size (0) because the colour likelihood lets it shrink "
                                    "(08_mean_shift)")
+    min_rho: float = param(0.3, 0.0, 1.0, 0.05,
+                           "best rho below this: the frame is reported lost (ok=False) and the "
+                           "search widens to the whole frame",
+                           paper=NOT_PRINTED, paper_value=0.0,
+                           why="the paper's trackers have no lost state, though it reports "
+                               "mean-shift failing after targets overlap [quote: "
+                               "cho2005.multi_mean_shift_fails]; the book flags frames whose "
+                               "best rho is below 0.3 (0 = off)")
     # §3.2 step ①: sample from the weighted set
     resampler: str = resampler_param("factored sampling (step ①)",
                                      reading="cho2005.condensation_sampling", paper="multinomial")
@@ -481,13 +481,12 @@ class MeanShift(_EllipseColourModel, Tracker):
     rho : (1,) its Bhattacharyya coefficient
     trajectory : (T, 2) the centres visited by the last frame's iterations (steps ①-⑥)
 
-    Lost rule: a flat frame, or a climb that ends below ``min_rho``, is lost; the latter climbs
-    again from a grid over the whole frame (``_search_frame``, at most ``max_starts`` starts).
-
-    Confidence: ``state().confidence`` is the Bhattacharyya coefficient at the estimate,
-    rho[p(y), q] = sum_u sqrt(p_u(y) q_u), p(y) the colour distribution (eq. 3) of the
-    ellipse where the climb stopped (the whole-frame search's hill top when that was taken),
-    in [0, 1]; 0 on a constant frame.
+    Confidence: ``state().confidence`` is the Bhattacharyya coefficient where the climb
+    stopped, rho[p(y), q] = sum_u sqrt(p_u(y) q_u), p(y) the colour distribution (eq. 3) of
+    the ellipse, in [0, 1]; 0 on a constant frame (not scored). ``ok`` comes from the
+    failure-detection layer on it: a lost frame keeps the last ellipse, so the next climb
+    starts where the target was last seen. ``mean-shift-redetect`` adds the re-detection
+    layer (the whole frame scored by rho while lost, the climb restarted at the best box).
     """
 
     name = "mean-shift"
@@ -501,65 +500,54 @@ class MeanShift(_EllipseColourModel, Tracker):
         self._trajectory = self._centre[None, :].copy()
         self._report = {}
 
-    def _update(self, frame):
+    def _locate(self, frame):
+        """Steps ①-⑥ of §3.3 from the last centre; returns ``(box, rho)``. The ellipse moves
+        only in :meth:`_learn`."""
         p = self.params
         if self._is_flat(frame):
-            # a constant frame (all black, all white, one grey): its one colour may even share
-            # a bin with the target's, but nothing in it can be the target -- lost, stay put
+            # a constant frame (all black, all white, one grey): nothing in it can be the
+            # target (the base reports it lost); not scored
             self._rho = np.zeros(1)
             self._trajectory = self._centre[None, :].copy()
             self._report = {"mean_likelihood": 0.0, "mean_rho": 0.0, "histograms": 0.0,
                             "pixels": 0.0}
-            return False, ellipse_to_box(*self._centre, *self._axes)
+            return ellipse_to_box(*self._centre, *self._axes), 0.0
         img = self._bin_image(frame, self._centre[None, :], self._axes[None, :] * 1.1, margin=1.0)
+        axes = self._axes
         if p.scale_adapt:
             res, axes = mean_shift_with_scale(img, self.q, self._centre, self._axes,
                                               gamma=p.gamma, max_iter=p.max_iter, eps=p.eps,
                                               bandwidth=p.bandwidth)
-            self._axes = np.clip(axes, self._min_axes, self._max_axes)
+            axes = np.clip(axes, self._min_axes, self._max_axes)
         else:
             res = mean_shift(img, self.q, self._centre[None, :], self._axes[None, :],
                              max_iter=p.max_iter, eps=p.eps, bandwidth=p.bandwidth)
         self._trajectory = res.trajectory[:, 0, :]
         H, W = self._shape[:2]
-        self._centre = np.clip(res.centres[0], [0, 0], [W, H])
+        centre = np.clip(res.centres[0], [0, 0], [W, H])
         self._rho = res.rho.copy()
-        if p.min_rho > 0 and self._rho[0] < p.min_rho:
-            self._search_frame(frame)
         lik = colour_likelihood(self._rho, p.sigma)
         self._report = {"mean_likelihood": float(lik[0]), "mean_rho": float(self._rho[0]),
                         "histograms": float(res.histograms), "pixels": float(res.pixels)}
-        ok = bool(self._rho[0] >= p.min_rho)
-        return ok, ellipse_to_box(*self._centre, *self._axes)
+        return ellipse_to_box(*centre, *axes), float(self._rho[0])
 
-    #: The whole-frame search starts this many climbs at most (a grid over the frame).
-    max_starts = 400
+    def _learn(self, frame, box):
+        """Move the ellipse to ``box`` (the model q is the first frame's: no update)."""
+        e = box_to_ellipse(box)
+        self._centre, self._axes = e[:2].copy(), e[2:].copy()
 
-    def _search_frame(self, frame):
-        """Recovery: the climb ended below ``min_rho`` (the target is not where it was), so
-        climb again from a grid of starts over the whole frame, one half-axis apart (fewer on
-        a large frame, at most ``max_starts``), and keep the best hill top if it reaches
-        ``min_rho``. Only a lost frame pays for it; a tracker that never loses the target
-        never runs it."""
-        p = self.params
+    def _score_boxes(self, frame, boxes):
+        """rho of the ellipse inscribed in every box against q (eq. 3), one bin image."""
+        b = np.asarray(boxes, dtype=float)
+        centres, axes = b[:, :2] + b[:, 2:] / 2, b[:, 2:] / 2
+        img = self._bin_image(frame, centres, axes, margin=0.1)
+        rho, _, _ = ellipse_rho(img, self.q, centres, axes, self.params.bandwidth)
+        return rho
+
+    def _relocate(self, frame, box):
+        """Restart the climb at ``box``'s centre (the half-axes stay)."""
         H, W = self._shape[:2]
-        step = np.maximum(self._axes, np.sqrt(W * H / self.max_starts))
-        xs = np.arange(step[0] / 2, W, step[0])
-        ys = np.arange(step[1] / 2, H, step[1])
-        starts = np.stack(np.meshgrid(xs, ys), -1).reshape(-1, 2)
-        img = self._bin_image(frame, starts, self._axes[None, :], margin=1.0)
-        res = mean_shift(img, self.q, starts, self._axes[None, :], max_iter=p.max_iter, eps=p.eps,
-                         bandwidth=p.bandwidth)
-        best = int(np.argmax(res.rho))
-        self._report["search_starts"] = float(len(starts))
-        if res.rho[best] >= max(p.min_rho, float(self._rho[0])):
-            self._centre = np.clip(res.centres[best], [0, 0], [W, H])
-            self._rho = res.rho[best:best + 1].copy()
-            self._trajectory = res.trajectory[:, best, :]
-
-    def _last_confidence(self) -> float:
-        """rho of the last frame's estimate (see "Confidence")."""
-        return float(self._rho[0])
+        self._centre = np.clip(box_to_ellipse(box)[:2], [0, 0], [W, H])
 
     def frame_report(self) -> dict:
         """The likelihood of the single candidate (Cho & Kang 2005 Fig. 5), its rho, and the
@@ -586,3 +574,6 @@ class MeanShift(_EllipseColourModel, Tracker):
         """The ``ellipse`` (cx, cy, Hx, Hy) and its single candidate as a particle of weight 1."""
         return {**super()._drawn(), "ellipse": self.ellipse, "particles": self.particles,
                 "weights": self.weights}
+
+
+register(redetecting(MeanShift))

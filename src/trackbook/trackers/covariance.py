@@ -3,20 +3,28 @@
 ``covariance`` (the paper's baseline, Fig. 3 [quote: lee2015.frames184])
     compares the target's covariance (eq. 4) with every candidate window of the target's size
     around the last position (Förstner distance d_F = ρ, eq. 5–6); the smallest ρ wins. When
-    even the best ρ is above ``threshold`` the target is lost and the whole frame is searched
-    (the paper describes this whole-frame search for covariance alone, Fig. 3, frame 160
-    [quote: lee2015.whole_frame_search]).
+    even the best ρ is above ``threshold`` the match has not converged and the whole frame is
+    searched (the paper describes this whole-frame search for covariance alone, Fig. 3, frame
+    160 [quote: lee2015.whole_frame_search]).
 ``kalman-covariance`` (proposed, Fig. 1)
     predicts the target's centre with a constant-velocity Kalman filter (eq. 7–13), searches
     only inside the predicted search window, takes the best candidate's centre as the
-    measurement and updates the filter. When the match is poor the paper searches again, in
-    our reading *inside the Kalman window* [quote: lee2015.research_in_window]
-    (``fallback="window"``, the paper preset); no size of the window from S is printed. Both are the book's: the window's half-size of ``gate`` σ
-    of the innovation covariance S = H P⁻ Hᵀ + R, the ``threshold``, and the whole-frame
-    fallback of the book default (``fallback="frame"``).
-    Not in the paper either: when the best ρ is much worse than usual (``manoeuvre_gate``) the
-    target has probably changed velocity (a bounce); the window is searched again as if the
-    velocity were uncertain by ``manoeuvre_sigma`` px/frame (07_region_covariance, "The bounce").
+    measurement and updates the filter. When the match does not converge (best ρ above
+    ``threshold``) the paper searches again, in our reading *inside the Kalman window*
+    [quote: lee2015.research_in_window]: no update, so the next, larger window is searched.
+    No size of the window from S is printed: its half-size of ``gate`` σ of the innovation
+    covariance S = H P⁻ Hᵀ + R is the book's, as is the value of ``threshold``.
+``kalman-covariance-manoeuvre`` (the book's variant, compared with the IMM)
+    ``kalman-covariance`` plus a manoeuvre re-search, not in the paper: when the best ρ is
+    much worse than usual (``manoeuvre_gate``) the target has probably changed velocity (a
+    bounce); the window is searched again as if the velocity were uncertain by
+    ``manoeuvre_sigma`` px/frame (07_region_covariance, "The bounce").
+
+All of them report ``ok`` from the failure-detection layer
+(:class:`~trackbook.trackers.failure.FailureDetector` on the confidence -d_F), and also lost
+when the paper's own test fails (best ρ above ``threshold``); a lost frame keeps the last box
+and teaches nothing. The ``-redetect`` names add the re-detection layer (the whole frame
+scored with -d_F while lost).
 
 Both count exactly the candidate windows they evaluate and report per frame (``frame_report``)
 ``search_rate`` = evaluated / all windows of the target's size in the frame at ``stride`` —
@@ -41,7 +49,7 @@ from ..features.covariance import (FEATURE_SETS, IntegralCovariance, Workspace,
 from ..features.frame_difference import find_moving_region
 from ..filters.kalman import constant_velocity
 from ..params import NOT_PRINTED, param
-from .base import Tracker
+from .base import Tracker, redetecting
 from .registry import register
 
 #: How many accepted frames the relative gate's median ρ looks back (one second at 25 fps).
@@ -49,7 +57,9 @@ RHO_HISTORY = 25
 
 
 @dataclasses.dataclass(frozen=True)
-class CovarianceParams:
+class _CovarianceModelParams:
+    """The tunables both trackers of Lee (2015) share: the model, its candidates, the test."""
+
     # Section numbers are those of Lee (2015), J. KIICE 19(6), pp. 1477-1484.
     features: str = param(
         "xyI|Ix||Iy|", doc="feature vector f_k: eq. 2 with |Ix|, |Iy| (default), eq. 2 as "
@@ -69,23 +79,11 @@ class CovarianceParams:
         why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (07_region_covariance "
             "compares the search rates)")
     threshold: float = param(
-        3.0, 0.1, 20.0, 0.1, doc="d_F (eq. 5) above which the match is poor: the target is "
-        "lost and `fallback` says where to search again",
+        3.0, 0.1, 20.0, 0.1, doc="d_F (eq. 5) above which the match has not converged (sec. "
+        "2.3): the frame is lost (covariance then searches the whole frame, `fallback`)",
         paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
         why="on RedCube the tracked cube scores d_F ≈ 0.5 and background windows above 4; 3 lies "
             "between (07_region_covariance measures it)")
-    fallback: str = param(
-        "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
-        "frame ('frame') or nowhere else, keeping the prediction ('window')",
-        choices=("frame", "window"),
-        printed="lee2015.whole_frame_search",
-        paper="frame")     # sec. 3, Fig. 3, frame 160: covariance alone searches the whole frame
-    global_stride: int = param(
-        4, 1, 16, 1, doc="stride of the coarse whole-frame search (refined at `stride` "
-        "around its best window)",
-        paper=NOT_PRINTED, paper_value=1,   # sec. 3: every window of the frame is a candidate
-        why="coarse-to-fine (4 px, then refined at `stride` around the best window) evaluates "
-            "about 16 times fewer windows than the exhaustive search")
     eps: float = param(
         1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6",
         paper=NOT_PRINTED,   # eq. 5-6 assume positive-definite matrices
@@ -97,15 +95,27 @@ class CovarianceParams:
 
 
 @dataclasses.dataclass(frozen=True)
-class KalmanCovarianceParams(CovarianceParams):
+class CovarianceParams(_CovarianceModelParams):
+    """Tunables of ``covariance``: the shared ones and its whole-frame search (Fig. 3)."""
+
     fallback: str = param(
         "frame", doc="where to search again when the best d_F is above `threshold`: the whole "
-        "frame ('frame') or only the next, larger Kalman window ('window')",
+        "frame ('frame', as printed) or nowhere else ('window')",
         choices=("frame", "window"),
-        reading="lee2015.research_in_window",
-        paper="window",   # sec. 2.3 (Fig. 1): "searches again inside the Kalman window"
-        why="the book's addition: with the manoeuvre re-search off, a whole-frame search finds "
-            "the yellow ball again after its first bounce; 'window' is the paper's")
+        printed="lee2015.whole_frame_search",
+        paper="frame")     # sec. 3, Fig. 3, frame 160: covariance alone searches the whole frame
+    global_stride: int = param(
+        4, 1, 16, 1, doc="stride of the coarse whole-frame search (refined at `stride` "
+        "around its best window)",
+        paper=NOT_PRINTED, paper_value=1,   # sec. 3: every window of the frame is a candidate
+        why="coarse-to-fine (4 px, then refined at `stride` around the best window) evaluates "
+            "about 16 times fewer windows than the exhaustive search")
+
+
+@dataclasses.dataclass(frozen=True)
+class KalmanCovarianceParams(_CovarianceModelParams):
+    """Tunables of ``kalman-covariance``: the shared ones and the Kalman filter's."""
+
     q: float = param(1.0, 0.01, 100.0, 0.1, doc="Q = q·I (eq. 10)",
                      printed="lee2015.q_identity", paper=1.0)   # sec. 2.2: Q = I_4 printed
     r: float = param(1.0, 0.01, 100.0, 0.1, doc="R = r·I (eq. 11)",
@@ -124,17 +134,6 @@ class KalmanCovarianceParams(CovarianceParams):
         paper=NOT_PRINTED,   # no window size printed
         why="a floor under the gate (with Q = R = I, 3σ of S settles near ±7 px); 4 px keeps a "
             "search area if q, r are set small")
-    manoeuvre_gate: float = param(
-        3.0, 0.0, 10.0, 0.5, doc="κ: a best d_F above κ·(median d_F of the last accepted "
-        "frames) signals a manoeuvre; 0 = never",
-        paper=NOT_PRINTED, paper_value=0.0,   # not in the paper; 0 switches it off
-        why="the book's addition: a ball's bounce leaves the constant-velocity window while d_F "
-            "stays below `threshold` (07_region_covariance, the bounce)")
-    manoeuvre_sigma: float = param(
-        8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity change allowed on a "
-        "manoeuvre: the second, larger window",
-        paper=NOT_PRINTED,   # not in the paper; unused when manoeuvre_gate = 0
-        why="the book's addition: 8 px/frame, about a bouncing ball's speed change")
     motion_threshold: float = param(
         10.0, 1.0, 100.0, 1.0, doc="grey-level change that counts as motion in "
         "`init_from_motion`'s frame difference",
@@ -191,40 +190,22 @@ class _CovarianceSearch(Tracker):
 
     Lost rule
     ---------
-    Besides ρ > ``threshold``, a chosen window whose feature covariance is (near) singular --
-    smallest eigenvalue at most ``singular_tol`` times the largest, e.g. no intensity or
-    gradient variation at all in an all-black, all-white or constant frame -- carries no
-    information about the target: the regularised ρ of eq. 5-6 against such a window is only
-    a number produced by ε, so the frame is reported lost (``ok=False``) and the model is not
-    updated. A target leaving across the border: candidate windows stay inside the frame, so
-    the best window's ρ rises as the target's visible part shrinks, and is lost above
-    ``threshold``. While lost (``fallback="frame"``) the whole frame is searched every frame,
-    at a bounded cost (``max_global_windows`` coarse windows, then a few refinements), and
-    ``ok=True`` comes back only with a best ρ at most ``threshold``.
+    ``ok`` comes from the failure-detection layer on the confidence below; the paper's own
+    test, a best ρ above ``threshold`` (the match "does not converge", sec. 2.3), also makes
+    the frame lost. A lost frame keeps the last box and does not update the model. Candidate
+    windows stay inside the frame, so a target leaving across the border raises the best ρ
+    as its visible part shrinks.
 
     Confidence
     ----------
     ``state().confidence`` is the negative Förstner distance of the last frame's best window,
     -d_F = -sqrt(sum_k ln^2 λ_k) (eq. 5-6, λ_k the generalised eigenvalues of
     λ (C_model + εI) x = (C_best + εI) x), i.e. ``-best_rho``: at most 0, larger is surer. On
-    a lost frame it is that of the best window the searches found (the whole frame's when it
-    was searched); a distance beyond float64 is given as the most negative float.
+    a frame that searched the whole frame it is that of the best window found; a distance
+    beyond float64 is given as the most negative float.
     """
 
     Params = CovarianceParams
-    #: λ_min / λ_max at or below this: the window's covariance is singular (no information).
-    singular_tol = 1e-10
-
-    def _informative(self, frame, box) -> bool:
-        """Whether the window ``box`` has a non-singular feature covariance (see Lost rule).
-        A window the last search scored reuses its covariance instead of computing it again."""
-        b = np.asarray(box, dtype=np.int64)
-        boxes, Cs = getattr(self, "_scored", (np.zeros((0, 4), np.int64), None))
-        hit = np.flatnonzero(np.all(boxes == b, axis=1)) if len(boxes) else []
-        C = Cs[hit[0]] if len(hit) else self._covariances(frame, b[None])[0]
-        ev = np.linalg.eigvalsh((C + C.T) / 2.0)
-        return bool(np.all(np.isfinite(ev)) and ev[-1] > 0
-                    and ev[0] > self.singular_tol * ev[-1])
 
     # -- scoring -------------------------------------------------------------------------
     def _covariances(self, frame, boxes):
@@ -249,10 +230,6 @@ class _CovarianceSearch(Tracker):
     def _score(self, frame, boxes):
         Cs = self._covariances(frame, boxes)
         rho = forstner_distance(self._model, Cs, self.params.eps)
-        # keep the covariances of the set holding this frame's best window (for _informative)
-        if len(boxes) and (self._n_evaluated == 0 or rho.min() <= self._scored_best):
-            self._scored = (np.array(boxes, np.int64), np.array(Cs))
-            self._scored_best = float(rho.min())
         self._n_evaluated += len(boxes)
         return rho
 
@@ -333,9 +310,22 @@ class _CovarianceSearch(Tracker):
         return (center[0] - w / 2.0 - radius[0], center[1] - h / 2.0 - radius[1],
                 w + 2.0 * radius[0], h + 2.0 * radius[1])
 
-    def _last_confidence(self) -> float:
-        """-d_F of the last frame's best window (see "Confidence")."""
-        return -min(float(self.best_rho), float(np.finfo(float).max))
+    @staticmethod
+    def _confidence(rho) -> float:
+        """-d_F (see "Confidence"), finite: a distance beyond float64 is the most negative float."""
+        return -min(float(rho), float(np.finfo(float).max))
+
+    def _score_boxes(self, frame, boxes):
+        """-d_F of every box (moved inside the frame, whole pixels) against the model; for the
+        re-detection layer. Counts nothing and changes nothing."""
+        H, W = frame.shape[:2]
+        w, h = self._size
+        b = np.asarray(boxes, dtype=float)
+        x = np.clip(np.round(b[:, 0] + b[:, 2] / 2.0 - w / 2.0), 0, W - w)
+        y = np.clip(np.round(b[:, 1] + b[:, 3] / 2.0 - h / 2.0), 0, H - h)
+        ib = np.column_stack([x, y, np.full(len(b), w), np.full(len(b), h)]).astype(np.int64)
+        rho = forstner_distance(self._model, self._covariances(frame, ib), self.params.eps)
+        return -np.minimum(rho, np.finfo(float).max)
 
     def frame_report(self) -> dict:
         """Per-frame numbers for Table 1: search rate, candidate count, best ρ."""
@@ -358,10 +348,13 @@ class CovarianceTracker(_CovarianceSearch):
 
     Candidates are target-sized windows whose centres lie within ±``search_radius`` px of
     the last box's centre (every ``stride`` px). If the best ρ exceeds ``threshold`` the
-    whole frame is searched; if that fails too, ``ok`` is False and the box stays put.
+    whole frame is searched, as the paper prints (``fallback="frame"``); if that fails too,
+    the frame is lost.
 
     Confidence: -d_F of the last frame's best window (the negative Förstner distance, see
-    "Confidence" of the shared search below).
+    "Confidence" of the shared search below). ``ok`` comes from the failure-detection layer
+    on it (and the paper's ρ > ``threshold``); ``covariance-redetect`` adds the re-detection
+    layer.
     """
 
     name = "covariance"
@@ -371,7 +364,9 @@ class CovarianceTracker(_CovarianceSearch):
         b = self._init_model(frame, box)
         self._center = (b[0] + b[2] / 2.0, b[1] + b[3] / 2.0)
 
-    def _update(self, frame):
+    def _locate(self, frame):
+        """The local search and, when it does not converge, the whole-frame search (Fig. 3).
+        Returns ``(box, -d_F, d_F <= threshold)``; the model and the search centre stay."""
         self._n_evaluated = 0
         r = self.params.search_radius
         box, rho, boxes, rhos = self._search(frame, self._center, (r, r))
@@ -382,11 +377,17 @@ class CovarianceTracker(_CovarianceSearch):
             if grho < rho:
                 box, rho = gbox, grho
         self.best_rho = rho
-        if rho > self.params.threshold or not self._informative(frame, box):
-            return False, np.asarray(self.bbox, dtype=float)
-        self._accept(frame, box, rho)
+        return box, self._confidence(rho), rho <= self.params.threshold
+
+    def _learn(self, frame, box):
+        self._accept(frame, box, self.best_rho)
         self._center = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
-        return True, box
+
+    def _relocate(self, frame, box):
+        self._center = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
+
+
+register(redetecting(CovarianceTracker))
 
 
 @register
@@ -396,31 +397,29 @@ class KalmanCovarianceTracker(_CovarianceSearch):
     Per frame: predict (eq. 9–10); the search window is the predicted centre ±
     max(``gate``·σ, ``min_radius``) with σ² the diagonal of S = H P⁻ Hᵀ + R; the best
     candidate's centre is the measurement y_k (eq. 8) and updates the filter (eq. 11–13).
-    Best ρ above ``threshold`` → with ``fallback="frame"`` (the book's) a whole-frame search;
-    still above, or with ``fallback="window"`` (the paper's), ``ok`` is False, no update (P keeps
-    growing, so the next Kalman window, searched again, is larger) and the box follows the
-    prediction. ``gate``, ``threshold`` and the whole-frame fallback are the book's choices.
+    Best ρ above ``threshold`` (the match does not converge): the frame is lost, no update,
+    so P keeps growing and the next Kalman window, searched again, is larger (the paper's
+    re-search inside the Kalman window). ``gate`` and the value of ``threshold`` are the
+    book's choices. The prediction is the filter's own state and moves on every frame, lost
+    or not (as a particle filter's particles do); only the update, the model and the
+    velocity it learns wait for a frame judged on target.
 
-    Manoeuvre (the book's addition, off with ``manoeuvre_gate=0``): a constant-velocity model
-    with Q = I cannot follow a bounce (the velocity reverses in one frame), and the best
-    window inside the small Kalman window is then some background whose ρ can still be
-    below ``threshold``. So when the best ρ exceeds ``manoeuvre_gate`` times the median ρ of
-    the last accepted frames, the prediction is redone from the previous posterior with
-    σ_v² = ``manoeuvre_sigma``² added to the velocity variance (an impulsive process noise,
-    the "adjustable process noise" of manoeuvring-target tracking). Its S and window are
-    larger, and if its best window is better the update uses that P⁻, whose larger
-    velocity gain lets the velocity estimate jump with the target.
+    ``ok`` comes from the failure-detection layer on the confidence below (and the paper's
+    ρ > ``threshold``); ``kalman-covariance-redetect`` adds the re-detection layer (the whole
+    frame scored with -d_F while lost, the filter restarted at rest at the best window). The
+    book's manoeuvre re-search is the variant ``kalman-covariance-manoeuvre``
+    (:class:`KalmanCovarianceManoeuvre`).
 
     Attributes (read-only, for drawing)
     -----------------------------------
     kalman : the :class:`~trackbook.filters.kalman.KalmanFilter` (``kalman.x``, ``kalman.P``)
-    prediction : (x⁻, P⁻) of the last frame, before the update (the manoeuvre one if used)
-    manoeuvre : True when the last frame's measurement came from the manoeuvre window
+    prediction : (x⁻, P⁻) of the last frame, before the update
+    manoeuvre : True when the last frame's measurement came from the manoeuvre window (only
+        ``kalman-covariance-manoeuvre``; always False here)
     ellipse : (cx, cy, hx, hy, angle°) the predicted position's ``gate``-σ uncertainty ellipse
     search_window, candidates, distances, best_rho, model : as for ``covariance``
 
-    Confidence: as ``covariance``'s, -d_F of the last frame's best window (the manoeuvre
-    window's or the whole frame's when those found a better one).
+    Confidence: as ``covariance``'s, -d_F of the last frame's best window.
     """
 
     name = "kalman-covariance"
@@ -497,43 +496,45 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         radius = (max(p.gate * sigma[0], p.min_radius), max(p.gate * sigma[1], p.min_radius))
         return (cx, cy), radius
 
-    def _update(self, frame):
+    def _manoeuvre_search(self, frame, posterior, found):
+        """Hook of :class:`KalmanCovarianceManoeuvre`; the paper's tracker has none."""
+        return found
+
+    def _locate(self, frame):
+        """Predict, search the Kalman window; returns ``(box, -d_F, d_F <= threshold)``.
+        The filter is not updated here (see the class docstring)."""
         self._n_evaluated = 0
-        kf, p = self._kf, self.params
+        kf = self._kf
         posterior = (kf.x.copy(), kf.P.copy())
         centre, radius = self._predict_window(frame.shape)
-        box, rho, boxes, rhos = self._search(frame, centre, radius)
+        found = self._search(frame, centre, radius) + (centre, radius)
         self.manoeuvre = False
-        typical = self.typical_rho()
-        if p.manoeuvre_gate > 0 and p.manoeuvre_sigma > 0 and rho > p.manoeuvre_gate * typical:
-            # Much worse than usual: the target probably changed velocity (a bounce, a turn).
-            # Re-predict as if the velocity had been uncertain by σ_v — P⁺'s velocity block
-            # grows by σ_v² — so S, the window, and on update the velocity gain grow with it.
-            first = (kf.x.copy(), kf.P.copy(), centre, radius)
-            kf.x, kf.P = posterior[0].copy(), posterior[1].copy()
-            kf.P[2:, 2:] += p.manoeuvre_sigma ** 2 * np.eye(2)
-            centre2, radius2 = self._predict_window(frame.shape)
-            box2, rho2, boxes2, rhos2 = self._search(frame, centre2, radius2)
-            if rho2 < rho:
-                box, rho, boxes, rhos, centre, radius = box2, rho2, boxes2, rhos2, centre2, radius2
-                self.manoeuvre = True
-            else:
-                kf.x, kf.P = first[0], first[1]
+        box, rho, boxes, rhos, centre, radius = self._manoeuvre_search(frame, posterior, found)
         self.prediction = (kf.x.copy(), kf.P.copy())
         self.candidates, self.distances = boxes, rhos
         self.search_window = self._window_of(centre, radius)
-        if rho > p.threshold and p.fallback == "frame":
-            gbox, grho = self._whole_frame_search(frame)
-            if grho < rho:
-                box, rho = gbox, grho
         self.best_rho = rho
-        w, h = self._size
-        if rho > p.threshold or not self._informative(frame, box):
-            return False, np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h])
-        self._accept(frame, box, rho)
-        kf.update((box[0] + w / 2.0, box[1] + h / 2.0))
-        return True, box
+        return box, self._confidence(rho), rho <= self.params.threshold
 
+    def _learn(self, frame, box):
+        """Update the filter with the window's centre (eq. 11-13) and the model."""
+        w, h = self._size
+        self._accept(frame, box, self.best_rho)
+        self._kf.update((box[0] + w / 2.0, box[1] + h / 2.0))
+
+    def _relocate(self, frame, box):
+        """Restart the filter at rest at ``box``'s centre, P = P₀ (for the re-detection layer)."""
+        b = np.asarray(box, dtype=float)
+        p = self.params
+        self._kf = constant_velocity((b[0] + b[2] / 2.0, b[1] + b[3] / 2.0), q=p.q, r=p.r,
+                                     p0=p.p0)
+
+
+register(redetecting(KalmanCovarianceTracker))
+
+
+# The book's manoeuvre variant, kalman-covariance-manoeuvre, registers itself there.
+from . import covariance_manoeuvre  # noqa: E402,F401
 
 __all__ = ["CovarianceTracker", "KalmanCovarianceTracker", "CovarianceParams",
            "KalmanCovarianceParams", "n_windows", "grid_boxes", "find_moving_region"]

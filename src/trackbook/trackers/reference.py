@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .base import Tracker
-from .lost import ColourCheck, MatchGate, visible_fraction
+from .lost import ColourCheck
 
 _CHILD = str(Path(__file__).with_name("_mil_child.py"))
 _LIVE: "weakref.WeakSet[OpenCVMIL]" = weakref.WeakSet()
@@ -75,33 +75,28 @@ class OpenCVMIL(Tracker):
 
     Lost rule
     ---------
-    OpenCV's MIL answers ``ok=True`` on almost every frame, and its classifier's response is
-    not exposed, so the wrapper applies the rules of the book's trackers to the box MIL
-    returns: a constant frame (all black, all white, one grey: grey levels spanning at most
-    ``flat_range``) is lost and not shown to MIL (it would learn it); a box with less than
-    ``min_visible`` of its area in the frame is lost; a box whose kernel colour histogram
-    (HSV 8 x 8 x 4, eq. 1 of Lee et al. 2012), at best over shifts of a quarter box
-    (:meth:`~trackbook.trackers.lost.ColourCheck.match_near`: MIL does not place its box by
-    colour), matches the first frame's poorly is lost (rho
-    below 0.5, or below 0.7 and far outside its recent range,
-    :class:`~trackbook.trackers.lost.MatchGate`, unless it stands out from the boxes around
-    it: a sudden change of light). While lost, the whole frame is searched by
-    colour (:meth:`~trackbook.trackers.lost.ColourCheck.search`, at most 325 histograms a
-    frame, paid only while lost); a box that passes the gate restarts MIL there (a fresh child process, as ``init``) and is reported ``ok=True``.
+    OpenCV's MIL learns inside its own ``update`` (the classifier is trained on the box it
+    has just found), which trackbook cannot split: ``_locate`` is that ``update`` and
+    ``_learn`` does nothing. So the failure-detection layer can withhold ``ok`` from MIL (a
+    frame judged lost keeps the last box), but it cannot stop MIL's model from learning the
+    frame: a departure from the other trackers forced by OpenCV. A constant frame (all
+    black, all white, one grey: grey levels spanning at most ``flat_range``) is lost and not
+    shown to MIL at all (nothing to match, and MIL would learn it). MIL's own ``ok`` (False
+    when OpenCV gives up, or the child process is gone) also makes the frame lost. There is
+    no ``opencv-mil-redetect``: restarting MIL at a re-detected box would start a new model,
+    not move the old one.
 
     Confidence
     ----------
-    OpenCV exposes no classifier margin of MIL, so ``state().confidence`` is the generic
-    appearance match of the lost rule, not MIL's own: the Bhattacharyya coefficient
-    rho = sum_u sqrt(h_u h_u^ref) of a kernel colour histogram against the first frame's,
-    of MIL's box (best over the nine quarter-box shifts), or of the whole-frame search's best
-    box on a frame that searched; in [0, 1]; 0 when the frame computed none (a constant
-    frame, or MIL's process gone).
+    OpenCV exposes no classifier margin of MIL, so ``state().confidence`` is the failure
+    layer's generic confidence, the appearance match of MIL's box against the first frame's
+    (:meth:`~trackbook.trackers.lost.ColourCheck.match`): the Bhattacharyya coefficient
+    rho = sum_u sqrt(h_u h_u^ref) of its kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of
+    Lee et al. 2012) against the first frame's, in [0, 1]; 0 when the frame computed none
+    (a constant frame, or MIL's process gone).
     """
 
     name = "opencv-mil"
-    #: Less than this fraction of the box in the frame: the target is leaving (lost).
-    min_visible = 0.5
 
     def __init__(self, *args, seed: int | None = 0, **params):
         super().__init__(*args, seed=seed, **params)    # the base refuses a positional seed
@@ -182,40 +177,21 @@ class OpenCVMIL(Tracker):
         self._start()
         self._ask(b"I", frame, b)
         self._colour = ColourCheck(frame, box)
-        self._gate = MatchGate()
-        self._lost = False
-        self._rho = 0.0
 
-    def _update(self, frame):
+    def _locate(self, frame):
+        """OpenCV's ``update`` (which also trains MIL: see "Lost rule"); returns
+        ``(box, colour rho, MIL's own ok)``."""
         last = np.asarray(self.bbox, dtype=float)
-        self._rho = 0.0
         if self._is_flat(frame):
-            self._lost = True
-            return False, last                  # nothing to match (see "Lost rule")
+            return last, 0.0, False             # not shown to MIL (see "Lost rule")
         r = self._ask(b"U", frame)
-        ok = r is not None and bool(r[0])
-        box = np.asarray(r[1:], dtype=float) if ok else last
-        if ok and visible_fraction(box, frame.shape) < self.min_visible:
-            ok = False
-        if ok:
-            rho, near = self._colour.match_near(frame, box)
-            self._rho = rho
-            ok = not self._gate.lost(rho, lambda: self._colour.stands_out(frame, near, rho))
-        if not ok and not self._dead:
-            found, rho = self._colour.search(frame, max_boxes=300)
-            self._rho = rho
-            if visible_fraction(found, frame.shape) >= self.min_visible \
-                    and not self._gate.lost(rho):
-                b = safe_box(found, frame.shape)
-                self._start()                   # MIL learned the wrong box: restart it there
-                self._ask(b"I", frame, b)
-                ok, box = True, np.asarray(b, dtype=float)
-        self._lost = not ok
-        return ok, (box if ok else last)
+        if r is None or not r[0]:
+            return last, 0.0, False
+        box = np.asarray(r[1:], dtype=float)
+        return box, float(self._colour.match(frame, box[None])[0]), True
 
-    def _last_confidence(self) -> float:
-        """The last frame's colour rho (see "Confidence"): generic, not MIL's own."""
-        return float(self._rho)
+    def _learn(self, frame, box):
+        """Nothing: MIL has already learned inside OpenCV's ``update`` (see "Lost rule")."""
 
 
 @atexit.register
