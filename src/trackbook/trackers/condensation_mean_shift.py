@@ -133,14 +133,6 @@ class CondensationParams(EllipseColourParams):
                                why="eq. 1 has a size change a but no spread; the book fixes the "
                                    "size (0) because the colour likelihood lets it shrink "
                                    "(08_mean_shift)")
-    min_rho: float = param(0.3, 0.0, 1.0, 0.05,
-                           "best rho below this: the frame is reported lost (ok=False) and the "
-                           "search widens to the whole frame",
-                           paper=NOT_PRINTED, paper_value=0.0,
-                           why="the paper's trackers have no lost state, though it reports "
-                               "mean-shift failing after targets overlap [quote: "
-                               "cho2005.multi_mean_shift_fails]; the book flags frames whose "
-                               "best rho is below 0.3 (0 = off)")
     # §3.2 step ①: sample from the weighted set
     resampler: str = resampler_param("factored sampling (step ①)",
                                      reading="cho2005.condensation_sampling", paper="multinomial")
@@ -227,6 +219,17 @@ class _EllipseColourModel:
         return bin_image(frame, region_around(centres, axes, margin), self._stride(axes.mean(0)),
                          self._bins())
 
+    def _score_boxes(self, frame, boxes):
+        """For the re-detection layer: rho[p, q] of the ellipse inscribed in every box (eq. 3),
+        from one bin image; nothing is stored, so scoring changes nothing. (For
+        ``condensation-mean-shift`` too: its ``likelihood`` reads the rho its mean-shift
+        reached on the frame's candidates, not the boxes'.)"""
+        b = np.asarray(boxes, dtype=float)
+        centres, axes = b[:, :2] + b[:, 2:] / 2, b[:, 2:] / 2
+        img = self._bin_image(frame, centres, axes, margin=0.1)
+        rho, _, _ = ellipse_rho(img, self.q, centres, axes, self.params.bandwidth)
+        return rho
+
     def _clamp(self, states):
         """Keep centres in the frame and half-axes within [1/4, 4] x the initial ones."""
         H, W = self._shape[:2]
@@ -247,17 +250,22 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
     rho : (N,) their Bhattacharyya coefficients
     ellipse : ``(cx, cy, Hx, Hy)`` of the estimate
 
-    Confidence: ``state().confidence`` is the best candidate's Bhattacharyya coefficient of
-    the last frame, max_i rho[p(s_i), q] (the number ``min_rho`` tests), in [0, 1]; 0 on a
-    constant frame (not scored). The estimate itself, the weighted mean, is not scored again.
+    Confidence and failure
+    ----------------------
+    ``state().confidence`` is the best candidate's Bhattacharyya coefficient of the last
+    frame, max_i rho[p(s_i), q], p(s_i) the colour distribution (eq. 3) of candidate i's
+    ellipse, in [0, 1]; 0 on a constant frame (not scored). The estimate itself, the weighted
+    mean, is not scored again. The paper's trackers have no lost state (it reports mean-shift
+    failing after targets overlap [quote: cho2005.multi_mean_shift_fails]): ``ok`` comes from
+    the failure-detection layer (:class:`~trackbook.trackers.failure.FailureDetector`) judging
+    that confidence. A frame judged lost keeps the last ellipse and the candidates go on from
+    where they are (see :class:`ParticleFilterTracker`, "While lost");
+    ``condensation-redetect`` adds the re-detection layer, which scores ellipses over the whole
+    frame by the same rho and restarts the candidates at the best.
     """
 
     name = "condensation"
     Params = CondensationParams
-    #: Lost rule: ``ParticleFilterTracker``'s (flat frames, scatter while lost) and
-    #: ``min_rho`` on the best candidate's Bhattacharyya coefficient (a
-    #: candidate's ``match`` is its rho); while lost, four in five candidates are scattered over
-    #: the frame (``ParticleFilterTracker._scatter``) so the target is found where it returns.
 
     # -- ParticleFilterTracker interface -------------------------------------------------
     def model(self, frame, box):
@@ -301,21 +309,13 @@ class Condensation(_EllipseColourModel, ParticleFilterTracker):
         self._match = np.asarray(rho, dtype=float)
         lik = colour_likelihood(rho, self.params.sigma)
         self._report = {"mean_likelihood": float(lik.mean()), "mean_rho": float(rho.mean())}
-        if rho.max() < self.params.min_rho:
-            # nothing here looks like the target (occlusion): let the base keep the estimate
-            return np.zeros_like(lik)
         return lik
 
-    def _update(self, frame):
-        ok, box = super()._update(frame)
-        if not self.lost:
-            self.estimate[6] = 1.0
-        return ok, box
-
-    def _scatter_reset(self, particles, idx):
-        """A candidate scattered over the frame to find a lost target starts at rest."""
-        particles[idx, 2:4] = 0.0
-        particles[idx, 6] = 1.0
+    def _learn(self, frame, box):
+        """Accept the weighted-mean estimate; its size change ``a`` is this frame's (eq. 1),
+        so the accepted state carries ``a = 1`` (the half-axes already hold the new size)."""
+        super()._learn(frame, box)
+        self.estimate[6] = 1.0
 
     # -- for the book ------------------------------------------------------------------
     def frame_report(self) -> dict:
@@ -350,7 +350,9 @@ class CondensationMeanShift(Condensation):
         frame (trajectories of every candidate, for Fig. 2 (b))
 
     Confidence: as :class:`Condensation`'s, max_i rho of the candidates after mean-shift
-    moved them (the hill tops they reached).
+    moved them (the hill tops they reached); ``ok`` comes from the failure-detection layer on
+    it, and ``condensation-mean-shift-redetect`` adds the re-detection layer (whole-frame
+    ellipses scored by rho while lost, the candidates restarted at the best).
     """
 
     name = "condensation-mean-shift"
@@ -425,14 +427,30 @@ class CondensationMeanShift(Condensation):
                                    max_motion=max(curr[0].shape) / 2)
         return (dp * f, dq * f, ok), curr
 
-    def _update(self, frame):
-        if not self.params.use_motion:
+    def _locate(self, frame):
+        """The motion vector (p, q) of the target region since the last frame (eq. 5-8), then
+        the SIR cycle with it (eq. 9-13). This frame's grey window is kept for
+        :meth:`_learn` / :meth:`_follow`, which remember it for the next motion vector."""
+        self._curr = None
+        if self.params.use_motion:
+            self.motion, self._curr = self._motion(frame)
+        else:
             self.motion = (0.0, 0.0, False)
-            return super()._update(frame)
-        self.motion, curr = self._motion(frame)
-        ok, box = super()._update(frame)
-        self._remember(frame, curr)
-        return ok, box
+        return super()._locate(frame)
+
+    def _learn(self, frame, box):
+        """Accept the estimate, then keep this frame's grey window around it (eq. 8's image
+        t for the next frame's motion vector)."""
+        super()._learn(frame, box)
+        if self.params.use_motion:
+            self._remember(frame, self._curr)
+
+    def _follow(self, frame, box):
+        """A lost frame: the candidates already moved in ``_locate``; only this frame's grey
+        window is kept (around the last accepted estimate), so the next motion vector is
+        measured between consecutive frames, as eq. 5-8 do."""
+        if self.params.use_motion:
+            self._remember(frame, self._curr)
 
     def predict(self, particles):
         """Eq. 9 with the velocity of every sampled candidate set to the motion vector (p, q)."""
@@ -536,14 +554,6 @@ class MeanShift(_EllipseColourModel, Tracker):
         e = box_to_ellipse(box)
         self._centre, self._axes = e[:2].copy(), e[2:].copy()
 
-    def _score_boxes(self, frame, boxes):
-        """rho of the ellipse inscribed in every box against q (eq. 3), one bin image."""
-        b = np.asarray(boxes, dtype=float)
-        centres, axes = b[:, :2] + b[:, 2:] / 2, b[:, 2:] / 2
-        img = self._bin_image(frame, centres, axes, margin=0.1)
-        rho, _, _ = ellipse_rho(img, self.q, centres, axes, self.params.bandwidth)
-        return rho
-
     def _relocate(self, frame, box):
         """Restart the climb at ``box``'s centre (the half-axes stay)."""
         H, W = self._shape[:2]
@@ -576,4 +586,6 @@ class MeanShift(_EllipseColourModel, Tracker):
                 "weights": self.weights}
 
 
+register(redetecting(Condensation))
+register(redetecting(CondensationMeanShift))
 register(redetecting(MeanShift))
