@@ -98,7 +98,9 @@ for _base, _variants in {"covariance": ["covariance-redetect"],
                          "kalman-covariance": ["kalman-covariance-redetect",
                                                "kalman-covariance-manoeuvre",
                                                "kalman-covariance-manoeuvre-redetect"],
-                         "mean-shift": ["mean-shift-redetect"]}.items():
+                         "mean-shift": ["mean-shift-redetect"],
+                         "condensation": ["condensation-redetect"],
+                         "condensation-mean-shift": ["condensation-mean-shift-redetect"]}.items():
     for _v in _variants:
         FIELDS[_v] = dict(FIELDS[_base])
 

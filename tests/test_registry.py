@@ -24,8 +24,9 @@ BOOK_GROUPS = [["color-pf", "color-hog-pf", "color-hog-ipca"],                  
                ["covariance", "covariance-redetect", "kalman-covariance",       # lee2015
                 "kalman-covariance-redetect", "kalman-covariance-manoeuvre",
                 "kalman-covariance-manoeuvre-redetect"],
-               ["condensation", "mean-shift", "mean-shift-redetect",            # cho2005
-                "condensation-mean-shift"],
+               ["condensation", "condensation-redetect", "mean-shift",          # cho2005
+                "mean-shift-redetect", "condensation-mean-shift",
+                "condensation-mean-shift-redetect"],
                ["camshift"],                                                    # bradski1998
                ["mosse", "kcf"],                                                # correlation
                ["median-flow"]]                                                 # kalal2010
