@@ -21,9 +21,11 @@ from scipy.stats import rankdata
 
 from ..trackers.failure import CALIBRATION_FILE, FailureDetector, FailureParams, load_calibration
 
-#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse
-#: (a very steady confidence has a small spread, so a real drop is many spreads deep).
-K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21)])
+#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse up
+#: to 100 (a very steady confidence, as on a rendered clip, has a tiny spread, so an ordinary
+#: dip is many spreads deep).
+K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21),
+                                             25, 30, 40, 50, 70, 100])
 #: Default ratios ``k_found / k_lost`` tried for each ``k_lost``.
 FOUND_RATIOS = (0.25, 0.5, 0.75, 1.0)
 
