@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from .._checks import clip_box
 from . import plugins
-from .base import Tracker, TrackerState
+from .base import Tracker, TrackerState, redetecting
 from .registry import PRESETS, available, create, departures, get, register
 from .multi import MultiTracker
 from .reference import REFERENCE
@@ -34,4 +34,4 @@ from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
-           "clip_box", "create", "departures", "get", "plugins", "register"]
+           "clip_box", "create", "departures", "get", "plugins", "redetecting", "register"]
