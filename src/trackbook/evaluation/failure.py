@@ -15,6 +15,8 @@ The rule itself lives in :mod:`trackbook.trackers.failure`, where every tracker 
 from __future__ import annotations
 
 import dataclasses
+import json
+from pathlib import Path
 
 import numpy as np
 from scipy.stats import rankdata
@@ -256,6 +258,21 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
                        feasible and r["absent_lost"] >= target, r["n_absent"], r["n_on"])
 
 
-__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID",
+def calibration_table(path=None) -> dict:
+    """The whole calibration file as written: its settings and one row per tracker.
+
+    Each row holds the chosen thresholds (``k_lost``, ``k_found``, ``m``, ``window``,
+    ``warmup``), what they reach on the calibration scenes (``absent_lost``, ``false_lost``,
+    ``meets_target``), the confidence's ROC area and thinned curve (``roc_auc``, ``roc``), the
+    same per kind of scene (``per_kind``) and, when the real sequences were present, on them
+    (``real_roc_auc``, ``real_roc``: on target against off target). ``load_calibration``
+    gives only the thresholds.
+    """
+    path = Path(CALIBRATION_FILE if path is None else path)
+    load_calibration(path)                       # the same checks and error as the thresholds
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+__all__ = ["CALIBRATION_FILE", "Calibration", "calibration_table", "FailureDetector", "FailureParams", "K_LOST_GRID",
            "FOUND_RATIOS", "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
            "roc_curve"]
