@@ -27,6 +27,7 @@ from . import hsi_color_pf  # noqa: E402,F401  kim2016: hsi-color-pf
 from . import hog_pf  # noqa: E402,F401  kim2016: hog-pf
 from . import edge_ray  # noqa: E402,F401  kim2016: edge-ray-pf
 from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covariance
+from . import covariance_manoeuvre  # noqa: E402,F401  the book's variant: kalman-covariance-manoeuvre
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)

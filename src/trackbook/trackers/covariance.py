@@ -537,8 +537,5 @@ class KalmanCovarianceTracker(_CovarianceSearch):
 register(redetecting(KalmanCovarianceTracker))
 
 
-# The book's manoeuvre variant, kalman-covariance-manoeuvre, registers itself there.
-from . import covariance_manoeuvre  # noqa: E402,F401
-
 __all__ = ["CovarianceTracker", "KalmanCovarianceTracker", "CovarianceParams",
            "KalmanCovarianceParams", "n_windows", "grid_boxes", "find_moving_region"]
