@@ -1,5 +1,5 @@
-"""Scenario clips for the lost-target matrix (``tests/test_lost_matrix.py``,
-``experiments/lost_matrix.py``), built on the public clips API (``clips.Clip``,
+"""Scenario clips for the contract of ``ok`` (``tests/test_failure_contract.py``,
+``experiments/failure_contract.py``), built on the public clips API (``clips.Clip``,
 ``clips.ArrayFrames``) from the photographs bundled in scikit-image.
 
 Every clip is small (160 x 120 by default) and short, so the matrix over twelve trackers stays

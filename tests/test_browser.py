@@ -135,8 +135,10 @@ class _Page(HTMLParser):
             self.raw_tables += 1
 
 
-def _render(server, page):
-    dom = _chromium("--dump-dom", f"{server}/{page}.html").stdout
+def _render(server, page, *args):
+    """The page's DOM once its scripts have run (``args``: more switches for the same launch,
+    e.g. a screenshot taken at the same moment)."""
+    dom = _chromium(*args, "--dump-dom", f"{server}/{page}.html").stdout
     p = _Page()
     p.feed(dom)
     return p, dom
@@ -145,7 +147,11 @@ def _render(server, page):
 @own_book
 @pytest.mark.parametrize("page", _toc_pages())
 def test_page_renders(server, page):
-    p, dom = _render(server, page)
+    # one launch both dumps the DOM and takes the screenshot (the page is loaded once); the
+    # DOM is read at the screenshot's 1280 px, a reader's window
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    shot = SHOTS / (Path(page).name + ".png")
+    p, dom = _render(server, page, "--window-size=1280,2000", f"--screenshot={shot}")
     assert "</html>" in dom, f"{page} did not load"
     assert p.tracebacks == 0, f"{page} shows a traceback"
     assert p.raw_tables == 0, f"{page} shows a markdown table as raw text"
@@ -162,10 +168,7 @@ def test_page_renders(server, page):
     for has_widget, has_image in p.cells:
         if has_widget:
             assert has_image, f"{page}: a widget cell shows no static figure"
-    SHOTS.mkdir(parents=True, exist_ok=True)
-    _chromium("--window-size=1280,2000", f"--screenshot={SHOTS / (Path(page).name + '.png')}",
-              f"{server}/{page}.html")
-    assert (SHOTS / (Path(page).name + ".png")).stat().st_size > 10_000
+    assert shot.stat().st_size > 10_000
 
 
 @own_book
@@ -259,24 +262,20 @@ def _check_page(browser, url, root_dir: Path = HTML, base: str | None = None):
     return n
 
 
+#: every page of the build, one case each (so xdist spreads them over its workers and a
+#: failure names its page); empty when the book is not built (the test then skips)
+BUILT_PAGES = _pages_of(HTML) if BUILT else []
+
+
 @needs_build
+@pytest.mark.parametrize("rel", BUILT_PAGES)
 @pytest.mark.parametrize("scheme", ["file", "http"])
-def test_built_pages_offline_and_playgrounds_live(browser, scheme):
-    httpd, base = _serve(HTML)
-    try:
-        seen, problems = 0, []
-        for rel in _pages_of(HTML):           # every page, so one report names them all
-            url = (HTML / rel).as_uri() if scheme == "file" else f"{base}/{rel}"
-            try:
-                seen += _check_page(browser, url, HTML, None if scheme == "file" else base)
-            except AssertionError as e:
-                problems.append(str(e).split("\n")[0])
-        assert not problems, "\n".join(problems)
-        if not OTHER_HTML and any("Playground(" in p.read_text()
-                                  for p in (ROOT / "book").glob("*.md")):
-            assert seen > 0, "the chapters call Playground but no page has a .tb-playground"
-    finally:
-        httpd.shutdown()
+def test_built_pages_offline_and_playgrounds_live(browser, server, scheme, rel):
+    url = (HTML / rel).as_uri() if scheme == "file" else f"{server}/{rel}"
+    seen = _check_page(browser, url, HTML, None if scheme == "file" else server)
+    src = ROOT / Path(rel).with_suffix(".md")
+    if not OTHER_HTML and src.is_file() and "Playground(" in src.read_text():
+        assert seen > 0, f"{rel}: the chapter calls Playground but the page has no .tb-playground"
 
 
 @pytest.fixture(scope="module")

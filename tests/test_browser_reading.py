@@ -217,6 +217,14 @@ def _typeset(page):
     assert done in ("done", "no MathJax"), f"MathJax did not finish typesetting: {done}"
 
 
+def _measured_pages():
+    """The pages, each in an xdist group of its own: under ``--dist loadgroup`` (as CI runs
+    these tests) both checks of a page run in the worker that measured it, so no page is
+    loaded and typeset twice."""
+    return [pytest.param(n, marks=pytest.mark.xdist_group(f"measure-{Path(n).name}"))
+            for n in _toc_pages()]
+
+
 @pytest.fixture(scope="module")
 def measured(server, page):
     """Each page measured once at 1280 px, after MathJax has typeset it."""
@@ -232,7 +240,7 @@ def measured(server, page):
 
 
 @needs_build
-@pytest.mark.parametrize("name", _toc_pages())
+@pytest.mark.parametrize("name", _measured_pages())
 def test_page_renders_within_its_column(measured, name):
     """At 1280 px: no output, table, figure or display equation wider than the column, no
     printed output with numbers over MAX_LINES lines, no raw TeX, no MathJax error."""
@@ -241,7 +249,7 @@ def test_page_renders_within_its_column(measured, name):
 
 
 @needs_build
-@pytest.mark.parametrize("name", _toc_pages())
+@pytest.mark.parametrize("name", _measured_pages())
 def test_playgrounds_fit_their_column(measured, name):
     """The same checks on the playgrounds, which their widget code draws (a fixed-width
     canvas and knob panel) rather than the chapter's cells."""

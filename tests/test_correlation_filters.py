@@ -313,9 +313,17 @@ def _run(name, key, **params):
     return sc, out
 
 
+def visible_fraction(box, frame_shape) -> float:
+    """Fraction of the area of ``box = (x, y, w, h)`` inside the frame."""
+    H, W = frame_shape[:2]
+    x, y, w, h = (float(v) for v in box)
+    iw = max(0.0, min(x + w, W) - max(x, 0.0))
+    ih = max(0.0, min(y + h, H) - max(y, 0.0))
+    return iw * ih / (w * h)
+
+
 @pytest.mark.parametrize("name", ["mosse", "kcf"])
 def test_a_box_mostly_out_of_view_is_never_ok(name):
-    from trackbook.trackers.lost import visible_fraction
     sc, out = _run(name, "edge-exit")
     shape = sc.clip.frames[0].shape
     assert any(not ok for _, ok, _, _ in out)

@@ -246,6 +246,10 @@ RIGHT_AND_WRONG = {
     "9.5": (loso, lambda scores: max(np.mean(list(v.values())) for v in scores.values())),
     "9.7": (lambda r, n: (r * n - 1) / (n - 1), lambda r, n: r),
     "10.3": (dual, lambda x, y, s, lam: y / (1 + lam)),
+    # 11.4: the share of pairs with ties one half; wrong: ties counted as losses
+    "11.4": (lambda on, off: float(np.mean([1.0 if a > b else 0.5 if a == b else 0.0
+                                            for a in on for b in off])),
+             lambda on, off: float(np.mean([a > b for a in on for b in off]))),
 }
 
 
@@ -276,6 +280,9 @@ def test_hand_values_of_the_checks_follow_from_the_equations():
                  "q": {"a": 0.4, "b": 0.4, "c": 0.9}}) == pytest.approx(1.3 / 3)
     # 10.3: (J + I) alpha = (1, 1)
     assert np.linalg.solve(np.ones((2, 2)) + np.eye(2), np.ones(2)) == pytest.approx([1 / 3] * 2)
+    # 11.4: on = [2, 2, 1], absent = [2, 0]: pairs (2,2) tie, (2,0) win, twice; (1,2) loss,
+    # (1,0) win -> (3 wins + 2 ties / 2) / 6
+    assert (3 + 2 * 0.5) / 6 == pytest.approx(4 / 6)
     # 8.8 (pen and paper): the weighted mean inside an Epanechnikov kernel of h = 2 at 1.5
     x, w = np.array([0.0, 1, 2]), np.array([1.0, 2, 1])
     assert np.all(np.abs(x - 1.5) / 2 < 1) and (x * w).sum() / w.sum() == 1.0

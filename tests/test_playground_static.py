@@ -25,8 +25,8 @@ BOOK_KNOBS = {
     "hsi-color-pf": ["n_particles", "sigma", "velocity_gain"],
     "hog-pf": ["n_particles", "sigma", "velocity_gain"],
     "covariance": ["features", "stride", "threshold", "search_radius"],
-    "kalman-covariance": ["features", "stride", "threshold", "search_radius", "q", "r", "gate",
-                          "manoeuvre_gate"],
+    "kalman-covariance-manoeuvre": ["features", "stride", "threshold", "search_radius", "q", "r",
+                                    "gate", "manoeuvre_gate"],
     "condensation": ["n_particles", "noise_position"],
     "mean-shift": ["max_iter"],
     "condensation-mean-shift": ["n_particles", "max_iter", "noise_position", "use_motion"],
@@ -64,11 +64,12 @@ def test_samples_hold_the_default_and_the_paper_value(tracker):
 
 def test_the_chapters_central_values_are_stops():
     """By hand: sigma_color, the book 0.2 against Lee et al.'s 0.4; the manoeuvre gate's
-    'off' (0, the paper's method) that the region-covariance chapter asks the reader to set."""
+    'off' (0: kalman-covariance, the paper's method) that the region-covariance chapter asks the
+    reader to set on the book's variant."""
     pf = trackers.get("color-pf")
     assert {0.2, 0.4} <= set(D.static_samples(D.knob_spec(pf, "sigma_color"),
                                               D.paper_sample(pf, "sigma_color")))
-    kc = trackers.get("kalman-covariance")
+    kc = trackers.get("kalman-covariance-manoeuvre")
     assert D.paper_sample(kc, "manoeuvre_gate") == 0.0
     assert 0.0 in D.static_samples(D.knob_spec(kc, "manoeuvre_gate"), 0.0)
     # a particle count the paper does not print (a reading) is not "the paper's value"

@@ -19,17 +19,19 @@ from trackbook.trackers.reference import REFERENCE
 
 # The library's own trackers by paper, the papers in the book's order (one chapter after
 # another): written out here, not read from the registry under test.
-BOOK_GROUPS = [["color-pf", "color-hog-pf", "color-hog-ipca"],                  # lee2012
-               ["hsi-color-pf", "hog-pf", "edge-ray-pf"],                       # kim2016
+BOOK_GROUPS = [["color-pf", "color-pf-redetect", "color-hog-pf",               # lee2012
+                "color-hog-pf-redetect", "color-hog-ipca", "color-hog-ipca-redetect"],
+               ["hsi-color-pf", "hsi-color-pf-redetect", "hog-pf", "hog-pf-redetect",  # kim2016
+                "edge-ray-pf", "edge-ray-pf-redetect"],
                ["covariance", "covariance-redetect", "kalman-covariance",       # lee2015
                 "kalman-covariance-redetect", "kalman-covariance-manoeuvre",
                 "kalman-covariance-manoeuvre-redetect"],
                ["condensation", "condensation-redetect", "mean-shift",          # cho2005
                 "mean-shift-redetect", "condensation-mean-shift",
                 "condensation-mean-shift-redetect"],
-               ["camshift"],                                                    # bradski1998
-               ["mosse", "kcf"],                                                # correlation
-               ["median-flow"]]                                                 # kalal2010
+               ["camshift", "camshift-redetect"],                               # bradski1998
+               ["mosse", "mosse-redetect", "kcf", "kcf-redetect"],              # correlation
+               ["median-flow", "median-flow-redetect"]]                         # kalal2010
 BOOK_ORDER = [n for g in BOOK_GROUPS for n in g]
 
 

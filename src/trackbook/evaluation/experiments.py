@@ -220,8 +220,9 @@ EXPERIMENTS = {e.name: e for e in (
                "2016, real sequences, seeds 0-2", KIM2016_EDGES, seeds=(0, 1, 2),
                plugins=("experiments/kim2016_edge_variants.py",)),
     Experiment("lee2015_real", "Table 1 of Lee 2015 on the real sequences: covariance, "
-               "kalman-covariance and MIL, seed 0",
-               _plain("covariance", "kalman-covariance", REFERENCE)),
+               "kalman-covariance, the book's kalman-covariance-manoeuvre and MIL, seed 0",
+               _plain("covariance", "kalman-covariance", "kalman-covariance-manoeuvre",
+                      REFERENCE)),
     Experiment("cho2005_real", "Tables 1-2 of Cho & Kang 2005 on the real sequences: the "
                "three trackers, seed 0, with MIL on MotorRolling as the speed reference",
                _plain("condensation", "mean-shift", "condensation-mean-shift")

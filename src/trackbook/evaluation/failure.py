@@ -15,15 +15,19 @@ The rule itself lives in :mod:`trackbook.trackers.failure`, where every tracker 
 from __future__ import annotations
 
 import dataclasses
+import json
+from pathlib import Path
 
 import numpy as np
 from scipy.stats import rankdata
 
 from ..trackers.failure import CALIBRATION_FILE, FailureDetector, FailureParams, load_calibration
 
-#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse
-#: (a very steady confidence has a small spread, so a real drop is many spreads deep).
-K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21)])
+#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse up
+#: to 100 (a very steady confidence, as on a rendered clip, has a tiny spread, so an ordinary
+#: dip is many spreads deep).
+K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21),
+                                             25, 30, 40, 50, 70, 100])
 #: Default ratios ``k_found / k_lost`` tried for each ``k_lost``.
 FOUND_RATIOS = (0.25, 0.5, 0.75, 1.0)
 
@@ -254,6 +258,21 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
                        feasible and r["absent_lost"] >= target, r["n_absent"], r["n_on"])
 
 
-__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "K_LOST_GRID",
+def calibration_table(path=None) -> dict:
+    """The whole calibration file as written: its settings and one row per tracker.
+
+    Each row holds the chosen thresholds (``k_lost``, ``k_found``, ``m``, ``window``,
+    ``warmup``), what they reach on the calibration scenes (``absent_lost``, ``false_lost``,
+    ``meets_target``), the confidence's ROC area and thinned curve (``roc_auc``, ``roc``), the
+    same per kind of scene (``per_kind``) and, when the real sequences were present, on them
+    (``real_roc_auc``, ``real_roc``: on target against off target). ``load_calibration``
+    gives only the thresholds.
+    """
+    path = Path(CALIBRATION_FILE if path is None else path)
+    load_calibration(path)                       # the same checks and error as the thresholds
+    return json.loads(path.read_text(encoding="utf-8"))
+
+
+__all__ = ["CALIBRATION_FILE", "Calibration", "calibration_table", "FailureDetector", "FailureParams", "K_LOST_GRID",
            "FOUND_RATIOS", "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
            "roc_curve"]

@@ -42,7 +42,7 @@ the changed target exactly, because the $x, y$ rows did not scale while the othe
 uint8 frames the clipped pixels break both invariances.
 
 === 7.4 ★★ modify | Small q or large q?
-Run `kalman-covariance` on the first 146 frames of `red-cube`
+Run the book's variant `kalman-covariance-manoeuvre` on the first 146 frames of `red-cube`
 (`evaluate(..., seed=0, q=..., max_frames=146)`) with `q=0.01` and with `q=100`; the cube
 accelerates suddenly at frames 139–142. One of the two needs its second, larger search (the
 manoeuvre window, `tracker.manoeuvre`, readable in an `on_frame` callback), and why? The other
@@ -58,7 +58,7 @@ window in every frame, $(2 \cdot 48 + 1)^2 = 9409$ candidates, never a second se
 Starting from the steady state (Q = R = I, a measurement every
 frame), add σ_v² = 64 to the velocity block of $P^+$ and predict. What is the 3σ half-size
 of the window now, and what are the position and velocity gains of the update? On
-`yellow-ball`, at which frames does the tracker use the manoeuvre window
+`yellow-ball`, at which frames does `kalman-covariance-manoeuvre` use the manoeuvre window
 (`tracker.manoeuvre`)? Compare with the frames where the true ball bounces.
 
 === 7.6 ★★★ implement | Eq. 4 from integral images

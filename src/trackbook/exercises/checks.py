@@ -255,10 +255,18 @@ def dual_ok(f):
 
 
 #: exercise number -> predicate on the student's answer
+def roc_count_ok(f):
+    """11.4: the ROC area as a share of pairs, ties one half."""
+    cases = [(([2, 2, 1], [2, 0]), 4 / 6), (([3, 2], [1]), 1.0), (([1], [1]), 0.5),
+             (([1, 3], [2]), 0.5), (([0.1, 0.2], [0.3, 0.4, 0.5]), 0.0)]
+    return all(abs(float(f(np.asarray(a, float), np.asarray(b, float))) - v) < 1e-12
+               for (a, b), v in cases)
+
+
 CHECKS = {
     "0.4": iou_ok, "0.5": auc_ok, "1.5": kernel_ok, "1.7": histogram_ok,
     "2.5": stratified_ok, "2.8": systematic_ok, "3.5": fuse_ok, "3.6": gradient_ok,
     "4.5": svd_update_ok, "5.5": ratio_ok, "5.8": edge_weight_ok, "6.5": kalman_1d_ok,
     "6.7": jacobian_ok, "7.6": covariance_ok, "8.5": motion_ok, "8.7": switches_ok,
-    "9.5": loso_ok, "9.7": without_first_ok, "10.3": dual_ok,
+    "9.5": loso_ok, "9.7": without_first_ok, "10.3": dual_ok, "11.4": roc_count_ok,
 }

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from .._checks import clip_box
 from . import plugins
-from .base import Tracker, TrackerState
+from .base import Tracker, TrackerState, redetecting
 from .registry import PRESETS, available, create, departures, get, register
 from .multi import MultiTracker
 from .reference import REFERENCE
@@ -27,6 +27,7 @@ from . import hsi_color_pf  # noqa: E402,F401  kim2016: hsi-color-pf
 from . import hog_pf  # noqa: E402,F401  kim2016: hog-pf
 from . import edge_ray  # noqa: E402,F401  kim2016: edge-ray-pf
 from . import covariance  # noqa: E402,F401  lee2015: covariance, kalman-covariance
+from . import covariance_manoeuvre  # noqa: E402,F401  the book's variant: kalman-covariance-manoeuvre
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
@@ -34,4 +35,4 @@ from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
-           "clip_box", "create", "departures", "get", "plugins", "register"]
+           "clip_box", "create", "departures", "get", "plugins", "redetecting", "register"]

@@ -307,8 +307,9 @@ class Tracker:
     def _redetect(self, frame, located=None) -> None:
         """The re-detection layer: score boxes of the last size on a grid over the whole frame
         (at most ``redetect_boxes`` of them) and the box the local search just found
-        (``located``) with :meth:`_score_boxes`, and restart the local search from the best
-        with :meth:`_relocate` when it is not the located box. The failure layer still
+        (``located``) with :meth:`_score_boxes`, refine the best on a grid a quarter as fine
+        around it (25 boxes), and restart the local search from the best with
+        :meth:`_relocate` when it is not the located box. The failure layer still
         decides when the target is found again: the next frames' confidences."""
         if self._is_flat(frame):
             return
@@ -320,7 +321,22 @@ class Tracker:
         if scores.shape != (len(boxes),) or not np.isfinite(scores).any():
             return
         best = int(np.nanargmax(scores))
-        if best > 0:
+        if best == 0:
+            return
+        # a second pass on a grid a quarter as fine around the best: a model with a sharp
+        # peak (a HOG match, a correlation response) can score low a few pixels off it
+        step = np.sqrt(frame.shape[0] * frame.shape[1] / max(self.redetect_boxes, 1)) / 4
+        d = np.arange(-2, 3) * step
+        dx, dy = np.meshgrid(d, d)
+        fine = np.tile(boxes[best], (dx.size, 1))
+        fine[:, 0] += dx.ravel()
+        fine[:, 1] += dy.ravel()
+        fine_scores = np.asarray(self._score_boxes(frame, np.vstack([here[None], fine])),
+                                 dtype=float)
+        if fine_scores.shape == (len(fine) + 1,) and np.isfinite(fine_scores[1:]).any() \
+                and np.nanmax(fine_scores[1:]) >= scores[best]:
+            self._relocate(frame, fine[int(np.nanargmax(fine_scores[1:]))])
+        else:
             self._relocate(frame, boxes[best])
 
     def state(self) -> TrackerState:

@@ -522,6 +522,10 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         self._accept(frame, box, self.best_rho)
         self._kf.update((box[0] + w / 2.0, box[1] + h / 2.0))
 
+    def _follow(self, frame, box):
+        """On a lost frame: nothing. The filter already predicted in ``_locate``, so P grows
+        and the next Kalman window, searched again, is larger (the paper's re-search)."""
+
     def _relocate(self, frame, box):
         """Restart the filter at rest at ``box``'s centre, P = P₀ (for the re-detection layer)."""
         b = np.asarray(box, dtype=float)
@@ -532,9 +536,6 @@ class KalmanCovarianceTracker(_CovarianceSearch):
 
 register(redetecting(KalmanCovarianceTracker))
 
-
-# The book's manoeuvre variant, kalman-covariance-manoeuvre, registers itself there.
-from . import covariance_manoeuvre  # noqa: E402,F401
 
 __all__ = ["CovarianceTracker", "KalmanCovarianceTracker", "CovarianceParams",
            "KalmanCovarianceParams", "n_windows", "grid_boxes", "find_moving_region"]

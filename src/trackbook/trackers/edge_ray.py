@@ -27,7 +27,7 @@ from ..features import edge_rays as er
 from ..params import NOT_PRINTED, param
 from .centre_pf import CentreParticleFilter, CentrePFParams
 from .base import redetecting
-from .lost import ColourCheck
+from .generic_confidence import ColourCheck
 from .registry import register
 
 
@@ -89,7 +89,7 @@ class EdgeRayPF(CentreParticleFilter):
     generic one, the appearance match of the estimate against the first frame's model: the
     Bhattacharyya coefficient rho between the kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of
     Lee et al. 2012) of the estimate's box and that of the first box
-    (:meth:`~trackbook.trackers.lost.ColourCheck.match`), in [0, 1]; on a frame without an
+    (:meth:`~trackbook.trackers.generic_confidence.ColourCheck.match`), in [0, 1]; on a frame without an
     estimate (every particle outside the Ratio window), that of the last box. The colour
     never moves the box: the edge rays alone place it. ``ok`` comes from the
     failure-detection layer judging that confidence; ``edge-ray-pf-redetect`` adds the

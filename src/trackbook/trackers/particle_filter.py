@@ -229,6 +229,11 @@ class ParticleFilterTracker(Tracker):
         n = self._particles.shape[0]
         self._weights = np.full(n, 1.0 / n)
 
+    def _follow(self, frame, box):
+        """On a lost frame: nothing. The particles already moved in ``_locate`` (they are
+        the filter's state), so the next cycle starts from them; restarting them around
+        the estimate every lost frame would undo the filter's own spread."""
+
     def respread(self, frame, box):
         """Hook: the particles the re-detection layer restarts from, around ``box`` at rest
         (default ``initial_particles(frame, box)``).

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .base import Tracker
-from .lost import ColourCheck
+from .generic_confidence import ColourCheck
 
 _CHILD = str(Path(__file__).with_name("_mil_child.py"))
 _LIVE: "weakref.WeakSet[OpenCVMIL]" = weakref.WeakSet()
@@ -90,7 +90,7 @@ class OpenCVMIL(Tracker):
     ----------
     OpenCV exposes no classifier margin of MIL, so ``state().confidence`` is the failure
     layer's generic confidence, the appearance match of MIL's box against the first frame's
-    (:meth:`~trackbook.trackers.lost.ColourCheck.match`): the Bhattacharyya coefficient
+    (:meth:`~trackbook.trackers.generic_confidence.ColourCheck.match`): the Bhattacharyya coefficient
     rho = sum_u sqrt(h_u h_u^ref) of its kernel colour histogram (HSV 8 x 8 x 4, eq. 1 of
     Lee et al. 2012) against the first frame's, in [0, 1]; 0 when the frame computed none
     (a constant frame, or MIL's process gone).

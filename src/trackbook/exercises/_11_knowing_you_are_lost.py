@@ -1,0 +1,69 @@
+"""The exercises of 11_knowing_you_are_lost: their text, defined once (see :mod:`trackbook.exercises`)."""
+
+STEM = "11_knowing_you_are_lost"
+
+TEXT = r"""
+=== 11.1 ★ pen and paper | The rule by hand
+The reference of a tracker holds the confidences $0.80, 0.84, 0.82, 0.90, 0.82$. Compute its
+median $r$ and scaled MAD $s$. With $k_\text{lost} = 3$, is a frame of confidence 0.72 lost?
+And one of 0.75? After the frame of 0.72, with $k_\text{found} = 1$ and $m = 2$, which of the
+next frames $0.79, 0.81, 0.80$ is the first judged on target again?
+--- solution
+Sorted: $0.80, 0.82, 0.82, 0.84, 0.90$, so $r = 0.82$. The absolute deviations are
+$0.02, 0.02, 0, 0.08, 0$; sorted $0, 0, 0.02, 0.02, 0.08$, median $0.02$, so
+$s = 1.4826 \times 0.02 = 0.0297$. The loss threshold is $0.82 - 3 \times 0.0297 = 0.731$:
+0.72 is below it (**lost**), 0.75 above it (on target). While lost, $r$ and $s$ are frozen and
+the found threshold is $0.82 - 0.0297 = 0.7903$: 0.79 falls just short, 0.81 and 0.80 clear
+it, so 0.80, the second in a row, is the first frame judged on target again. Check:
+`FailureDetector(FailureParams(k_lost=3, k_found=1, m=2, warmup=5))` stepped through the five
+reference values and then 0.72, 0.79, 0.81, 0.80 returns five True, three False, one True.
+
+=== 11.2 ★★ pen and paper | Units do not matter
+Show that the rule gives the same verdicts for a confidence series $c_t$ and for
+$a c_t + b$ with $a > 0$. Which step fails for $a < 0$, and why is that the right answer?
+--- solution
+The median commutes with an increasing map: $\operatorname{median}(a c + b) = a\,r + b$.
+The deviations become $|a c_j + b - (a r + b)| = a |c_j - r|$, so the MAD (and the
+mean absolute deviation of the fallback) is multiplied by $a$: $s \to a s$. Each test
+$c_t < r - k s$ becomes $a c_t + b < a r + b - k a s$, which is the same inequality
+multiplied by $a > 0$ and shifted by $b$: the same truth value, frame by frame, so the
+same frames enter the reference and the same verdicts follow by induction. For $a < 0$
+the inequality flips: a drop becomes a rise. That is right, because $-c$ is no longer a
+confidence ("larger is surer" is part of the rule's contract).
+
+=== 11.3 ★★ modify | The price of a looser threshold
+Run `kcf` on an occlusion scene of the calibration set with `failure=FailureParams(...)` at
+half, once and twice its calibrated $k_\text{lost}$. How does the share of absent frames
+flagged change, and what would you expect to happen to the false losses on the sample clips?
+--- solution
+A smaller $k_\text{lost}$ puts the threshold closer to the median, so more absent frames fall
+below it: the share flagged rises (or stays at 100 %). The same closeness catches the ordinary
+dips of a tracker on target (a fast motion, a change of light), so the false losses on the
+sample clips rise too. Doubling $k_\text{lost}$ does the reverse. That trade-off is the ROC
+curve read one point at a time; calibration picks the point with at most 1 % false losses.
+
+=== 11.4 ★★★ implement | The ROC area as a count
+Implement `auc(on, absent)`: the area under the ROC curve of confidences `on` (positives) and
+`absent` (negatives), as the share of pairs $(i, j)$ with $c^\text{on}_i > c^\text{absent}_j$,
+ties counting one half. By hand first: `on = [2, 2, 1]`, `absent = [2, 0]` has six pairs, two
+ties, three wins and one loss: $4/6$. The check uses that case and a few more.
+--- solution
+Compare every pair at once with broadcasting:
+`d = np.subtract.outer(on, absent); return ((d > 0).sum() + 0.5 * (d == 0).sum()) / d.size`.
+For long series this costs $n_\text{on} \times n_\text{absent}$ comparisons; the library's
+`roc_auc` gets the same number from ranks (the Mann–Whitney statistic) in
+$O(n \log n)$.
+
+=== 11.5 ★★ pen and paper | Why stop learning?
+A correlation filter updates its model with a learning rate $\eta$:
+$\hat\alpha_t = (1 - \eta)\hat\alpha_{t-1} + \eta\,\hat\alpha(\text{this frame})$. The target
+is gone for $n$ frames and the tracker keeps learning. What share of the model is still the
+target's after $n$ frames, for $\eta = 0.02$ and $n = 35$? What does that mean for the
+confidence while the target is gone, and when it returns?
+--- solution
+Each frame keeps $(1 - \eta)$ of the model, so after $n$ frames the target's share is
+$(1 - \eta)^n = 0.98^{35} \approx 0.49$: half of the model is background. While the target is
+gone, the model comes to match the background, so the confidence creeps back up and a rule on
+the confidence is fooled into "found"; when the target returns, half of the model no longer
+matches it. A tracker judged lost that stops learning keeps $(1 - \eta)^0 = 1$ of its model.
+"""
