@@ -22,14 +22,16 @@ reference values and then 0.72, 0.79, 0.81, 0.80 returns five True, three False,
 Show that the rule gives the same verdicts for a confidence series $c_t$ and for
 $a c_t + b$ with $a > 0$. Which step fails for $a < 0$, and why is that the right answer?
 --- solution
-The median commutes with an increasing map: $\operatorname{median}(a c + b) = a\,r + b$.
+The median commutes with an increasing affine map: $\operatorname{median}(a c + b) = a\,r + b$
+(for an even count too: the mean of the two middle values maps the same way).
 The deviations become $|a c_j + b - (a r + b)| = a |c_j - r|$, so the MAD (and the
 mean absolute deviation of the fallback) is multiplied by $a$: $s \to a s$. Each test
 $c_t < r - k s$ becomes $a c_t + b < a r + b - k a s$, which is the same inequality
 multiplied by $a > 0$ and shifted by $b$: the same truth value, frame by frame, so the
 same frames enter the reference and the same verdicts follow by induction. For $a < 0$
-the inequality flips: a drop becomes a rise. That is right, because $-c$ is no longer a
-confidence ("larger is surer" is part of the rule's contract).
+the spread becomes $|a| s$ and the loss test becomes $c_t > r + k s$: the rule would call a
+rise a loss. That is right, because $-c$ is no longer a confidence ("larger is surer" is part
+of the rule's contract).
 
 === 11.3 ★★ modify | The price of a looser threshold
 Run `kcf` on an occlusion scene of the calibration set with `failure=FailureParams(...)` at
@@ -55,7 +57,7 @@ For long series this costs $n_\text{on} \times n_\text{absent}$ comparisons; the
 $O(n \log n)$.
 
 === 11.5 ★★ pen and paper | Why stop learning?
-A correlation filter updates its model with a learning rate $\eta$:
+A correlation filter updates its model with a learning rate $\eta$ (KCF's is 0.02):
 $\hat\alpha_t = (1 - \eta)\hat\alpha_{t-1} + \eta\,\hat\alpha(\text{this frame})$. The target
 is gone for $n$ frames and the tracker keeps learning. What share of the model is still the
 target's after $n$ frames, for $\eta = 0.02$ and $n = 35$? What does that mean for the
