@@ -191,8 +191,9 @@ def code_modules(cls) -> list:
 
 def code_fingerprint(name: str) -> str:
     """A hash of the code behind tracker ``name``: the source of :func:`code_modules` (and of
-    any ``.py`` script such a module names, e.g. the MIL child), the installed trackbook
-    version and OpenCV's version (cached per process)."""
+    any ``.py`` script such a module names, e.g. the MIL child), the failure layer's
+    calibrated thresholds for it, the installed trackbook version and OpenCV's version
+    (cached per process)."""
     if name in _CODE:
         return _CODE[name]
     import cv2
@@ -203,9 +204,13 @@ def code_fingerprint(name: str) -> str:
         version = importlib.metadata.version("trackbook")
     except importlib.metadata.PackageNotFoundError:  # a source tree without install
         version = "unknown"
+    from ..trackers.failure import calibrated_params
+
     cls = _trackers.get(name)
     h = hashlib.blake2b(digest_size=16)
     h.update(f"{version};{cv2.__version__};{cls.__module__}.{cls.__qualname__};".encode())
+    # the failure layer's thresholds are data, not code, and decide ok and learning too
+    h.update(repr(calibrated_params(name)).encode())
     for m in code_modules(cls):
         files = [m.__file__]
         # a script the module runs in a child process (opencv-mil's _mil_child.py) is its code
