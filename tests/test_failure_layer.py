@@ -148,15 +148,17 @@ def test_the_script_says_when_a_tracker_has_no_confidence(fakes, tmp_path, capsy
 
 
 def test_the_readme_says_what_the_committed_calibration_shows():
-    """The README says the calibrated rule meets its target for no tracker and so does not set
-    ``ok`` yet: the day a committed calibration meets it, that sentence must change."""
+    """The README says the calibrated rule meets its target for no tracker: the day a
+    committed calibration meets it, that sentence must change."""
     rows = json.loads((ROOT / "src" / "trackbook" / "data" / "failure_calibration.json")
                       .read_text(encoding="utf-8"))["rows"]
     readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
-    said = ("it does not reach 95 % of absent frames flagged with at most 1 % false losses for "
-            "any tracker")
+    said = ("the rule does not reach 95 % of absent frames flagged with at most 1 % false "
+            "losses on the calibration scenes for any tracker")
     assert said in readme
-    assert {r["tracker"] for r in rows} == set(trackers.available())
+    # one row per algorithm; a -redetect name judges with its algorithm's thresholds
+    assert {r["tracker"] for r in rows} == {n for n in trackers.available()
+                                           if not n.endswith("-redetect")}
     assert not [r["tracker"] for r in rows if r["meets_target"]], (
         "a tracker's calibration now meets the target: update the README's 'What ok promises'")
     assert all(r["absent_lost"] < 0.95 or r["false_lost"] > 0.01 for r in rows)
