@@ -226,7 +226,7 @@ def test_confidence_is_the_colour_match_of_the_estimate_against_the_first_box():
     """The edge likelihood cannot say "gone": the confidence is the failure layer's generic
     one, rho between the kernel colour histograms of the estimate's box and of the first box
     (eq. 1 of Lee et al. 2012), computed here from the histograms directly."""
-    from trackbook.trackers.lost import ColourCheck
+    from trackbook.trackers.generic_confidence import ColourCheck
 
     clip = clips.load("patterned-object")
     t = trackers.create("edge-ray-pf", seed=0)
