@@ -129,9 +129,10 @@ def _present_absent(name, key):
 
 
 #: Trackers whose confidence is NOT higher on average where the target is in view than where
-#: it is not, per scenario (none on these clips; edge-ray-pf's and hog-pf's margins are the
-#: smallest: edges and gradients are everywhere on the textured background).
-NOT_HIGHER_WHEN_PRESENT: dict = {"edge-exit": set(), "occluder": set()}
+#: it is not, per scenario: median-flow-redetect, restarted on the textured background while
+#: the target is gone, tracks its points there with a small forward-backward error, so its
+#: confidence is higher out of view on edge-exit; measured, asserted.
+NOT_HIGHER_WHEN_PRESENT: dict = {"edge-exit": {"median-flow-redetect"}, "occluder": set()}
 
 
 @pytest.mark.parametrize("key", LEAVING)

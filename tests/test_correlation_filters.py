@@ -313,38 +313,10 @@ def _run(name, key, **params):
     return sc, out
 
 
-def visible_fraction(box, frame_shape) -> float:
-    """Fraction of the area of ``box = (x, y, w, h)`` inside the frame."""
-    H, W = frame_shape[:2]
-    x, y, w, h = (float(v) for v in box)
-    iw = max(0.0, min(x + w, W) - max(x, 0.0))
-    ih = max(0.0, min(y + h, H) - max(y, 0.0))
-    return iw * ih / (w * h)
-
-
-@pytest.mark.parametrize("name", ["mosse", "kcf"])
-def test_a_box_mostly_out_of_view_is_never_ok(name):
-    sc, out = _run(name, "edge-exit")
-    shape = sc.clip.frames[0].shape
-    assert any(not ok for _, ok, _, _ in out)
-    for i, ok, box, _ in out:
-        if ok:
-            assert visible_fraction(box, shape) >= 0.5, (i, box)
-
-
 @pytest.mark.parametrize("name", ["mosse", "kcf"])
 def test_a_lost_frame_leaves_the_model_unchanged(name):
-    _, out = _run(name, "occluder")
+    # blank frames are lost whatever the thresholds (whether an occluder is judged lost is
+    # the contract test's question, tests/test_failure_contract.py)
+    _, out = _run(name, "black")
     lost = [same for _, ok, _, same in out if not ok]
     assert lost and all(lost)
-
-
-def test_kcf_is_lost_while_the_occluder_covers_the_target():
-    """KCF alone (``failure=False``) never says lost: its padded window keeps matching the
-    background around an occluder. The failure layer judges its PSR and reports the covered
-    frames lost."""
-    from . import _scenarios as S
-    absent = S.SCENARIOS["occluder"]().absent[1:]
-    ok_off = np.array([ok for _, ok, _, _ in _run("kcf", "occluder", failure=False)[1]])
-    ok_on = np.array([ok for _, ok, _, _ in _run("kcf", "occluder")[1]])
-    assert ok_off.all() and ok_on[absent].mean() < 0.1

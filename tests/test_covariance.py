@@ -331,8 +331,11 @@ def test_manoeuvre_window_is_the_inflated_prediction():
 def test_manoeuvre_gate_zero_is_the_paper_tracker():
     clip = _reversing_square_clip()
     used = []
-    off = evaluate("kalman-covariance-manoeuvre", clip, manoeuvre_gate=0,
-                   on_frame=lambda i, t, f, b: used.append(t.manoeuvre))
+    # under the paper tracker's failure thresholds (each name has its own calibrated pair)
+    from trackbook.trackers.failure import calibrated_params
+    t = trackers.create("kalman-covariance-manoeuvre", manoeuvre_gate=0,
+                        failure=calibrated_params("kalman-covariance"))
+    off = evaluate(t, clip, on_frame=lambda i, t, f, b: used.append(t.manoeuvre))
     assert not any(used)
     np.testing.assert_array_equal(off.boxes, evaluate("kalman-covariance", clip).boxes)
 

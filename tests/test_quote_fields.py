@@ -70,6 +70,9 @@ def test_every_entry_resolves_and_keeps_to_one_paper():
 
 def test_entries_name_fields_that_exist():
     known = {(t, f) for t, f, _ in PRINTED}
+    # the book's manoeuvre variant has the paper tracker's printed fields
+    known |= {("kalman-covariance-manoeuvre", f) for t, f, _ in PRINTED
+              if t == "kalman-covariance"}
     for tracker, fields in FIELDS.items():
         for field in fields:
             assert (tracker, field) in known, f"{tracker}.{field} is not a printed field"

@@ -35,7 +35,10 @@ KIND = {
     "kcf": {"search_window"},
     "camshift": {"search_window", "ellipse"},
     "median-flow": set(),
+    "kalman-covariance-manoeuvre": {"search_window", "candidates", "ellipse"},
 }
+# a re-detecting variant draws what its algorithm draws
+KIND.update({f"{n}-redetect": v for n, v in list(KIND.items())})
 
 
 def _frames(n=5):

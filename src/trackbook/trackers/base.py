@@ -275,7 +275,7 @@ class Tracker:
         conf = float(conf)
         self._judged_confidence = conf
         flat = self._is_flat(frame)
-        # A flat frame, or one the paper's own rule calls lost, is judged as a frame with no
+        # A flat frame, or one the algorithm's own rule calls lost, is judged as a frame with no
         # confidence at all (NaN: lost), so that its confidence never enters the reference
         # the next frames are judged against.
         judged = True if self._detector is None else \
@@ -300,6 +300,17 @@ class Tracker:
         false loss, an occluder passing) stays inside the next search window. A tracker
         whose state already moves in ``_locate`` (a particle filter's particles) overrides
         it to do nothing.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The lost frame.
+        box : (4,) float array
+            The box ``_locate`` found on it.
+
+        Returns
+        -------
+        None
         """
         if type(self)._relocate is not Tracker._relocate:
             self._relocate(frame, box)

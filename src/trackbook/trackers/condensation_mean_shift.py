@@ -448,7 +448,19 @@ class CondensationMeanShift(Condensation):
     def _follow(self, frame, box):
         """A lost frame: the candidates already moved in ``_locate``; only this frame's grey
         window is kept (around the last accepted estimate), so the next motion vector is
-        measured between consecutive frames, as eq. 5-8 do."""
+        measured between consecutive frames, as eq. 5-8 do.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The lost frame.
+        box : (4,) float array
+            The box ``_locate`` found on it.
+
+        Returns
+        -------
+        None
+        """
         if self.params.use_motion:
             self._remember(frame, self._curr)
 

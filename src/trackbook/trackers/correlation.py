@@ -191,7 +191,7 @@ class _CorrelationTracker(Tracker):
         return self._box_at(centre), conf, self._own_ok(conf)
 
     def _learn(self, frame, box):
-        """Move to ``box`` and update the filter with the window there (the paper's rule)."""
+        """Move to ``box`` and update the filter with the window there."""
         self._centre = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
         feats = self._features(self._patches(self._gray(frame), [self._centre]))[0]
         self._update_model(feats)
@@ -213,7 +213,7 @@ class _CorrelationTracker(Tracker):
         return (centre[0] + dx * s, centre[1] + dy * s)
 
     def _own_ok(self, conf) -> bool:
-        """A failure rule the paper prints (none by default)."""
+        """The algorithm's own failure rule (none by default)."""
         return True
 
     # -- what each tracker implements -----------------------------------------------------
@@ -338,7 +338,7 @@ class KcfTracker(_CorrelationTracker):
 
     Failure
     -------
-    Henriques et al. print no failure rule: the failure-detection layer decides ``ok`` from
+    KCF has no failure rule of its own: the failure-detection layer decides ``ok`` from
     the PSR below, and the model is not updated on a frame judged lost. ``kcf-redetect`` adds
     the re-detection layer: while lost, windows over the whole frame are scored by the PSR of
     the KCF response there and the search restarts from the best.

@@ -22,7 +22,8 @@
 
 All of them report ``ok`` from the failure-detection layer
 (:class:`~trackbook.trackers.failure.FailureDetector` on the confidence -d_F), and also lost
-when the paper's own test fails (best ρ above ``threshold``); a lost frame keeps the last box
+when the paper's own test fails (best ρ above ``threshold``)
+[quote: lee2015.research_in_window]; a lost frame keeps the last box
 and teaches nothing. The ``-redetect`` names add the re-detection layer (the whole frame
 scored with -d_F while lost).
 
@@ -58,7 +59,7 @@ RHO_HISTORY = 25
 
 @dataclasses.dataclass(frozen=True)
 class _CovarianceModelParams:
-    """The tunables both trackers of Lee (2015) share: the model, its candidates, the test."""
+    """The tunables the two covariance trackers share: the model, its candidates, the test."""
 
     # Section numbers are those of Lee (2015), J. KIICE 19(6), pp. 1477-1484.
     features: str = param(
@@ -192,7 +193,7 @@ class _CovarianceSearch(Tracker):
     ---------
     ``ok`` comes from the failure-detection layer on the confidence below; the paper's own
     test, a best ρ above ``threshold`` (the match "does not converge", sec. 2.3), also makes
-    the frame lost. A lost frame keeps the last box and does not update the model. Candidate
+    the frame lost [quote: lee2015.research_in_window]. A lost frame keeps the last box and does not update the model. Candidate
     windows stay inside the frame, so a target leaving across the border raises the best ρ
     as its visible part shrinks.
 
@@ -348,8 +349,8 @@ class CovarianceTracker(_CovarianceSearch):
 
     Candidates are target-sized windows whose centres lie within ±``search_radius`` px of
     the last box's centre (every ``stride`` px). If the best ρ exceeds ``threshold`` the
-    whole frame is searched, as the paper prints (``fallback="frame"``); if that fails too,
-    the frame is lost.
+    whole frame is searched, as the paper prints (``fallback="frame"``)
+    [quote: lee2015.whole_frame_search]; if that fails too, the frame is lost.
 
     Confidence: -d_F of the last frame's best window (the negative Förstner distance, see
     "Confidence" of the shared search below). ``ok`` comes from the failure-detection layer
@@ -497,7 +498,7 @@ class KalmanCovarianceTracker(_CovarianceSearch):
         return (cx, cy), radius
 
     def _manoeuvre_search(self, frame, posterior, found):
-        """Hook of :class:`KalmanCovarianceManoeuvre`; the paper's tracker has none."""
+        """Hook of :class:`KalmanCovarianceManoeuvre`; ``kalman-covariance`` has none."""
         return found
 
     def _locate(self, frame):
@@ -524,7 +525,19 @@ class KalmanCovarianceTracker(_CovarianceSearch):
 
     def _follow(self, frame, box):
         """On a lost frame: nothing. The filter already predicted in ``_locate``, so P grows
-        and the next Kalman window, searched again, is larger (the paper's re-search)."""
+        and the next Kalman window, searched again, is larger (the paper's re-search).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The lost frame.
+        box : (4,) float array
+            The box ``_locate`` found on it.
+
+        Returns
+        -------
+        None
+        """
 
     def _relocate(self, frame, box):
         """Restart the filter at rest at ``box``'s centre, P = P₀ (for the re-detection layer)."""

@@ -14,8 +14,8 @@ On every frame:
    published filter: about half survive); the box moves by the median of their displacements
    and scales by the median of the ratios of their pairwise distances after and before.
 
-The failure-detection layer judges the confidence below on every frame besides the paper's
-rule (step 2): a frame it judges lost, or a frame whose grey levels span at most
+The failure-detection layer judges the confidence below on every frame besides Median Flow's
+own rule (step 2): a frame it judges lost, or a frame whose grey levels span at most
 ``flat_range``, keeps the last box, and the next frame's flow starts from the last frame
 judged on target and its box (the last frame is the only model Median Flow has).
 ``median-flow-redetect`` adds the re-detection layer: while lost, boxes of the last size over
@@ -161,7 +161,7 @@ class MedianFlowTracker(Tracker):
     def _locate(self, frame):
         """One Median Flow step from the last frame judged on target (its pyramid and box) to
         ``frame``. Returns the box, minus the median FB error (minus the diagonal where the
-        flow placed no box) and whether the paper's rule passed (median FB at most
+        flow placed no box) and whether Median Flow's own rule passed (median FB at most
         ``fb_threshold``, at least two points kept)."""
         self.points = np.zeros((0, 2))
         self.fb_error = float("inf")
@@ -188,6 +188,21 @@ class MedianFlowTracker(Tracker):
         th, tw = self._template.shape
         patches = sample_patches(g, np.asarray(boxes, float), (tw, th))
         return tm.patch_ncc(patches, np.broadcast_to(self._template, patches.shape))
+
+    def _follow(self, frame, box):
+        """On a lost frame: nothing (the next flow starts from the last frame judged on target).
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The lost frame.
+        box : (4,) float array
+            The box the flow found on it, not trusted.
+
+        Returns
+        -------
+        None
+        """
 
     def _relocate(self, frame, box):
         """Restart the flow from ``frame`` with ``box``."""

@@ -232,7 +232,19 @@ class ParticleFilterTracker(Tracker):
     def _follow(self, frame, box):
         """On a lost frame: nothing. The particles already moved in ``_locate`` (they are
         the filter's state), so the next cycle starts from them; restarting them around
-        the estimate every lost frame would undo the filter's own spread."""
+        the estimate every lost frame would undo the filter's own spread.
+
+        Parameters
+        ----------
+        frame : (H, W, 3) uint8 array
+            The lost frame.
+        box : (4,) float array
+            The box ``_locate`` found on it.
+
+        Returns
+        -------
+        None
+        """
 
     def respread(self, frame, box):
         """Hook: the particles the re-detection layer restarts from, around ``box`` at rest
