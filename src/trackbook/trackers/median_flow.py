@@ -189,21 +189,6 @@ class MedianFlowTracker(Tracker):
         patches = sample_patches(g, np.asarray(boxes, float), (tw, th))
         return tm.patch_ncc(patches, np.broadcast_to(self._template, patches.shape))
 
-    def _follow(self, frame, box):
-        """On a lost frame: nothing (the next flow starts from the last frame judged on target).
-
-        Parameters
-        ----------
-        frame : (H, W, 3) uint8 array
-            The lost frame.
-        box : (4,) float array
-            The box the flow found on it, not trusted.
-
-        Returns
-        -------
-        None
-        """
-
     def _relocate(self, frame, box):
         """Restart the flow from ``frame`` with ``box``."""
         self._pyr = lk.pyramid(self._grey(frame), self.params.levels)
