@@ -439,8 +439,7 @@ class CondensationMeanShift(Condensation):
         return super()._locate(frame)
 
     def _learn(self, frame, box):
-        """Accept the estimate, then keep this frame's grey window around it (eq. 8's image
-        t for the next frame's motion vector)."""
+        """Accept the estimate; keep this frame's grey window (eq. 8's image t, next motion)."""
         super()._learn(frame, box)
         if self.params.use_motion:
             self._remember(frame, self._curr)
@@ -452,10 +451,8 @@ class CondensationMeanShift(Condensation):
 
         Parameters
         ----------
-        frame : (H, W, 3) uint8 array
-            The lost frame.
-        box : (4,) float array
-            The box ``_locate`` found on it.
+        frame : (H, W, 3) uint8 array, the lost frame
+        box : (4,) float array, the box ``_locate`` found on it (not used)
 
         Returns
         -------
