@@ -95,27 +95,35 @@ def confidence_of(tracker) -> float:
     return math.nan if c is None else float(c)
 
 
+def run_with_confidence(names, clip, seed: int = 0):
+    """Every tracker of ``names`` over ``clip`` in lockstep, the failure layer off: their
+    results and an ``(n_trackers, n_frames)`` array of ``state().confidence`` (NaN on frame
+    0, which is given, not tracked)."""
+    made = [trackers.create(n, seed=seed, failure=False) for n in names]
+    conf = np.full((len(made), len(clip)), np.nan)
+    index = {id(t): j for j, t in enumerate(made)}
+
+    def hook(i, tracker, frame, box):
+        if i > 0:
+            conf[index[id(tracker)], i] = confidence_of(tracker)
+
+    try:
+        results = evaluate_many([(t, None, {}) for t in made], clip, on_frame=hook)
+    finally:
+        for t in made:
+            close = getattr(t, "close", None)
+            if callable(close):
+                close()
+    return results, conf
+
+
 def record(names, scenes, seed: int = 0, log=None) -> dict:
     """``{tracker: [Run per scene]}``: every tracker over every scene, in lockstep per scene."""
     out = {n: [] for n in names}
     for k, sc in enumerate(scenes):
         t0 = time.perf_counter()
         # the algorithm alone (failure=False): the layer's thresholds are what is being chosen
-        made = [trackers.create(n, seed=seed, failure=False) for n in names]
-        conf = np.full((len(made), len(sc.clip)), np.nan)
-        index = {id(t): j for j, t in enumerate(made)}
-
-        def hook(i, tracker, frame, box, conf=conf, index=index):
-            if i > 0:
-                conf[index[id(tracker)], i] = confidence_of(tracker)
-
-        try:
-            results = evaluate_many([(t, None, {}) for t in made], sc.clip, on_frame=hook)
-        finally:
-            for t in made:
-                close = getattr(t, "close", None)
-                if callable(close):
-                    close()
+        results, conf = run_with_confidence(names, sc.clip, seed)
         for j, (n, r) in enumerate(zip(names, results)):
             iou = np.nan_to_num(box_iou(r.boxes, sc.clip.groundtruth), nan=0.0)
             out[n].append(Run(sc.kind, conf[j, 1:], iou[1:], np.asarray(sc.absent)[1:],
@@ -160,21 +168,7 @@ def record_sequences(names, seqs, seed: int = 0, log=None) -> dict:
     for name, path in seqs.items():
         t0 = time.perf_counter()
         clip = trackbook.clips.load(str(path))
-        made = [trackers.create(n, seed=seed, failure=False) for n in names]
-        conf = np.full((len(made), len(clip)), np.nan)
-        index = {id(t): j for j, t in enumerate(made)}
-
-        def hook(i, tracker, frame, box, conf=conf, index=index):
-            if i > 0:
-                conf[index[id(tracker)], i] = confidence_of(tracker)
-
-        try:
-            results = evaluate_many([(t, None, {}) for t in made], clip, on_frame=hook)
-        finally:
-            for t in made:
-                close = getattr(t, "close", None)
-                if callable(close):
-                    close()
+        results, conf = run_with_confidence(names, clip, seed)
         for j, (n, r) in enumerate(zip(names, results)):
             iou = np.nan_to_num(box_iou(r.boxes, clip.groundtruth), nan=0.0)[1:]
             c = conf[j, 1:]

@@ -336,7 +336,7 @@ class Tracker:
             return
         # a second pass on a grid a quarter as fine around the best: a model with a sharp
         # peak (a HOG match, a correlation response) can score low a few pixels off it
-        step = np.sqrt(frame.shape[0] * frame.shape[1] / max(self.redetect_boxes, 1)) / 4
+        step = grid_step(frame.shape, self.redetect_boxes) / 4
         d = np.arange(-2, 3) * step
         dx, dy = np.meshgrid(d, d)
         fine = np.tile(boxes[best], (dx.size, 1))
@@ -500,6 +500,12 @@ class Tracker:
         return f"{type(self).__name__}(seed={self.seed!r}, params={self.params!r})"
 
 
+def grid_step(frame_shape, max_boxes: int) -> float:
+    """The step, in pixels, of a square grid of at most ``max_boxes`` points over the frame."""
+    H, W = frame_shape[:2]
+    return max(float(np.sqrt(W * H / max(int(max_boxes), 1))), 1.0)
+
+
 def whole_frame_boxes(frame_shape, size, max_boxes: int) -> np.ndarray:
     """Boxes of ``size = (w, h)`` centred on a grid over the whole frame, at most ``max_boxes``.
 
@@ -508,7 +514,7 @@ def whole_frame_boxes(frame_shape, size, max_boxes: int) -> np.ndarray:
     (a target at the edge is found too).
     """
     H, W = frame_shape[:2]
-    step = max(np.sqrt(W * H / max(int(max_boxes), 1)), 1.0)
+    step = grid_step(frame_shape, max_boxes)
     xs = np.arange(step / 2, W, step)
     ys = np.arange(step / 2, H, step)
     X, Y = np.meshgrid(xs, ys)
