@@ -4,6 +4,8 @@ student re-implements.
 
 ``CHECKS[number]`` is a predicate ``answer -> bool``; :func:`trackbook.exercises.autocheck`
 prints its verdict. Each case's expected value is written out in the comment beside it.
+A chapter's text module may hold its own checks in a ``CHECKS`` dict of the same form (so a
+chapter's exercises and their checks change together); they are gathered here.
 """
 
 from __future__ import annotations
@@ -270,3 +272,20 @@ CHECKS = {
     "6.7": jacobian_ok, "7.6": covariance_ok, "8.5": motion_ok, "8.7": switches_ok,
     "9.5": loso_ok, "9.7": without_first_ok, "10.3": dual_ok, "11.4": roc_count_ok,
 }
+
+
+def _gather_chapter_checks() -> None:
+    """Add the ``CHECKS`` of every chapter text module that defines some."""
+    import importlib
+
+    from . import CHAPTERS
+    for stem in CHAPTERS:
+        own = getattr(importlib.import_module(f"{__package__}._{stem}"), "CHECKS", {})
+        clash = set(own) & set(CHECKS)
+        if clash:
+            raise ValueError(f"{stem}: exercise checks defined twice: {sorted(clash)}")
+        CHECKS.update(own)
+
+
+_gather_chapter_checks()
+
