@@ -8,6 +8,7 @@ function the exercise re-implements); each wrong one makes a mistake a student m
 import re
 from pathlib import Path
 
+import cv2
 import numpy as np
 import pytest
 
@@ -217,6 +218,15 @@ def dual(x, y, sigma, lam):
     return np.fft.ifft(np.fft.fft(y) / (np.fft.fft(k) + lam)).real
 
 
+def axes(prob, half=0.5):
+    """13.4 from cv2.moments (an oracle independent of the library's moments)."""
+    m = cv2.moments(np.asarray(prob, np.float64))
+    a, h, c = m["mu20"] / m["m00"], m["mu11"] / m["m00"], m["mu02"] / m["m00"]
+    root = np.sqrt(4 * h * h + (a - c) ** 2)
+    return (np.degrees(half * np.arctan2(2 * h, a - c)), np.sqrt((a + c + root) / 2),
+            np.sqrt(max((a + c - root) / 2, 0.0)))
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -250,6 +260,7 @@ RIGHT_AND_WRONG = {
     "11.4": (lambda on, off: float(np.mean([1.0 if a > b else 0.5 if a == b else 0.0
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
+    "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
 }
 
 
