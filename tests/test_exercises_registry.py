@@ -227,6 +227,13 @@ def axes(prob, half=0.5):
             np.sqrt(max((a + c - root) / 2, 0.0)))
 
 
+def rts_step(x, P, x_next_s, P_next_s, F, Q, transposed=False):
+    """One RTS backward step written out (17.4); ``transposed`` puts F where Fᵀ belongs."""
+    P_pred = F @ P @ F.T + Q
+    G = (P @ F if transposed else P @ F.T) @ np.linalg.inv(P_pred)
+    return x + G @ (x_next_s - F @ x), P + G @ (P_next_s - P_pred) @ G.T
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -261,6 +268,11 @@ RIGHT_AND_WRONG = {
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
     "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
+    # 17.4: the RTS step; wrong: the smoother gain with Fᵀ on the wrong side, P F (P⁻)⁻¹
+    "17.4": (rts_step, lambda x, P, xs, Ps, F, Q: rts_step(x, P, xs, Ps, F, Q, transposed=True)),
+    # 17.5: ω normalised over the current mode j (rows) instead of over the previous mode i
+    "17.5": (lambda mu, Pi: (mu @ Pi, Pi * mu[:, None] / (mu @ Pi)[None, :]),
+             lambda mu, Pi: (mu @ Pi, (Pi * mu[:, None]) / (Pi * mu[:, None]).sum(1, keepdims=True))),
 }
 
 
