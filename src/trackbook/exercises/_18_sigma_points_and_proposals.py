@@ -7,19 +7,19 @@ STEM = "18_sigma_points_and_proposals"
 
 TEXT = r"""
 === 18.1 ★ pen and paper | Three points for a Gaussian
-For $x \sim N(m, \sigma^2)$ take the points $m$ and $m \pm s\sigma$, with weight $w_0$ on the
+For $x \sim N(m, \sigma^2)$ take the points $m$ and $m \pm \gamma_{\mathrm{UT}}\sigma$, with weight $w_0$ on the
 centre and $w_1$ on each side point. Derive $w_0$ and $w_1$ from two requirements: the weights
 sum to 1, and the weighted variance of the points is $\sigma^2$. Why does the weighted mean not
-give a third equation? Then choose $s$ so that the weighted fourth central moment equals the
+give a third equation? Then choose $\gamma_{\mathrm{UT}}$ so that the weighted fourth central moment equals the
 Gaussian's, $3\sigma^4$, and give the three weights. Which $\lambda_{\mathrm{UT}}$ (for $n = 1$) and
-which $\alpha_{\mathrm{UT}}$, $\kappa_{\mathrm{UT}}$ give that $s$?
+which $\alpha_{\mathrm{UT}}$, $\kappa_{\mathrm{UT}}$ give that $\gamma_{\mathrm{UT}}$?
 --- solution
-Sum: $w_0 + 2 w_1 = 1$. Variance: $w_1 (s\sigma)^2 + w_1 (-s\sigma)^2 = 2 w_1 s^2 \sigma^2 =
-\sigma^2$, so $w_1 = 1/(2s^2)$ and $w_0 = 1 - 1/s^2$. The mean is
-$w_0 m + w_1 (m + s\sigma) + w_1 (m - s\sigma) = (w_0 + 2w_1) m = m$ for any weights that sum
+Sum: $w_0 + 2 w_1 = 1$. Variance: $w_1 (\gamma_{\mathrm{UT}}\sigma)^2 + w_1 (-\gamma_{\mathrm{UT}}\sigma)^2 = 2 w_1 \gamma_{\mathrm{UT}}^2 \sigma^2 =
+\sigma^2$, so $w_1 = 1/(2\gamma_{\mathrm{UT}}^2)$ and $w_0 = 1 - 1/\gamma_{\mathrm{UT}}^2$. The mean is
+$w_0 m + w_1 (m + \gamma_{\mathrm{UT}}\sigma) + w_1 (m - \gamma_{\mathrm{UT}}\sigma) = (w_0 + 2w_1) m = m$ for any weights that sum
 to 1: the symmetry of the points does the work. Fourth moment:
-$2 w_1 (s\sigma)^4 = s^2 \sigma^4 = 3\sigma^4$ gives $s^2 = 3$, so $w_0 = 2/3$ and
-$w_1 = 1/6$. With $s^2 = n + \lambda_{\mathrm{UT}}$ and $n = 1$, $\lambda_{\mathrm{UT}} = 2$; it comes
+$2 w_1 (\gamma_{\mathrm{UT}}\sigma)^4 = \gamma_{\mathrm{UT}}^2 \sigma^4 = 3\sigma^4$ gives $\gamma_{\mathrm{UT}}^2 = 3$, so $w_0 = 2/3$ and
+$w_1 = 1/6$. With $\gamma_{\mathrm{UT}}^2 = n + \lambda_{\mathrm{UT}}$ and $n = 1$, $\lambda_{\mathrm{UT}} = 2$; it comes
 from $\alpha_{\mathrm{UT}}^2 (1 + \kappa_{\mathrm{UT}}) = 3$, e.g. $\alpha_{\mathrm{UT}} = 1$,
 $\kappa_{\mathrm{UT}} = 2 = 3 - n$.
 
@@ -92,12 +92,12 @@ $\sigma_\theta = 0.3$ and $0.6$ rad. Which gives the mean closest to the exact o
 $y$ standard deviation closest to the Monte Carlo one? Explain the mean with a Taylor
 expansion of $E[\cos\theta]$.
 --- solution
-The side points along $\theta$ lie at $\pm s\sigma_\theta$ with $s^2 = n + \lambda_{\mathrm{UT}} =
+The side points along $\theta$ lie at $\pm \gamma_{\mathrm{UT}}\sigma_\theta$ with $\gamma_{\mathrm{UT}}^2 = n + \lambda_{\mathrm{UT}} =
 2\alpha_{\mathrm{UT}}^2$, and the unscented estimate of $E[\cos(\theta - \theta_0)]$ is
-$1 - (1 - \cos s\sigma_\theta)/s^2 = 1 - \sigma_\theta^2/2 + s^2\sigma_\theta^4/24 - \dots$, against
+$1 - (1 - \cos \gamma_{\mathrm{UT}}\sigma_\theta)/\gamma_{\mathrm{UT}}^2 = 1 - \sigma_\theta^2/2 + \gamma_{\mathrm{UT}}^2\sigma_\theta^4/24 - \dots$, against
 the exact $e^{-\sigma_\theta^2/2} = 1 - \sigma_\theta^2/2 + \sigma_\theta^4/8 - \dots$. A tiny
 $\alpha_{\mathrm{UT}}$ keeps only the second-order term (like a second-order Taylor expansion);
-$\alpha_{\mathrm{UT}} = 1$ ($s^2 = 2$) gets closer to the fourth-order term, and $s^2 = 3$ (the
+$\alpha_{\mathrm{UT}} = 1$ ($\gamma_{\mathrm{UT}}^2 = 2$) gets closer to the fourth-order term, and $\gamma_{\mathrm{UT}}^2 = 3$ (the
 $\kappa_{\mathrm{UT}} = 1$ setting of the chapter) matches it: larger spread, better mean here, at
 both bearing noises. The covariance has no winner: $\alpha_{\mathrm{UT}} = 1$ gives the $x$
 spread closest to Monte Carlo but the $y$ spread farthest (the ellipse too deep), the tiny
