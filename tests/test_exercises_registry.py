@@ -234,6 +234,32 @@ def rts_step(x, P, x_next_s, P_next_s, F, Q, transposed=False):
     return x + G @ (x_next_s - F @ x), P + G @ (P_next_s - P_pred) @ G.T
 
 
+def merwe(m, P, alpha, beta, kappa):
+    m = np.atleast_1d(np.asarray(m, float))
+    n = m.size
+    lam = alpha ** 2 * (n + kappa) - n
+    L = np.linalg.cholesky((n + lam) * np.atleast_2d(P))
+    Wm = np.full(2 * n + 1, 0.5 / (n + lam))
+    Wc = Wm.copy()
+    Wm[0] = lam / (n + lam)
+    Wc[0] = Wm[0] + 1 - alpha ** 2 + beta
+    return np.vstack([m, m + L.T, m - L.T]), Wm, Wc
+
+
+def snis(x, log_p, log_q, phi):
+    lw = log_p(x) - log_q(x)
+    w = np.exp(lw - lw.max())
+    w = w / w.sum()
+    return w @ phi(x), 1 / np.sum(w ** 2)
+
+
+def snis_raw(x, log_p, log_q, phi):
+    with np.errstate(invalid="ignore"):
+        w = np.exp(log_p(x) - log_q(x))
+        w = w / w.sum()
+        return w @ phi(x), 1 / np.sum(w ** 2)
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -273,6 +299,11 @@ RIGHT_AND_WRONG = {
     # 17.5: ω normalised over the current mode j (rows) instead of over the previous mode i
     "17.5": (lambda mu, Pi: (mu @ Pi, Pi * mu[:, None] / (mu @ Pi)[None, :]),
              lambda mu, Pi: (mu @ Pi, (Pi * mu[:, None]) / (Pi * mu[:, None]).sum(1, keepdims=True))),
+    # 18.7: wrong: the covariance weight of the centre without the 1 - α² + β term
+    "18.7": (merwe, lambda m, P, a, b, k: (merwe(m, P, a, b, k)[0], merwe(m, P, a, b, k)[1],
+                                           merwe(m, P, a, b, k)[1])),
+    # 18.8: wrong: exponentiates the raw log-weights, which underflow to 0 / 0 at -2000
+    "18.8": (snis, lambda x, lp, lq, phi: snis_raw(x, lp, lq, phi)),
 }
 
 
