@@ -260,6 +260,31 @@ def snis_raw(x, log_p, log_q, phi):
         return w @ phi(x), 1 / np.sum(w ** 2)
 
 
+def mog_step(x, w, mu, var, eta, decay=True):
+    """One grey pixel's mixture update (Zivkovic 2004 with c_T = 0, OpenCV's order)."""
+    w, mu, var = (np.array(a, float) for a in (w, mu, var))
+    if decay:
+        w = (1 - eta) * w
+    d2 = (x - mu) ** 2 / var
+    owns = np.flatnonzero(d2 < 9)
+    last = owns[0] if len(owns) else len(w) - 1
+    background = bool(np.any(((np.cumsum(w) - w) < 0.9)[:last + 1] & (d2[:last + 1] < 16)))
+    if len(owns):
+        m = owns[0]
+        w[m] += eta
+        step, dist2 = eta / w[m], (x - mu[m]) ** 2
+        mu[m] += step * (x - mu[m])
+        var[m] = np.clip(var[m] + step * (dist2 - var[m]), 4, 75)
+        w /= w.sum()
+    else:
+        w = (1 - eta) * w / w.sum()
+        if len(w) == 5:
+            w, mu, var = w[:-1], mu[:-1], var[:-1]
+        w, mu, var = np.append(w, eta), np.append(mu, x), np.append(var, 15.0)
+    order = np.argsort(-w, kind="stable")
+    return background, w[order], mu[order], var[order]
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -304,6 +329,8 @@ RIGHT_AND_WRONG = {
                                            merwe(m, P, a, b, k)[1])),
     # 18.8: wrong: exponentiates the raw log-weights, which underflow to 0 / 0 at -2000
     "18.8": (snis, lambda x, lp, lq, phi: snis_raw(x, lp, lq, phi)),
+    # 15.4: wrong: the weights are not decayed before the owner gains eta
+    "15.4": (mog_step, lambda *a: mog_step(*a, decay=False)),
 }
 
 
