@@ -27,9 +27,9 @@ For $w = 30$, $h = 10$: $\bar\mu_{20} = 899/12 = 74.92$, $\bar\mu_{02} = 99/12 =
 === 13.2 ★ pen and paper | The orientation of a tilted rectangle
 Turn the block of exercise 13.1 by an angle $\varphi$, measured from the $x$ axis towards the
 $y$ axis (clockwise on screen, since $y$ points down), with $w, h$ large, so that the
-variances along its own axes are $w^2/12$ and $h^2/12$. Write its normalised central moments and show
-that $\theta = \tfrac12 \operatorname{atan2}(2\bar\mu_{11}, \bar\mu_{20} - \bar\mu_{02})$
-gives back $\varphi$. What happens when $w = h$?
+variances along its own axes are $w^2/12$ and $h^2/12$. Write its normalised central
+moments and show that
+$\theta = \tfrac12 \operatorname{atan2}(2\bar\mu_{11}, \bar\mu_{20} - \bar\mu_{02})$ gives back $\varphi$. What happens when $w = h$?
 --- solution
 With $u$ along the block's long side and $v$ across it, $x = u\cos\varphi - v\sin\varphi$,
 $y = u\sin\varphi + v\cos\varphi$, and $u, v$ uncorrelated with variances $\ell = w^2/12$,
