@@ -25,10 +25,11 @@ block (the side of a uniform block is $\sqrt{12}\,\sigma \approx 3.46\,\sigma$, 
 For $w = 30$, $h = 10$: $\bar\mu_{20} = 899/12 = 74.92$, $\bar\mu_{02} = 99/12 = 8.25$.
 
 === 13.2 ★ pen and paper | The orientation of a tilted rectangle
-Turn the block of exercise 13.1 by an angle $\varphi$ (large $w, h$, so that the variances
-along its own axes are $w^2/12$ and $h^2/12$). Write its normalised central moments and show
-that $\theta = \tfrac12 \operatorname{atan2}(2\bar\mu_{11}, \bar\mu_{20} - \bar\mu_{02})$
-gives back $\varphi$. What happens when $w = h$?
+Turn the block of exercise 13.1 by an angle $\varphi$, measured from the $x$ axis towards the
+$y$ axis (clockwise on screen, since $y$ points down), with $w, h$ large, so that the
+variances along its own axes are $w^2/12$ and $h^2/12$. Write its normalised central
+moments and show that
+$\theta = \tfrac12 \operatorname{atan2}(2\bar\mu_{11}, \bar\mu_{20} - \bar\mu_{02})$ gives back $\varphi$. What happens when $w = h$?
 --- solution
 With $u$ along the block's long side and $v$ across it, $x = u\cos\varphi - v\sin\varphi$,
 $y = u\sin\varphi + v\cos\varphi$, and $u, v$ uncorrelated with variances $\ell = w^2/12$,
@@ -77,11 +78,12 @@ which clip does the plain histogram fail worst, and why there?
 The plain histogram fails on both (AUC about 0.08 on `patterned-object` and 0.33 on
 `yellow-ball`, against 0.84 and 0.92 with the weights). On `patterned-object` it fails at
 once: the table's browns and reds have the hues of the object, the back-projection is high
-all round it, and the window grows to the whole frame within a few frames. On `yellow-ball` the
-lawn holds some of the ball's hues: the window settles at about 50 px a side instead of the
-36 that the ball alone would give, and the box, sized from $M_{00}$, is too large on every
-frame, so its overlap stays low although it follows the ball. Weighing down the hues of the ring around the first box is what keeps the
-window on the target in both clips.
+all round it, and the window grows to the whole frame within a few frames. On `yellow-ball`
+the lawn holds some of the ball's hues: the window settles at about 50 px a side, against
+about 30 with the weights (the ball's box is 18 px), and the box, sized from $M_{00}$, is
+too large on every frame, so its overlap stays low although it follows the ball. Weighing
+down the hues of the ring around the first box is what keeps the window on the target in
+both clips.
 
 === 13.6 ★ use | OpenCV's rectangle on a bar
 Draw a filled bar of $60 \times 12$ pixels of value 255 in a $120 \times 160$ image, run
