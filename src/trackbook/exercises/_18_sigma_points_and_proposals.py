@@ -120,7 +120,7 @@ points reproduce $m$ and $P$.
 --- solution
 $\lambda_{\mathrm{UT}} = \alpha_{\mathrm{UT}}^2 (n + \kappa_{\mathrm{UT}}) - n$;
 `L = np.linalg.cholesky((n + lam) * P)`; `chi = np.vstack([m, m + L.T, m - L.T])` (the rows of
-$L^T$ are the columns of $L$); `Wm = np.full(2n + 1, 1 / (2 (n + lam)))`, `Wc = Wm.copy()`,
+$L^T$ are the columns of $L$); `Wm = np.full(2 * n + 1, 1 / (2 * (n + lam)))`, `Wc = Wm.copy()`,
 `Wm[0] = lam / (n + lam)`, `Wc[0] = Wm[0] + 1 - alpha**2 + beta`.
 
 === 18.8 ★★★ implement | Self-normalised importance sampling
