@@ -98,8 +98,8 @@ $Q$ does the NIS call consistent, and which frames carry most of the NIS?
 --- solution
 The NIS needs no ground truth, so this is the test one could run on a real tracker's
 measurements. With $Q = I$ (the first draw, seed 0) the pooled NIS, about 3.3, is above the
-band $[1.66, 2.37]$ of 119 values: overconfident. About 43 % of its sum comes from the five
-frames after each bounce (13 % of the frames); away from them its mean is about 2.
+band $[1.66, 2.37]$ of 119 values: overconfident. About 43 % of its sum comes from each
+bounce frame and the four after it (13 % of the frames); away from them its mean is about 2.
 $Q = 0.01\,I$ is far worse (an average near 40: it lags on every arc); $Q = 10\,I$ falls
 below the band (underconfident: $S$ too wide on the arcs). No single $Q$ describes both the
 arcs and the bounces: the NIS says the model, not only its noise, is wrong — the case for
@@ -110,14 +110,17 @@ In the IMM comparison change $\pi_{22}$ (the probability that a manoeuvre contin
 0.5 to 0.1 and to 0.9, keeping rows summing to 1, and $\pi_{12}$ from 0.05 to 0.01 and 0.2.
 How do the RMSE, the window area and the mode-probability curve change?
 --- solution
-Over the 20 draws (rows of $\Pi$ kept summing to 1): $\pi_{22} = 0.1$ pulls the
-manoeuvring filter back by mixing at once, $\mu_2$ hardly rises (peak about 0.13 on the
-first draw) and the error near the bounces grows (about 6.3 px against 5.5).
-$\pi_{22} = 0.9$ keeps $\mu_2$ high longer: a little less error, a larger window (about
-2,050 px²). $\pi_{12} = 0.01$ gives a smaller window (about 1,580 px²) but a slower reaction
-(about 6.0 px near the bounces); $\pi_{12} = 0.2$ reacts best near the bounces (about 5.1 px)
-but searches about 2,570 px² and is noisier on the arcs (RMSE about 4.7 px). $\Pi$ moves the
-cost between error and search area.
+Over the 20 draws (rows of $\Pi$ kept summing to 1; the chapter's setting gives about 5.3 px
+near the bounces and a window of about 1,700 px²): $\pi_{22} = 0.1$ pulls the manoeuvring
+filter back by mixing at once, so $\mu_2$ rises for a single frame (above one half only after
+the first bounce, on the first draw) and the error near the bounces grows a little (about
+5.5 px) while the window shrinks (about 1,610 px²). $\pi_{22} = 0.9$ keeps $\mu_2$ near one
+for several frames after every bounce: slightly less error near them (about 5.3 px), a larger
+window (about 1,930 px²). $\pi_{12} = 0.01$ holds $\mu_2$ near zero on the arcs and gives the
+smallest window (about 1,500 px²) but a slower reaction (about 5.7 px near the bounces);
+$\pi_{12} = 0.2$ reacts best near the bounces (about 5.1 px) but keeps $\mu_2$ well above
+zero on the arcs, searches about 2,250 px² and is noisier there (RMSE about 4.5 px against
+4.3). $\Pi$ moves the cost between error and search area.
 """
 
 

@@ -1,6 +1,7 @@
 """``kalman-covariance-manoeuvre``: Lee (2015)'s ``kalman-covariance`` with the book's
-manoeuvre re-search (not in the paper), kept as a named variant because the IMM section of the
-Kalman chapter compares against it (07_region_covariance, "The bounce")."""
+manoeuvre re-search (not in the paper), kept as a named variant because the region-covariance
+chapter ("The bounce") introduces it and the IMM section of the Kalman-filter design chapter
+compares against it."""
 
 from __future__ import annotations
 
@@ -36,12 +37,14 @@ class KalmanCovarianceManoeuvreParams(KalmanCovarianceParams):
 @register
 class KalmanCovarianceManoeuvre(KalmanCovarianceTracker):
     """``kalman-covariance-manoeuvre``: ``kalman-covariance`` with the book's manoeuvre
-    re-search (not in Lee 2015; the IMM section of the Kalman chapter compares against it).
+    re-search (not in Lee 2015; the IMM section of the Kalman-filter design chapter compares
+    against it).
 
     A constant-velocity model with Q = I cannot follow a bounce (the velocity reverses in one
     frame), and the best window inside the small Kalman window is then some background whose
-    ρ can still be below ``threshold``. So when the best ρ exceeds ``manoeuvre_gate`` times
-    the median ρ of the last accepted frames, the prediction is redone from the previous
+    Förstner distance d_F (``rho`` in the code, after Lee 2015) can still be below
+    ``threshold``. So when the best d_F exceeds ``manoeuvre_gate`` times the median d_F of the
+    last accepted frames, the prediction is redone from the previous
     posterior with σ_v² = ``manoeuvre_sigma``² added to the velocity variance (an impulsive
     process noise, the "adjustable process noise" of manoeuvring-target tracking). Its S and
     window are larger, and if its best window is better the update uses that P⁻, whose
