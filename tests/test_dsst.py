@@ -70,6 +70,19 @@ def test_translation_response_stack_matches_one_by_one(rng):
         np.testing.assert_allclose(stack[i], sf.multichannel_response(A, B, Z[i], 0.1, 2))
 
 
+@pytest.mark.parametrize("ndim,shape", [(2, (5, 6)), (2, (4, 7)), (1, (33,)), (1, (8,))])
+def test_real_dft_path_equals_the_full_one(rng, ndim, shape):
+    # the tracker keeps half spectra (the features are real): same terms, same responses
+    f, z = rng.normal(size=(2, 3) + shape)
+    g = rng.normal(size=shape)
+    A, B = sf.multichannel_terms(sf.spectra(f, ndim), sf.spectra(g, ndim), ndim)
+    Ah, Bh = sf.multichannel_terms(sf.spectra(f, ndim, half=True),
+                                   sf.spectra(g, ndim, half=True), ndim)
+    full = sf.multichannel_response(A, B, sf.spectra(z, ndim), 0.1, ndim)
+    half = sf.multichannel_response(Ah, Bh, sf.spectra(z, ndim, half=True), 0.1, ndim, shape)
+    np.testing.assert_allclose(half, full, atol=1e-12)
+
+
 def test_response_peaks_at_the_shift(rng):
     # a sample moved by (1, 2) puts the peak of a filter trained on g peaked at 0 at (1, 2)
     f = rng.normal(size=(3, 8, 8))

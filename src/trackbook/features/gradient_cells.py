@@ -32,6 +32,17 @@ def _box3(E: np.ndarray) -> np.ndarray:
     return s[:, :, :-2] + s[:, :, 1:-1] + s[:, :, 2:]
 
 
+def _pixel_cells(m: np.ndarray, b: np.ndarray, bins: int) -> np.ndarray:
+    """:func:`orientation_cells` for 1-px cells, without the histogram: each pixel's only
+    vote is its own magnitude in its own bin, so its energy is m² and the channels are that
+    one value scattered into its bin (the same numbers, several times faster)."""
+    v = m / np.sqrt(_box3(m * m) + 1e-12)
+    np.minimum(v, CLIP, out=v)
+    out = np.zeros((m.shape[0], bins) + m.shape[1:])
+    np.put_along_axis(out, b[:, None].astype(np.intp), v[:, None], axis=1)
+    return out
+
+
 def orientation_cells(gray: np.ndarray, cell: int = CELL, bins: int = 8) -> np.ndarray:
     """Gradient-orientation feature images of a stack of grey patches.
 
@@ -60,6 +71,8 @@ def orientation_cells(gray: np.ndarray, cell: int = CELL, bins: int = 8) -> np.n
     gx, gy = gradients(g)                                 # eq. 2 of Lee et al. 2012
     b = orientation_bin(gx, gy, bins)                     # eq. 3-4
     m = np.sqrt(gx * gx + gy * gy)
+    if cell == 1:
+        return _pixel_cells(m, b, bins)
     cell_of = ((np.arange(rows * cell)[:, None] // cell) * cols
                + np.arange(cols * cell)[None, :] // cell)
     index = (np.arange(n)[:, None, None] * (rows * cols) + cell_of[None]) * bins + b

@@ -36,6 +36,7 @@ multi-sample solution needs a d × d system per frequency.
 from __future__ import annotations
 
 import numpy as np
+import scipy.fft
 
 
 def _axes(ndim: int) -> tuple[int, ...]:
@@ -45,8 +46,22 @@ def _axes(ndim: int) -> tuple[int, ...]:
     return tuple(range(-ndim, 0))
 
 
-def spectra(x: np.ndarray, ndim: int) -> np.ndarray:
-    """DFT of every channel of ``x`` over its last ``ndim`` axes (the signal's)."""
+def spectra(x: np.ndarray, ndim: int, half: bool = False) -> np.ndarray:
+    """DFT of every channel of ``x`` over its last ``ndim`` axes (the signal's).
+
+    ``half=True`` gives the real DFT (``scipy.fft.rfftn``: the last axis keeps its first
+    n // 2 + 1 frequencies) in ``x``'s precision (float32 in, complex64 out): the features
+    are real, so the other half is the conjugate of this one and every product and sum of
+    the filter keeps that symmetry; pass ``shape`` to :func:`multichannel_response` to
+    invert it. (SciPy's, not NumPy's: NumPy computes a float32 transform in double precision
+    and converts, several times slower.)
+    """
+    _axes(ndim)
+    if half:
+        x = np.asarray(x)
+        if x.dtype not in (np.float32, np.float64):
+            x = x.astype(np.float64)
+        return scipy.fft.rfftn(x, axes=_axes(ndim))
     x = np.asarray(x, dtype=np.float64)
     return np.fft.fft2(x) if ndim == 2 else np.fft.fft(x, axis=-1)
 
@@ -78,25 +93,36 @@ def multichannel_filter(A: np.ndarray, B: np.ndarray, lam: float, ndim: int = 2)
 
 
 def multichannel_response(A: np.ndarray, B: np.ndarray, Z: np.ndarray, lam: float,
-                          ndim: int = 2) -> np.ndarray:
+                          ndim: int = 2, shape=None) -> np.ndarray:
     """Correlation scores y = F^{-1}{ Σ_l Ā^l Z^l / (B + λ) } of a sample with DFT ``Z``.
 
     ``Z`` may be a stack (…, d, *signal); the channels are summed in the Fourier domain, so a
     stack costs one inverse DFT per sample, not one per channel.
 
+    ``shape``: the signal's shape when A, B and Z are real DFTs (``spectra(..., half=True)``).
+
     Returns
     -------
     (…, *signal) real array: score t is the filter's output for the sample shifted by t.
     """
-    _axes(ndim)
+    axes = _axes(ndim)
     num = np.sum(np.conj(A) * np.asarray(Z), axis=-(ndim + 1))
     Y = num / (np.asarray(B) + lam)
+    if shape is not None:
+        return scipy.fft.irfftn(Y, s=tuple(shape), axes=axes)
     return (np.fft.ifft2(Y) if ndim == 2 else np.fft.ifft(Y, axis=-1)).real
 
 
 def update_terms(A, B, A_new, B_new, eta: float):
-    """Running averages A_t = (1 − η) A_{t−1} + η A_new, B_t likewise (the paper's update)."""
-    return (1.0 - eta) * A + eta * A_new, (1.0 - eta) * B + eta * B_new
+    """Running averages A_t = (1 − η) A_{t−1} + η A_new, B_t likewise (the paper's update).
+
+    ``A`` and ``B`` are updated in place (and returned): the model is the largest array a
+    tracker keeps, and a new one per frame would cost an allocation each time.
+    """
+    for old, new in ((A, A_new), (B, B_new)):
+        old *= 1.0 - eta
+        old += eta * new
+    return A, B
 
 
 # -- the scale search ------------------------------------------------------------------------

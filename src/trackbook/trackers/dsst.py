@@ -165,15 +165,19 @@ class DsstTracker(_CorrelationTracker):
         self._patch_size = (cols * c, rows * c)
         self._base_window = (float(cols * c), float(rows * c))
         self._response_shape = (rows, cols)
-        self._hann = cf.hann_window(rows, cols)
+        self._hann32 = cf.hann_window(rows, cols).astype(np.float32)
         sigma = max(np.sqrt(w * h) * p.output_sigma_factor / c, 1e-3)
-        self._G = np.fft.fft2(cf.gaussian_labels(rows, cols, sigma))
+        # real DFTs in single precision: half the spectrum and half the bytes of a complex128
+        # one (the features are real; see scale_filter.spectra)
+        self._G = sf.spectra(cf.gaussian_labels(rows, cols, sigma).astype(np.float32), 2,
+                             half=True)
         self._exclude = int(min(2 * np.ceil(3 * sigma) + 1, max(min(rows, cols) - 2, 1)))
         # the scale search
         S = p.n_scales
         self._factors = sf.scale_factors(S, p.scale_step)
         self._scale_window = sf.scale_window(S)
-        self._Gs = np.fft.fft(sf.scale_labels(S, sf.scale_sigma(S, p.scale_sigma_factor)))
+        self._Gs = sf.spectra(sf.scale_labels(S, sf.scale_sigma(S, p.scale_sigma_factor)), 1,
+                              half=True)
         self._model_size = sf.scale_model_size((w, h), p.scale_model_max_area, p.scale_cell)
         H, W = self._shape[:2]
         self._scale_min, self._scale_max = sf.scale_limits(self._base_window, (w, h), (W, H),
@@ -206,12 +210,15 @@ class DsstTracker(_CorrelationTracker):
     def _features(self, patches):
         """Translation features: orientation channels and the grey level, cosine window ->
         spectra (N, d, rows, cols)."""
-        g = np.asarray(patches, dtype=np.float64)
+        g = np.asarray(patches, dtype=np.float32)
         c = self.params.cell
         rows, cols = self._response_shape
         grey = g.reshape(len(g), rows, c, cols, c).mean(axis=(2, 4)) / 255.0 - 0.5
-        x = np.concatenate([grey[:, None], self._hog(g / 255.0, c)], axis=1)
-        return sf.spectra(x * self._hann, 2)
+        x = np.empty((len(g), 1 + self.params.bins, rows, cols), dtype=np.float32)
+        x[:, 0] = grey
+        x[:, 1:] = self._hog(g / 255.0, c)
+        x *= self._hann32
+        return sf.spectra(x, 2, half=True)
 
     def _scale_sample(self, gray, centre, scale):
         """The S scale samples at ``centre``: one HOG vector per scale a^n × ``scale`` × the
@@ -222,7 +229,7 @@ class DsstTracker(_CorrelationTracker):
                                         self._model_size) for f in self._factors])
         x = self._hog(np.asarray(crops, dtype=np.float64) / 255.0, self.params.scale_cell)
         x = x.reshape(len(crops), -1).T * self._scale_window[None, :]
-        return sf.spectra(x, 1)
+        return sf.spectra(x, 1, half=True)
 
     # -- training and detection ---------------------------------------------------------
     def _train_first(self, gray):
@@ -232,7 +239,8 @@ class DsstTracker(_CorrelationTracker):
         self._As, self._Bs = sf.multichannel_terms(Fs, self._Gs, 1)
 
     def _responses(self, F):
-        return sf.multichannel_response(self._A, self._B, F, self.params.lam, 2)
+        return sf.multichannel_response(self._A, self._B, F, self.params.lam, 2,
+                                        self._response_shape)
 
     def _confidence(self, responses):
         return np.atleast_1d(cf.psr(responses, self._exclude))
@@ -260,20 +268,28 @@ class DsstTracker(_CorrelationTracker):
         gray = self._gray(frame)
         resp = self._responses(self._features(self._patches(gray, [self._centre])))[0]
         conf = float(self._confidence(resp[None])[0])
-        # the integer peak, as a signed cyclic offset (the reference code takes the argmax)
-        py, px = np.unravel_index(int(np.argmax(resp)), resp.shape)
-        rows, cols = resp.shape
-        dy = py - rows if py > rows // 2 else py
-        dx = px - cols if px > cols // 2 else px
-        centre = self._moved(self._centre, dy, dx)
+        centre = self._moved(self._centre, *self._peak(resp))
         s_resp = sf.multichannel_response(self._As, self._Bs,
                                           self._scale_sample(gray, centre, self.scale),
-                                          self.params.lam, 1)
+                                          self.params.lam, 1, (self.params.n_scales,))
         scale = float(np.clip(self.scale * self._factors[int(np.argmax(s_resp))],
                               self._scale_min, self._scale_max))
         self.response, self.scale_response, self.confidence = resp, s_resp, conf
         w, h = self._base[0] * scale, self._base[1] * scale
         return np.array([centre[0] - w / 2.0, centre[1] - h / 2.0, w, h]), conf
+
+    def _peak(self, resp):
+        """The response's peak as a signed cyclic offset (dy, dx) in cells.
+
+        On 1-px cells the integer argmax, as the reference code; on coarser cells refined
+        by a parabola through the neighbours (:func:`~trackbook.filters.correlation.
+        peak_offset`), as KCF's here, so the box does not move in steps of whole cells.
+        """
+        if self.params.cell > 1:
+            return cf.peak_offset(resp)
+        py, px = np.unravel_index(int(np.argmax(resp)), resp.shape)
+        rows, cols = resp.shape
+        return (py - rows if py > rows // 2 else py), (px - cols if px > cols // 2 else px)
 
     def _take(self, box):
         """Centre and scale of ``box`` (its width against the first frame's)."""
@@ -297,7 +313,7 @@ class DsstTracker(_CorrelationTracker):
     def filter(self):
         """The translation filter's channels h^l = F^{-1}{A^l / (B + λ)} (for drawing)."""
         H = sf.multichannel_filter(self._A, self._B, self.params.lam, 2)
-        return readonly(np.fft.ifft2(H).real)
+        return readonly(np.fft.irfft2(H, s=self._response_shape))
 
 
 register(redetecting(DsstTracker))
