@@ -12,6 +12,7 @@ import pytest
 import trackbook
 from trackbook import clips, trackers
 from trackbook.clips.rendering import Canvas, Sprite, crop, tile
+from trackbook.features.gradient_cells import CLIP, orientation_cells
 from trackbook.filters import scale_filter as sf
 
 
@@ -146,6 +147,30 @@ def test_scale_geometry_by_hand():
     # target 20 x 10 in 320 x 240: min(16, 24) = 16 -> 1.02^floor(ln 16 / ln 1.02) = 1.02^140
     lo, hi = sf.scale_limits((40, 20), (20, 10), (320, 240), 1.02)
     assert lo == pytest.approx(1.02 ** -70) and hi == pytest.approx(1.02 ** 140)
+
+
+def test_pixel_orientation_cells_by_their_definition(rng):
+    # 1-px cells (DSST's translation features): pixel (r, c) puts m / sqrt(Σ_{3x3} m²), clipped
+    # at CLIP, into the bin of its gradient's angle; loops over the pixels, borders replicated
+    g = rng.random((2, 7, 9)) * 255
+    g[1, :, :4] = 40.0                                      # a flat part: zero channels there
+    bins = 8
+    got = orientation_cells(g, cell=1, bins=bins)
+    assert got.shape == (2, bins, 7, 9)
+    for n in range(2):
+        p = np.pad(g[n], 1, mode="edge")
+        gx = p[1:-1, 2:] - p[1:-1, :-2]
+        gy = p[2:, 1:-1] - p[:-2, 1:-1]
+        m = np.hypot(gx, gy)
+        mp = np.pad(m, 1, mode="edge")
+        expected = np.zeros((bins, 7, 9))
+        for r in range(7):
+            for c in range(9):
+                e = np.sum(mp[r:r + 3, c:c + 3] ** 2)
+                b = int(np.floor(np.arctan2(gy[r, c], gx[r, c]) % (2 * np.pi) / (2 * np.pi)
+                                 * bins)) % bins
+                expected[b, r, c] = min(m[r, c] / np.sqrt(e + 1e-12), CLIP)
+        np.testing.assert_allclose(got[n], expected, atol=1e-12)
 
 
 # (d) the tracker --------------------------------------------------------------------------
