@@ -15,7 +15,7 @@
       trained on a 1-D Gaussian label over n, scores them.
 
     Each frame: the translation filter at the current scale moves the centre (the response's
-    peak); the scale filter at the new centre picks the scale (its response's peak); then both
+    peak; refined by a parabola when a cell is more than one frame pixel, see ``_peak``); the scale filter at the new centre picks the scale (its response's peak); then both
     filters learn from samples at the new centre and scale, the numerators A and denominators
     B as running averages of learning rate η. The scale is kept between the reference code's
     limits (:func:`~trackbook.filters.scale_filter.scale_limits`).
@@ -133,7 +133,9 @@ class DsstTracker(_CorrelationTracker):
     first frame's window; features are ``bins`` orientation channels on ``cell``-px cells
     (:func:`~trackbook.features.gradient_cells.orientation_cells`) and the grey level
     (I / 255 − 0.5), times a cosine window; label a Gaussian of σ = sqrt(w h) ×
-    ``output_sigma_factor``. Scale: ``n_scales`` samples of the target size × a^n, each
+    ``output_sigma_factor``. The book's addition: a window of more than
+    ``max_window_area`` px is sampled at the resolution that brings it to that many (0: the
+    paper's full resolution always), so a large target costs no more than a middling one. Scale: ``n_scales`` samples of the target size × a^n, each
     resized to at most ``scale_model_max_area`` px and described by orientation cells of
     ``scale_cell`` px, times a cosine window over the scales; label a Gaussian of σ =
     S / √33 × ``scale_sigma_factor`` scale steps. Both filters: A_t = (1 − η) A_{t−1} + η Ḡ F_t,
