@@ -103,8 +103,9 @@ class DsstParams:
         paper=NOT_PRINTED, paper_value=0.0,   # _REF_CODE samples every window at full size
         why="the book's cost bound: the per-pixel features make a frame cost grow with the "
             "window (Bag's 300 x 279 px: 40 ms of CPU a frame at full resolution, 9 ms at "
-            "5000 px); chosen on the sample clips whose windows exceed 2500 px, where no limit "
-            "and 10000 / 5000 / 2500 px gave mean AUC 0.797 / 0.797 / 0.801 / 0.804: no loss, "
+            "5000 px); chosen on the sample clips whose windows exceed 2500 px (padding 1, no "
+            "failure layer), where no limit and 10000 / 5000 / 2500 px gave mean AUC 0.797 / "
+            "0.797 / 0.801 / 0.804: no loss, "
             "5000 the largest that keeps Bag's frame under 10 ms. paper preset: 0, no limit")
     bins: int = param(
         8, 4, 18, 1, doc="signed orientation bins per cell (feature channels)",
