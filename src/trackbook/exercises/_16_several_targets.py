@@ -97,7 +97,7 @@ row, so every target is unreported in its first frames, and after every single m
 detection its streak starts again and it is unreported for three more. With `min_hits=1` a
 track is reported from its second detection on: the misses fall and MOTA rises, but a false
 alarm that happens to be detected twice in a row is now reported too, so the false positives
-can rise. The hidden cell in the exercises appendix prints the counts.
+can rise. The exercises appendix prints the counts below the exercise.
 
 === 16.6 ★★ modify | Memory against misses
 With `miss_rate=0.3` (seed 0, 6 targets, 60 frames), run SORT with `max_age` 1, 3 and 6 and
