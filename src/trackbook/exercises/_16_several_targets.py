@@ -28,8 +28,8 @@ the false positives, so yes: a tracker that reports more wrong boxes than there 
 scores below zero (MOTA lies in $(-\infty, 1]$).
 
 === 16.2 ★ pen and paper | IDF1 from an identity assignment
-A run has two targets, 1 and 2, with 10 boxes each ($G = 20$), and three hypotheses a, b, c
-with 8, 7 and 3 boxes ($H = 18$). The number of frames in which target $i$ and hypothesis $j$
+A run has two targets, 1 and 2, with 10 boxes each ($n_\text{gt} = 20$), and three hypotheses a, b, c
+with 8, 7 and 3 boxes ($n_\text{hyp} = 18$). The number of frames in which target $i$ and hypothesis $j$
 overlap with IoU ≥ 0.5 is
 
 | | a | b | c |
@@ -84,7 +84,7 @@ of a has $|\mathrm{TPA}| = 6$, $|\mathrm{FNA}| = 8 - 6 = 2$ (the target's frames
 $|\mathrm{FPA}| = 0$: $6/8$. Each of the 2 of b has $2/(2 + 6 + 0) = 2/8$. AssA
 $= (6 \cdot 6/8 + 2 \cdot 2/8)/8 = 40/64 = 0.625$ and HOTA $= \sqrt{1 \cdot 0.625}
 \approx 0.791$. MOTA: one switch, no miss, no false positive: $1 - 1/8 = 0.875$. IDF1: the
-target is matched to a, IDTP = 6, $G = H = 8$: $12/16 = 0.75$.
+target is matched to a, IDTP = 6, $n_\text{gt} = n_\text{hyp} = 8$: $12/16 = 0.75$.
 
 === 16.5 ★ use | Which error costs SORT most?
 Run `Sort()` (the reference defaults) on `synthetic_detections(n_targets=4, n_frames=60,
@@ -94,7 +94,8 @@ much, and what does it cost?
 --- solution
 Misses dominate by far: with `min_hits=3` a track is reported only after three matches in a
 row, so every target is unreported in its first frames, and after every single missed
-detection its streak starts again and it is unreported for three more. With `min_hits=1` a
+detection its streak starts again and it stays unreported until it has been matched three
+frames running again. With `min_hits=1` a
 track is reported from its second detection on: the misses fall and MOTA rises, but a false
 alarm that happens to be detected twice in a row is now reported too, so the false positives
 can rise. The exercises appendix prints the counts below the exercise.
@@ -111,11 +112,11 @@ each switch once, among many misses, so it moves much less.
 
 === 16.7 ★★★ implement | IDF1 from co-occurrence counts
 Implement `idf1(together, n_truth, n_hyp)`: `together[i, j]` is the number of frames in which
-target $i$ and hypothesis $j$ overlap with IoU ≥ 0.5, `n_truth` ($G$) and `n_hyp` ($H$) the
+target $i$ and hypothesis $j$ overlap with IoU ≥ 0.5, `n_truth` ($n_\text{gt}$) and `n_hyp` ($n_\text{hyp}$) the
 numbers of ground-truth and hypothesis boxes of the run. Find the one-to-one matching of
 targets to hypotheses with the largest total count (IDTP; rows or columns may be left over)
-and return $2\,\mathrm{IDTP}/(G + H)$. By hand first: `together = [[5, 4], [4, 0]]`,
-$G = H = 10$: greedy would take the 5 and then be left with 0, the best matching is
+and return $2\,\mathrm{IDTP}/(n_\text{gt} + n_\text{hyp})$. By hand first: `together = [[5, 4], [4, 0]]`,
+$n_\text{gt} = n_\text{hyp} = 10$: greedy would take the 5 and then be left with 0, the best matching is
 $4 + 4 = 8$, so IDF1 $= 16/20 = 0.8$. The check uses that case, exercise 16.2 and the example
 of the chapter.
 --- hint
@@ -134,7 +135,7 @@ def idf1(together, n_truth, n_hyp):
 
 
 def idf1_ok(f):
-    """16.7: IDF1 = 2 IDTP / (G + H) with IDTP the best one-to-one matching of counts."""
+    """16.7: IDF1 = 2 IDTP / (n_gt + n_hyp) with IDTP the best one-to-one matching of counts."""
     cases = [
         # greedy takes 5 then 0; best 4 + 4 = 8 -> 16 / 20
         (([[5, 4], [4, 0]], 10, 10), 0.8),
