@@ -8,6 +8,7 @@ function the exercise re-implements); each wrong one makes a mistake a student m
 import re
 from pathlib import Path
 
+import cv2
 import numpy as np
 import pytest
 
@@ -217,6 +218,73 @@ def dual(x, y, sigma, lam):
     return np.fft.ifft(np.fft.fft(y) / (np.fft.fft(k) + lam)).real
 
 
+def axes(prob, half=0.5):
+    """13.4 from cv2.moments (an oracle independent of the library's moments)."""
+    m = cv2.moments(np.asarray(prob, np.float64))
+    a, h, c = m["mu20"] / m["m00"], m["mu11"] / m["m00"], m["mu02"] / m["m00"]
+    root = np.sqrt(4 * h * h + (a - c) ** 2)
+    return (np.degrees(half * np.arctan2(2 * h, a - c)), np.sqrt((a + c + root) / 2),
+            np.sqrt(max((a + c - root) / 2, 0.0)))
+
+
+def rts_step(x, P, x_next_s, P_next_s, F, Q, transposed=False):
+    """One RTS backward step written out (17.4); ``transposed`` puts F where Fᵀ belongs."""
+    P_pred = F @ P @ F.T + Q
+    G = (P @ F if transposed else P @ F.T) @ np.linalg.inv(P_pred)
+    return x + G @ (x_next_s - F @ x), P + G @ (P_next_s - P_pred) @ G.T
+
+
+def merwe(m, P, alpha, beta, kappa):
+    m = np.atleast_1d(np.asarray(m, float))
+    n = m.size
+    lam = alpha ** 2 * (n + kappa) - n
+    L = np.linalg.cholesky((n + lam) * np.atleast_2d(P))
+    Wm = np.full(2 * n + 1, 0.5 / (n + lam))
+    Wc = Wm.copy()
+    Wm[0] = lam / (n + lam)
+    Wc[0] = Wm[0] + 1 - alpha ** 2 + beta
+    return np.vstack([m, m + L.T, m - L.T]), Wm, Wc
+
+
+def snis(x, log_p, log_q, phi):
+    lw = log_p(x) - log_q(x)
+    w = np.exp(lw - lw.max())
+    w = w / w.sum()
+    return w @ phi(x), 1 / np.sum(w ** 2)
+
+
+def snis_raw(x, log_p, log_q, phi):
+    with np.errstate(invalid="ignore"):
+        w = np.exp(log_p(x) - log_q(x))
+        w = w / w.sum()
+        return w @ phi(x), 1 / np.sum(w ** 2)
+
+
+def mog_step(x, w, mu, var, eta, decay=True):
+    """One grey pixel's mixture update (Zivkovic 2004 with c_T = 0, OpenCV's order)."""
+    w, mu, var = (np.array(a, float) for a in (w, mu, var))
+    if decay:
+        w = (1 - eta) * w
+    d2 = (x - mu) ** 2 / var
+    owns = np.flatnonzero(d2 < 9)
+    last = owns[0] if len(owns) else len(w) - 1
+    background = bool(np.any(((np.cumsum(w) - w) < 0.9)[:last + 1] & (d2[:last + 1] < 16)))
+    if len(owns):
+        m = owns[0]
+        w[m] += eta
+        step, dist2 = eta / w[m], (x - mu[m]) ** 2
+        mu[m] += step * (x - mu[m])
+        var[m] = np.clip(var[m] + step * (dist2 - var[m]), 4, 75)
+        w /= w.sum()
+    else:
+        w = (1 - eta) * w / w.sum()
+        if len(w) == 5:
+            w, mu, var = w[:-1], mu[:-1], var[:-1]
+        w, mu, var = np.append(w, eta), np.append(mu, x), np.append(var, 15.0)
+    order = np.argsort(-w, kind="stable")
+    return background, w[order], mu[order], var[order]
+
+
 def _idf1_best(together, n_truth, n_hyp):
     from scipy.optimize import linear_sum_assignment
     rows, cols = linear_sum_assignment(np.asarray(together, float), maximize=True)
@@ -265,6 +333,19 @@ RIGHT_AND_WRONG = {
     "11.4": (lambda on, off: float(np.mean([1.0 if a > b else 0.5 if a == b else 0.0
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
+    "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
+    # 17.4: the RTS step; wrong: the smoother gain with Fᵀ on the wrong side, P F (P⁻)⁻¹
+    "17.4": (rts_step, lambda x, P, xs, Ps, F, Q: rts_step(x, P, xs, Ps, F, Q, transposed=True)),
+    # 17.5: ω normalised over the current mode j (rows) instead of over the previous mode i
+    "17.5": (lambda mu, Pi: (mu @ Pi, Pi * mu[:, None] / (mu @ Pi)[None, :]),
+             lambda mu, Pi: (mu @ Pi, (Pi * mu[:, None]) / (Pi * mu[:, None]).sum(1, keepdims=True))),
+    # 18.7: wrong: the covariance weight of the centre without the 1 - α² + β term
+    "18.7": (merwe, lambda m, P, a, b, k: (merwe(m, P, a, b, k)[0], merwe(m, P, a, b, k)[1],
+                                           merwe(m, P, a, b, k)[1])),
+    # 18.8: wrong: exponentiates the raw log-weights, which underflow to 0 / 0 at -2000
+    "18.8": (snis, lambda x, lp, lq, phi: snis_raw(x, lp, lq, phi)),
+    # 15.4: wrong: the weights are not decayed before the owner gains eta
+    "15.4": (mog_step, lambda *a: mog_step(*a, decay=False)),
     # 16.7: the best one-to-one matching of counts; wrong: greedy, largest count first
     "16.7": (_idf1_best, _idf1_greedy),
 }

@@ -278,7 +278,7 @@ def _gather_chapter_checks() -> None:
     """Add the ``CHECKS`` of every chapter text module that defines some."""
     import importlib
 
-    from . import CHAPTERS
+    from ._chapters import CHAPTERS
     for stem in CHAPTERS:
         own = getattr(importlib.import_module(f"{__package__}._{stem}"), "CHECKS", {})
         clash = set(own) & set(CHECKS)
