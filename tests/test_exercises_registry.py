@@ -285,6 +285,21 @@ def mog_step(x, w, mu, var, eta, decay=True):
     return background, w[order], mu[order], var[order]
 
 
+def _idf1_best(together, n_truth, n_hyp):
+    from scipy.optimize import linear_sum_assignment
+    rows, cols = linear_sum_assignment(np.asarray(together, float), maximize=True)
+    return 2 * np.asarray(together, float)[rows, cols].sum() / (n_truth + n_hyp)
+
+
+def _idf1_greedy(together, n_truth, n_hyp):
+    t, idtp = np.array(together, float), 0.0
+    while t.size and t.max() > 0:
+        i, j = np.unravel_index(t.argmax(), t.shape)
+        idtp += t[i, j]
+        t[i, :] = t[:, j] = -1
+    return 2 * idtp / (n_truth + n_hyp)
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -331,6 +346,8 @@ RIGHT_AND_WRONG = {
     "18.8": (snis, lambda x, lp, lq, phi: snis_raw(x, lp, lq, phi)),
     # 15.4: wrong: the weights are not decayed before the owner gains eta
     "15.4": (mog_step, lambda *a: mog_step(*a, decay=False)),
+    # 16.7: the best one-to-one matching of counts; wrong: greedy, largest count first
+    "16.7": (_idf1_best, _idf1_greedy),
 }
 
 
