@@ -217,6 +217,25 @@ def dual(x, y, sigma, lam):
     return np.fft.ifft(np.fft.fft(y) / (np.fft.fft(k) + lam)).real
 
 
+def lk_window(I, J, x, y, r, iterations=1):
+    """12.7: Lucas-Kanade for one (2r + 1)^2 window, iterated with bilinear resampling."""
+    from scipy.ndimage import map_coordinates
+    I, J = np.asarray(I, float), np.asarray(J, float)
+    Iy, Ix = np.gradient(I)
+    win = (slice(y - r, y + r + 1), slice(x - r, x + r + 1))
+    rows, cols = np.mgrid[win].astype(float)
+    gx, gy, T = Ix[win], Iy[win], I[win]
+    Z = np.array([[np.sum(gx * gx), np.sum(gx * gy)], [np.sum(gx * gy), np.sum(gy * gy)]])
+    small, large = np.linalg.eigvalsh(Z)
+    if large <= 0 or small <= 1e-9 * large:
+        return None
+    d = np.zeros(2)
+    for _ in range(iterations):
+        e = T - map_coordinates(J, [rows + d[1], cols + d[0]], order=1)
+        d = d + np.linalg.solve(Z, [np.sum(gx * e), np.sum(gy * e)])
+    return d
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -250,6 +269,8 @@ RIGHT_AND_WRONG = {
     "11.4": (lambda on, off: float(np.mean([1.0 if a > b else 0.5 if a == b else 0.0
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
+    # 12.7: one window's Lucas-Kanade; wrong: a single step, whatever `iterations` says
+    "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
 }
 
 

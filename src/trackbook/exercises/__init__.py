@@ -32,7 +32,7 @@ __all__ = ["Exercise", "autocheck", "chapters", "check", "for_chapter", "get", "
 CHAPTERS = ("00_introduction", "01_kernel_histograms", "02_particle_filters", "03_hog",
             "04_incremental_svd", "05_edge_rays", "06_kalman", "07_region_covariance",
             "08_mean_shift", "09_trackers_compared", "10_correlation_filters",
-            "11_knowing_you_are_lost")
+            "11_knowing_you_are_lost", "12_template_matching_and_optical_flow")
 
 #: The grades and the kinds an exercise may have.
 STARS = ("★", "★★", "★★★")
