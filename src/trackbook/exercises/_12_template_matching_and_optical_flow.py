@@ -38,23 +38,23 @@ $\sum 20^2 = 400\, h w$. On a constant window $I' = 0$ and NCC is $0/0$: undefin
 library returns 0 there, no evidence either way).
 
 === 12.3 ★★ pen and paper | Eigenvalues of an edge and of a corner
-In a window, $N_1$ pixels have the gradient $g\,\mathbf u_1$ and $N_2$ pixels the gradient
-$g\,\mathbf u_2$, with unit vectors $\mathbf u_1, \mathbf u_2$ at an angle $\varphi$; all
+In a window, $n_1$ pixels have the gradient $m\,\mathbf u_1$ and $n_2$ pixels the gradient
+$m\,\mathbf u_2$, with unit vectors $\mathbf u_1, \mathbf u_2$ at an angle $\varphi$; all
 other pixels have gradient 0. Write the structure tensor $Z$ as a sum of outer products and
-find its eigenvalues (a) for an edge ($N_2 = 0$), whatever its direction, (b) for a right-angled
-corner ($\varphi = 90°$), (c) for $N_1 = N_2 = N$ and any $\varphi$. Which corners are the best
-to track?
+find its eigenvalues (a) for an edge ($n_2 = 0$), whatever its direction, (b) for a right-angled
+corner ($\varphi = 90°$), (c) for $n_1 = n_2 = n$ and any $\varphi$. Which corners are the best
+to track? (d) Give $(\lambda_{\min}, \lambda_{\max})$ for $n = 5$, $m = 2$ and $\varphi = 60°$.
 --- solution
-$Z = g^2 (N_1 \mathbf u_1 \mathbf u_1^T + N_2 \mathbf u_2 \mathbf u_2^T)$.
-(a) $Z = N_1 g^2\, \mathbf u_1 \mathbf u_1^T$ has rank 1: eigenvalues $N_1 g^2$ (along
+$Z = m^2 (n_1 \mathbf u_1 \mathbf u_1^T + n_2 \mathbf u_2 \mathbf u_2^T)$.
+(a) $Z = n_1 m^2\, \mathbf u_1 \mathbf u_1^T$ has rank 1: eigenvalues $n_1 m^2$ (along
 $\mathbf u_1$) and 0 (along the edge), for any direction, so turning an edge does not help:
 the motion along it is never determined. (b) With $\mathbf u_1 \perp \mathbf u_2$ the two outer
-products share the eigenvectors: eigenvalues $N_1 g^2$ and $N_2 g^2$, and
-$\lambda_{\min} = g^2 \min(N_1, N_2)$: a corner is as good as its *shorter* edge.
-(c) The trace is $2Ng^2$ and the determinant $N^2 g^4 (1 - \cos^2\varphi)$, so the eigenvalues
-are $N g^2 (1 \pm \cos\varphi)$ and $\lambda_{\min} = N g^2 (1 - |\cos\varphi|)$. The best
+products share the eigenvectors: eigenvalues $n_1 m^2$ and $n_2 m^2$, and
+$\lambda_{\min} = m^2 \min(n_1, n_2)$: a corner is as good as its *shorter* edge.
+(c) The trace is $2nm^2$ and the determinant $n^2 m^4 (1 - \cos^2\varphi)$, so the eigenvalues
+are $n m^2 (1 \pm \cos\varphi)$ and $\lambda_{\min} = n m^2 (1 - |\cos\varphi|)$. The best
 corners are right-angled, with two long, contrasted edges; a sharp or a flat angle is nearly
-an edge.
+an edge. (d) $n m^2 = 20$ and $\cos 60° = 1/2$: $(\lambda_{\min}, \lambda_{\max}) = (10, 30)$.
 
 === 12.4 ★★ pen and paper | How many pyramid levels
 Suppose the Lucas–Kanade iteration converges when the motion it has to find on a level is at
@@ -72,21 +72,22 @@ pixels on a side, more than a 320 × 240 frame: a 30 × 30 target is a small par
 the coarse estimate is the motion of the background. Use as few levels as the motion needs.
 
 === 12.5 ★ use | Template matching as a tracker
-Match the first frame's patch of `occluder` against every fifth frame with `tm.ncc_map`,
-and plot, for each, the best NCC value and the IoU of the best window with the ground truth.
-What happens while the person is behind the tree, and after? Compare with Median Flow on the
-same clip.
+Match the first frame's patch of `occluder` against every fifth frame (0, 5, 10, …) with
+`tm.ncc_map`, and plot, for each, the best NCC value and the IoU of the best window with the
+ground truth. List the frames whose best window misses the person (IoU below 0.5). What
+happens while the person is behind the tree, and after? Compare with Median Flow on the same
+clip.
 --- solution
 While the person is visible the best NCC is mostly between 0.8 and 0.96 and the best window
-is on the person. Behind the tree (frames 65 to 85) the peak falls to about 0.4 and the window is
-elsewhere; from about frame 90 on it is back on the person. A whole-frame search with a fixed
+is on the person. Behind the tree (frames 65 to 85, the five frames the list holds) the peak falls to about
+0.4 and the window is elsewhere; from about frame 90 on it is back on the person. A whole-frame search with a fixed
 template finds the target again, and its peak value says "not here" while the target is
 hidden, where Median Flow's FB error stayed small and its box stayed behind on the
 background.
 
 === 12.6 ★★ modify | The pyramid on a fast target
 Run `median-flow` on the first 60 frames of `yellow-ball` with `levels` 1, 2 and 3 (the
-default). Compare the AUCs, and explain with the pyramid why.
+default), as a dict {levels: AUC}. Compare the AUCs, and explain with the pyramid why.
 --- solution
 With one or two levels the AUC is low (about 0.2 to 0.3) and with three it is above 0.8. The
 ball moves several pixels per frame, more than an 11 × 11 window's local search can reach on
