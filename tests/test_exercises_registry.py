@@ -300,6 +300,25 @@ def _idf1_greedy(together, n_truth, n_hyp):
     return 2 * idtp / (n_truth + n_hyp)
 
 
+def lk_window(I, J, x, y, r, iterations=1):
+    """12.7: Lucas-Kanade for one (2r + 1)^2 window, iterated with bilinear resampling."""
+    from scipy.ndimage import map_coordinates
+    I, J = np.asarray(I, float), np.asarray(J, float)
+    Iy, Ix = np.gradient(I)
+    win = (slice(y - r, y + r + 1), slice(x - r, x + r + 1))
+    rows, cols = np.mgrid[win].astype(float)
+    gx, gy, T = Ix[win], Iy[win], I[win]
+    Z = np.array([[np.sum(gx * gx), np.sum(gx * gy)], [np.sum(gx * gy), np.sum(gy * gy)]])
+    small, large = np.linalg.eigvalsh(Z)
+    if large <= 0 or small <= 1e-9 * large:
+        return None
+    d = np.zeros(2)
+    for _ in range(iterations):
+        e = T - map_coordinates(J, [rows + d[1], cols + d[0]], order=1)
+        d = d + np.linalg.solve(Z, [np.sum(gx * e), np.sum(gy * e)])
+    return d
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -348,6 +367,8 @@ RIGHT_AND_WRONG = {
     "15.4": (mog_step, lambda *a: mog_step(*a, decay=False)),
     # 16.7: the best one-to-one matching of counts; wrong: greedy, largest count first
     "16.7": (_idf1_best, _idf1_greedy),
+    # 12.7: one window's Lucas-Kanade; wrong: a single step, whatever `iterations` says
+    "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
 }
 
 
