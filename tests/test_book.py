@@ -12,7 +12,8 @@ FIXED_CHAPTERS = ["00_introduction", "01_kernel_histograms", "02_particle_filter
                   "03_hog", "04_incremental_svd", "05_edge_rays", "06_kalman",
                   "07_region_covariance", "08_mean_shift", "09_trackers_compared",
                   "10_correlation_filters", "11_knowing_you_are_lost", "13_camshift",
-                  "17_kalman_filter_design", "18_sigma_points_and_proposals"]
+                  "14_tracking_by_detection", "17_kalman_filter_design",
+                  "18_sigma_points_and_proposals"]
 
 
 def _toc_files():
