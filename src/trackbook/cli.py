@@ -407,8 +407,12 @@ def _bench_param(tracker: str, kv: str, flag: str = "") -> dict:
 
 
 def _chapters(book: Path) -> list[Path]:
-    return (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
-            + sorted(book.glob("lab_notes_*.md")))
+    # the numbered chapters, the unnumbered pages that close them (where_next), the
+    # appendices, the lab notes: every page of the book, in the table of contents' order
+    numbered = sorted(book.glob("[0-9][0-9]_*.md"))
+    appendices, lab = sorted(book.glob("appendix_*.md")), sorted(book.glob("lab_notes_*.md"))
+    rest = [p for p in sorted(book.glob("*.md")) if p not in numbered + appendices + lab]
+    return numbered + rest + appendices + lab
 
 
 def find_book(book=None) -> Path:
