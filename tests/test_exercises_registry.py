@@ -353,6 +353,13 @@ RIGHT_AND_WRONG = {
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
     "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
+    # 14.4: the noisy-OR by bag; wrong: the mean of the instances instead of the noisy-OR
+    "14.4": (lambda p, b, lab: (lambda s: (1 - np.exp(s), float(np.sum(
+                 np.where(lab == 1, np.log1p(-np.exp(s)), s)))))(
+                 np.bincount(b, weights=np.log1p(-p), minlength=len(lab))),
+             lambda p, b, lab: (lambda q: (q, float(np.sum(
+                 lab * np.log(q) + (1 - lab) * np.log1p(-q)))))(
+                 np.bincount(b, weights=p, minlength=len(lab)) / np.bincount(b))),
     # 17.4: the RTS step; wrong: the smoother gain with Fᵀ on the wrong side, P F (P⁻)⁻¹
     "17.4": (rts_step, lambda x, P, xs, Ps, F, Q: rts_step(x, P, xs, Ps, F, Q, transposed=True)),
     # 17.5: ω normalised over the current mode j (rows) instead of over the previous mode i

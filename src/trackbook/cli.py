@@ -407,8 +407,10 @@ def _bench_param(tracker: str, kv: str, flag: str = "") -> dict:
 
 
 def _chapters(book: Path) -> list[Path]:
-    return (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
-            + sorted(book.glob("lab_notes_*.md")))
+    # every page: the numbered chapters, the unnumbered ones (where_next), appendices, lab notes
+    parts = [sorted(book.glob(g)) for g in ("[0-9][0-9]_*.md", "appendix_*.md", "lab_notes_*.md")]
+    rest = [p for p in sorted(book.glob("*.md")) if not any(p in q for q in parts)]
+    return parts[0] + rest + parts[1] + parts[2]
 
 
 def find_book(book=None) -> Path:
