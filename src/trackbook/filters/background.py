@@ -125,7 +125,11 @@ class MixtureOfGaussians:
         alpha1 = np.float32(1.0) - alpha
         used = np.arange(K) < self.n_used[..., None]                         # H x W x K
 
-        d2 = np.sum((mu - x[:, :, None, :]) ** 2, axis=-1)                   # H x W x K
+        diff = mu - x[:, :, None, :]                                         # H x W x K x C
+        sq = diff * diff
+        d2 = sq[..., 0]                     # summed channel by channel, as OpenCV does (and
+        for c in range(1, sq.shape[-1]):    # faster than a reduction over so short an axis)
+            d2 = d2 + sq[..., c]                                             # H x W x K
         fits = used & (d2 < self.var_threshold_gen * var)
         owner = np.argmax(fits, axis=-1)                                     # first that fits
         any_fit = fits.any(axis=-1)
@@ -145,7 +149,7 @@ class MixtureOfGaussians:
         # the owner learns x
         w_new = np.where(first, w_new + alpha, w_new)
         k = np.where(first, alpha / np.where(first, w_new, 1.0), 0.0).astype(np.float32)
-        mu += k[..., None] * (x[:, :, None, :] - mu)
+        mu -= k[..., None] * diff
         var[...] = np.where(first, np.clip(var + k * (d2 - var), self.var_min, self.var_max),
                             var)
         used &= ~dropped
@@ -160,7 +164,8 @@ class MixtureOfGaussians:
         slot = np.where(n_used == K, K - 1, np.argmin(used, axis=-1))
         onehot = new[..., None] & (np.arange(K) == slot[..., None])
         used |= onehot
-        alone = used.sum(axis=-1, keepdims=True) == 1
+        n_used = n_used + (new & (n_used < K))        # a new component fills a free slot
+        alone = (n_used == 1)[..., None]
         w_new = np.where(new[..., None] & ~onehot, w_new * alpha1, w_new)
         w_new = np.where(onehot, np.where(alone, 1.0, alpha), w_new)
         mu[onehot] = np.broadcast_to(x[:, :, None, :], mu.shape)[onehot]
@@ -168,10 +173,21 @@ class MixtureOfGaussians:
 
         # keep the components sorted by weight (free slots last)
         order = np.argsort(np.where(used, -w_new, np.inf), axis=-1, kind="stable")
-        self.weights = np.take_along_axis(w_new, order, -1).astype(np.float32)
-        self.means = np.take_along_axis(mu, order[..., None], -2)
-        self.variances = np.take_along_axis(var, order, -1)
-        self.n_used = used.sum(axis=-1)
+        # most pixels are still in order: rearrange only the others (the gather is the
+        # costliest step of the update on a whole frame)
+        w_new = w_new.astype(np.float32).reshape(-1, K)
+        mu, var = mu.reshape(-1, K, mu.shape[-1]), var.reshape(-1, K)
+        order = order.reshape(-1, K)
+        moved = np.flatnonzero((order != np.arange(K)).any(axis=-1))
+        if moved.size:
+            o = order[moved]
+            w_new[moved] = np.take_along_axis(w_new[moved], o, -1)
+            mu[moved] = np.take_along_axis(mu[moved], o[..., None], -2)
+            var[moved] = np.take_along_axis(var[moved], o, -1)
+        self.weights = w_new.reshape(used.shape)
+        self.means = mu.reshape(used.shape + mu.shape[-1:])
+        self.variances = var.reshape(used.shape)
+        self.n_used = n_used
         return np.where(background, 0, 255).astype(np.uint8)
 
 
