@@ -3,7 +3,7 @@ the adaptive number of components of Zivkovic 2004 (OpenCV's MOG2).
 
 Every pixel keeps up to ``K`` Gaussian components (weight ``w_k``, mean ``μ_k`` of the pixel's
 channels, one variance ``σ_k²`` shared by the channels), sorted by weight. For a new value
-``x``, with learning rate ``α`` (Zivkovic 2004, eq. 4-6):
+``x``, with learning rate ``α`` (Zivkovic 2004):
 
 - every weight decays, ``w_k ← (1 − α) w_k − α c_T`` (``c_T``, the complexity reduction prior,
   makes a component that stops being seen fall to zero and be dropped: fewer components where
@@ -11,20 +11,23 @@ channels, one variance ``σ_k²`` shared by the channels), sorted by weight. For
 - the first component (by weight) with squared distance ``d² = ||x − μ_k||²`` below
   ``T_g σ_k²`` owns ``x``: ``w_k ← w_k + α``, ``μ_k ← μ_k + (α / w_k)(x − μ_k)``,
   ``σ_k² ← σ_k² + (α / w_k)(d² − σ_k²)`` (clamped to ``[σ_min², σ_max²]``);
-- no owner: a new component ``(w = α, μ = x, σ² = σ_0²)`` replaces the lightest when all ``K``
-  are in use;
-- the weights are renormalised to sum to 1.
+- the weights are renormalised to sum to 1;
+- no owner: the others are scaled by ``1 − α`` and a new component ``(w = α, μ = x, σ² = σ_0²)``
+  is added, over the lightest when all ``K`` are in use.
 
 The **background** is the heaviest components whose weights before them sum to less than
-``background_ratio`` (``B = argmin_b Σ_{k ≤ b} w_k > 1 − c_f``, Stauffer & Grimson's eq. 9): the
-pixel is background when ``x`` is within ``T_b σ_k²`` (``var_threshold``) of one of them.
+``background_ratio`` (``B = argmin_b Σ_{k ≤ b} w_k > 1 − c_f``, Stauffer & Grimson's rule), with
+the weights as decayed in the first step: the pixel is background when ``x`` is within
+``T_b σ_k²`` (``var_threshold``) of one of them. As in OpenCV, the test is made while looking
+for the owner, on the components up to it (the same rule when ``T_b ≥ T_g``).
 
-All of it runs on arrays of shape H x W x K, one pass per component (K ≤ 10), never a
-loop per pixel. The order of operations is that of OpenCV's ``BackgroundSubtractorMOG2``
-(``bgfg_gaussmix2.cpp``), so with the same parameters the masks agree with
-``cv2.createBackgroundSubtractorMOG2(detectShadows=False)`` up to the few pixels where float32
-rounding or a tie in weights orders two components differently (``tests/test_background.py``
-measures the agreement).
+All of it runs on arrays of shape H x W x K, never a loop per pixel. The order of operations
+is that of OpenCV's ``BackgroundSubtractorMOG2`` (``bgfg_gaussmix2.cpp``), so with the same
+parameters the masks agree with ``cv2.createBackgroundSubtractorMOG2(detectShadows=False)``
+except where float32 rounding puts a distance on the other side of a threshold, a tie in
+weights orders two components differently, or OpenCV prunes a component that is not the last
+(it drops the last slot; this class drops the pruned one). ``tests/test_background.py``
+measures the agreement.
 """
 
 from __future__ import annotations
