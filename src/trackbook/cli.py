@@ -363,7 +363,7 @@ def cmd_bench(args) -> int:
                          progress=not args.quiet, force=args.force, workers=args.workers,
                          scheduler=args.scheduler, imports=args.imports or (),
                          preset=args.preset, max_runs=args.max_runs,
-                         scheduler_timeout=args.scheduler_timeout)
+                         scheduler_timeout=args.scheduler_timeout, protocol=args.protocol)
     except KeyboardInterrupt as e:   # Ctrl-C, or SIGTERM/SIGHUP (parallel.Stopped)
         signum = getattr(e, "signum", 2)
         print(f"\ntrackbook: {'interrupted' if signum == 2 else 'stopped by a signal'}; "
@@ -373,13 +373,13 @@ def cmd_bench(args) -> int:
     except ImportError as e:   # --scheduler without the dask extra
         print(f"trackbook: error: {e}", file=sys.stderr)
         return 2
-    print(bench.markdown_table(rows))
+    print(getattr(rows, "table", "") or bench.markdown_table(rows))
     read_back, ran = getattr(rows, "read_back", 0), getattr(rows, "ran", len(rows))
     print(f"{read_back} read back, {ran} run"      # Path: no doubled slash from --out dir/
           + (f" (the {read_back} read back from {Path(args.out, 'runs')} keep the timings of "
              "the bench that saved them; --force re-runs them)" if read_back else ""))
-    print(f"wrote {Path(args.out, 'results.csv')}, results.json, table.md, success.png, "
-          "precision.png")
+    print(f"wrote {Path(args.out, 'results.csv')}, results.json, table.md, " + ("eao.png" if
+          args.protocol == "reset" else "success.png, precision.png"))
     return 0
 
 
@@ -544,6 +544,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="start every tracker from the book's defaults or the printed values")
     b.add_argument("--max-runs", type=int, default=None, metavar="N",
                    help="the most runs one bench may do (default 5000)")
+    b.add_argument("--protocol", default="ope", help="ope (one pass, default), tre (20 starts; "
+                   "tre:N for N), sre (12 perturbed first boxes) or reset (VOT's)")
     b.set_defaults(fn=cmd_bench)
 
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")
