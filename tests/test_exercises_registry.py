@@ -319,6 +319,19 @@ def lk_window(I, J, x, y, r, iterations=1):
     return d
 
 
+def reset_count(overlaps, skip, first=1):
+    """VOT's reset rule; ``first=0`` is the wrong one that also reads an initialisation frame."""
+    inits, failures, start = [0], [], 0
+    while True:
+        fail = next((t for t in range(start + (first if inits[-1] else 1), len(overlaps))
+                     if overlaps[t] == 0), None)
+        if fail is None or fail + skip >= len(overlaps):
+            return tuple(inits), tuple(failures + ([fail] if fail is not None else []))
+        failures.append(fail)
+        start = fail + skip
+        inits.append(start)
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -376,6 +389,8 @@ RIGHT_AND_WRONG = {
     "16.7": (_idf1_best, _idf1_greedy),
     # 12.7: one window's Lucas-Kanade; wrong: a single step, whatever `iterations` says
     "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
+    # 19.5: VOT's reset rule; wrong: a zero on a re-initialisation frame counted as a failure
+    "19.5": (reset_count, lambda o, skip: reset_count(o, skip, first=0)),
 }
 
 
