@@ -93,21 +93,22 @@ With $s_i = \sum_j \ln(1 - \pi_{ij})$ (one `np.bincount`), $\pi_i = 1 - e^{s_i}$
 bag contributes $s_i$ itself, which stays exact when $\pi_i$ is tiny.
 
 === 14.5 ★ use | A jump inside the search radius
-In `red-cube` the cube accelerates to about 9 px per frame at frames 139 to 142. Run
+In `red-cube` the cube jumps by 8 to 10 px per frame at frames 138 to 142. Run
 `opencv-mil` on it and plot the IoU per frame. Does MIL keep the cube through the jump? Relate
 the answer to the radius of the positions OpenCV's MIL scores each frame
 (`cv2.TrackerMIL_Params().samplerSearchWinSize`).
 --- solution
 It keeps it: the IoU stays above 0.5 through frames 135 to 150. OpenCV's MIL scores every
 position within 25 px of the last one, and a step of 9 px, even several in a row, never leaves
-that disc; the Haar features of the cube are the same before and after the turn. A step larger
+that disc; the Haar features of the cube are the same before and after the jump. A step larger
 than the radius would be lost at once, however good the classifier.
 
 === 14.6 ★★ modify | Which colour does MIL see?
 Build a copy of the first 60 frames of `shelves` whose green and red channels are set to zero
 (`clips.Clip(name, clips.ArrayFrames(frames), groundtruth)`) and run `opencv-mil` on the copy
 and on the original 60 frames. Compare the boxes. Then replace the *blue* channel by the grey
-level instead and compare again. What does OpenCV's MIL compute its Haar features on?
+level (the mean of the three channels) instead and compare again. What does OpenCV's MIL
+compute its Haar features on?
 --- solution
 The boxes with green and red set to zero are the same as the original ones, to the pixel; the
 boxes with the blue channel changed differ. OpenCV's MIL builds its integral image from the
