@@ -205,7 +205,7 @@ def _plain(*names) -> tuple:
 #: ~25 passes over every sequence that OPE + TRE + SRE + reset make).
 PROTOCOL_TRACKERS = ("kcf", "mosse", "mean-shift", "camshift", "color-pf")
 #: TRE with 10 starts, not OTB's 20: on these 105-471-frame sequences 10 starts are still
-#: at most 47 frames apart, and TRE's cost (about starts x length / 2 frames) halves.
+#: at most 51 frames apart (David), and TRE's cost (about starts x length / 2 frames) halves.
 PROTOCOLS = ("ope", "tre:10", "sre", "reset")
 
 

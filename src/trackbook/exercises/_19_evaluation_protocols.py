@@ -23,9 +23,10 @@ failure frame is counted by robustness, not accuracy. The accuracy averages fram
 $100 \cdot 1/16 = 6.25$ failures per 100 frames.
 
 === 19.2 ★ pen and paper | A point of the expected-average-overlap curve
-A reset run has three fragments. Fragment a failed after the overlaps $(0.8, 0.6, 0)$;
-fragment b reached the end of the clip after $(0.9, 0.9, 0.9, 0.9, 0.9)$; fragment c reached
-the end after $(0.5, 0.5)$. Compute $\langle\Phi_T\rangle$ for $T = 2$ and $T = 4$.
+Reset runs on two clips give three fragments (only a run's last fragment can reach the end
+of its clip). On the first clip, fragment a failed after the overlaps $(0.8, 0.6, 0)$ and
+fragment b, after the re-initialisation, reached the end after $(0.9, 0.9, 0.9, 0.9, 0.9)$;
+on the second clip, fragment c reached the end after $(0.5, 0.5)$. Compute $\langle\Phi_T\rangle$ for $T = 2$ and $T = 4$.
 --- solution
 $T = 2$: every fragment has two frames, $\Phi_2 = 0.7, 0.9, 0.5$, mean $2.1/3 = 0.7$.
 $T = 4$: fragment a failed, so its overlaps are padded with zeros,
@@ -70,15 +71,19 @@ Walk the frames once: after each initialisation at `s`, look at `s + 1, s + 2, .
 first zero; record it as a failure and jump to `f + skip`; stop at the end of the clip.
 
 === 19.6 ★★ modify | How long to wait before re-initialising
-Run `protocols.evaluate_reset("mosse", "occluder")` with `skip=5` (VOT's) and with `skip=1`.
-Compare the failure counts and the accuracies, and explain why VOT does not re-initialise on
-the very next frame.
+Run `protocols.evaluate_reset("mosse", "yellow-ball")` with `skip=5` (VOT's) and with
+`skip=1`. Compare the failure counts, and explain why VOT does not re-initialise on the very
+next frame. Why is the accuracy `nan` in both runs?
 --- solution
-With `skip=1` the tracker is put back on the target on the frame after each failure, often
-while the cause of the failure (the occluder, a fast motion) is still there, so it can fail
-again at once and the same difficulty is counted several times. Waiting five frames lets the
-cause pass and counts it once; the frames skipped are scored by neither accuracy nor
-robustness.
+`mosse` cannot follow the fast ball: after every initialisation it loses it again within a
+few frames. With `skip=5` it fails 14 times in the 120 frames; with `skip=1` it is put back
+on the target the frame after each failure, while the cause (the fast motion) is still there,
+and fails 25 times. The count then says more about how often the benchmark restarted the
+tracker than about how often it lost the target: the same difficulty is counted again and
+again. Waiting five frames lets the cause pass and counts it fewer times; the frames skipped
+are scored by neither accuracy nor robustness. The accuracy is `nan` because every failure
+comes within ten frames of the initialisation before it: each tracked frame is either in a
+burn-in or a failure, so no frame is left to average (`run.valid.sum()` is 0).
 
 === 19.7 ★ use | TRE from the command line
 Run `trackbook bench --trackers kcf --clips red-cube --protocol tre:5 --max-frames 60
