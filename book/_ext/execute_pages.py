@@ -55,10 +55,26 @@ def execute(page: str):
     return nbformat.writes(nb), result.time, result.exc_string
 
 
+def book_environment() -> None:
+    """What the book's Sphinx extension sets for the kernels it starts (``sphinx_playground``):
+    the playgrounds display as the HTML book's pages and write their run files where the
+    build copies them from. Their runs are computed in the page's own kernel here (the
+    pages already run one per core)."""
+    from trackbook.playground.export import BOOK_ENV
+    from trackbook.playground.static import BACKGROUND_ENV, OUT_ENV
+    from trackbook.sphinx_playground import store_dir
+
+    os.environ[BOOK_ENV] = "1"
+    os.environ[OUT_ENV] = str(store_dir(ROOT / "_build" / "html"))
+    os.environ.pop(BACKGROUND_ENV, None)
+
+
 def main() -> int:
     import nbformat
     from jupyter_cache import get_cache
     from jupyter_cache.base import CacheBundleIn
+
+    book_environment()
 
     if len(sys.argv) > 1:
         todo = [str(Path(p).resolve()) for p in sys.argv[1:]]
