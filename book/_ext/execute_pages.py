@@ -50,8 +50,12 @@ def execute(page: str):
         # the same moment by two workers could otherwise pick the same free port.
         km = KernelManager(kernel_name="python3", transport="ipc",
                            ip=os.path.join(sockets, "kernel"))
-        result = single_nb_execution(nb, cwd=str(Path(page).parent), timeout=900,
-                                     allow_errors=False, km=km)
+        try:
+            result = single_nb_execution(nb, cwd=str(Path(page).parent), timeout=900,
+                                         allow_errors=False, km=km)
+        finally:                       # a kernel manager passed in is not shut down for us
+            if km.has_kernel:
+                km.shutdown_kernel(now=True)
     return nbformat.writes(nb), result.time, result.exc_string
 
 
