@@ -31,6 +31,7 @@ from . import covariance_manoeuvre  # noqa: E402,F401  the book's variant: kalma
 from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation, mean-shift, condensation-mean-shift
 from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
+from . import staple  # noqa: E402,F401  bertinetto2016: staple
 from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
