@@ -349,7 +349,7 @@ class StapleTracker(Tracker):
         normalised window's pixels (the authors' ``updateHistModel.m``)."""
         nw, nh = self._norm_bg
         u = (np.arange(nw) + 0.5) / nw * self._bg0[0]        # pixel centres, frame units
-        v = (np.arange(nh) + 0.5) / nh * self._bg0[1]        # (scale-free: all scale alike)
+        v = (np.arange(nh) + 0.5) / nh * self._bg0[1]        # (the same at every scale)
 
         def inside(size):
             # at least a one-pixel margin, as the authors' code keeps (pad_offset >= 1)
