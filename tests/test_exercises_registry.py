@@ -285,6 +285,53 @@ def mog_step(x, w, mu, var, eta, decay=True):
     return background, w[order], mu[order], var[order]
 
 
+def _idf1_best(together, n_truth, n_hyp):
+    from scipy.optimize import linear_sum_assignment
+    rows, cols = linear_sum_assignment(np.asarray(together, float), maximize=True)
+    return 2 * np.asarray(together, float)[rows, cols].sum() / (n_truth + n_hyp)
+
+
+def _idf1_greedy(together, n_truth, n_hyp):
+    t, idtp = np.array(together, float), 0.0
+    while t.size and t.max() > 0:
+        i, j = np.unravel_index(t.argmax(), t.shape)
+        idtp += t[i, j]
+        t[i, :] = t[:, j] = -1
+    return 2 * idtp / (n_truth + n_hyp)
+
+
+def lk_window(I, J, x, y, r, iterations=1):
+    """12.7: Lucas-Kanade for one (2r + 1)^2 window, iterated with bilinear resampling."""
+    from scipy.ndimage import map_coordinates
+    I, J = np.asarray(I, float), np.asarray(J, float)
+    Iy, Ix = np.gradient(I)
+    win = (slice(y - r, y + r + 1), slice(x - r, x + r + 1))
+    rows, cols = np.mgrid[win].astype(float)
+    gx, gy, T = Ix[win], Iy[win], I[win]
+    Z = np.array([[np.sum(gx * gx), np.sum(gx * gy)], [np.sum(gx * gy), np.sum(gy * gy)]])
+    small, large = np.linalg.eigvalsh(Z)
+    if large <= 0 or small <= 1e-9 * large:
+        return None
+    d = np.zeros(2)
+    for _ in range(iterations):
+        e = T - map_coordinates(J, [rows + d[1], cols + d[0]], order=1)
+        d = d + np.linalg.solve(Z, [np.sum(gx * e), np.sum(gy * e)])
+    return d
+
+
+def reset_count(overlaps, skip, first=1):
+    """VOT's reset rule; ``first=0`` is the wrong one that also reads an initialisation frame."""
+    inits, failures, start = [0], [], 0
+    while True:
+        fail = next((t for t in range(start + (first if inits[-1] else 1), len(overlaps))
+                     if overlaps[t] == 0), None)
+        if fail is None or fail + skip >= len(overlaps):
+            return tuple(inits), tuple(failures + ([fail] if fail is not None else []))
+        failures.append(fail)
+        start = fail + skip
+        inits.append(start)
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -319,6 +366,13 @@ RIGHT_AND_WRONG = {
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
     "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
+    # 14.4: the noisy-OR by bag; wrong: the mean of the instances instead of the noisy-OR
+    "14.4": (lambda p, b, lab: (lambda s: (1 - np.exp(s), float(np.sum(
+                 np.where(lab == 1, np.log1p(-np.exp(s)), s)))))(
+                 np.bincount(b, weights=np.log1p(-p), minlength=len(lab))),
+             lambda p, b, lab: (lambda q: (q, float(np.sum(
+                 lab * np.log(q) + (1 - lab) * np.log1p(-q)))))(
+                 np.bincount(b, weights=p, minlength=len(lab)) / np.bincount(b))),
     # 17.4: the RTS step; wrong: the smoother gain with Fᵀ on the wrong side, P F (P⁻)⁻¹
     "17.4": (rts_step, lambda x, P, xs, Ps, F, Q: rts_step(x, P, xs, Ps, F, Q, transposed=True)),
     # 17.5: ω normalised over the current mode j (rows) instead of over the previous mode i
@@ -331,6 +385,12 @@ RIGHT_AND_WRONG = {
     "18.8": (snis, lambda x, lp, lq, phi: snis_raw(x, lp, lq, phi)),
     # 15.4: wrong: the weights are not decayed before the owner gains eta
     "15.4": (mog_step, lambda *a: mog_step(*a, decay=False)),
+    # 16.7: the best one-to-one matching of counts; wrong: greedy, largest count first
+    "16.7": (_idf1_best, _idf1_greedy),
+    # 12.7: one window's Lucas-Kanade; wrong: a single step, whatever `iterations` says
+    "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
+    # 19.5: VOT's reset rule; wrong: a zero on a re-initialisation frame counted as a failure
+    "19.5": (reset_count, lambda o, skip: reset_count(o, skip, first=0)),
 }
 
 
