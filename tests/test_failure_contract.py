@@ -277,6 +277,30 @@ KNOWN_ABSENT: dict = {
     ('median-flow-redetect', 'edge-exit'): 'ok=False on 6% of the absent frames',
     ('median-flow-redetect', 'leave-and-return'): 'ok=False on 17% of the absent frames',
     ('median-flow-redetect', 'occluder'): 'ok=False on 27% of the absent frames',
+    ('staple', 'exit-0'): 'ok=False on 0% of the absent frames',
+    ('staple', 'exit-1'): 'ok=False on 0% of the absent frames',
+    ('staple', 'occlusion-2'): 'ok=False on 0% of the absent frames',
+    ('staple', 'occlusion-3'): 'ok=False on 94% of the absent frames',
+    ('staple', 'cut-4'): 'ok=False on 0% of the absent frames',
+    ('staple', 'cut-5'): 'ok=False on 0% of the absent frames',
+    ('staple', 'fade-6'): 'ok=False on 0% of the absent frames',
+    ('staple', 'fade-7'): 'ok=False on 0% of the absent frames',
+    ('staple', 'lookalike-12'): 'ok=False on 0% of the absent frames',
+    ('staple', 'lookalike-13'): 'ok=False on 0% of the absent frames',
+    ('staple', 'edge-exit'): 'ok=False on 0% of the absent frames',
+    ('staple', 'leave-and-return'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'exit-0'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'exit-1'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'occlusion-2'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'occlusion-3'): 'ok=False on 19% of the absent frames',
+    ('staple-redetect', 'cut-4'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'cut-5'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'fade-6'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'fade-7'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'lookalike-12'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'lookalike-13'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'edge-exit'): 'ok=False on 0% of the absent frames',
+    ('staple-redetect', 'leave-and-return'): 'ok=False on 0% of the absent frames',
 }
 #: ... and a re-detecting name that does not find the target within 10 frames of its return.
 KNOWN_RECOVERY: dict = {
@@ -330,6 +354,11 @@ KNOWN_RECOVERY: dict = {
     ('median-flow-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
     ('median-flow-redetect', 'edge-exit'): 'IoU > 0.5 never after the return',
     ('median-flow-redetect', 'leave-and-return'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'edge-exit'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'leave-and-return'): 'IoU > 0.5 never after the return',
 }
 #: ("samples" | "real", tracker) -> the false losses measured where there are more than 1 %.
 FALSE_LOSSES: dict = {

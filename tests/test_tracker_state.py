@@ -33,6 +33,7 @@ KIND = {
     "mean-shift": {"particles", "weights", "ellipse"},
     "mosse": {"search_window"},
     "kcf": {"search_window"},
+    "staple": {"search_window"},
     "camshift": {"search_window", "ellipse"},
     "median-flow": set(),
     "kalman-covariance-manoeuvre": {"search_window", "candidates", "ellipse"},

@@ -32,6 +32,7 @@ from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation,
 from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
 from . import dsst  # noqa: E402,F401  danelljan2014: dsst
+from . import staple  # noqa: E402,F401  bertinetto2016: staple
 from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
