@@ -32,6 +32,7 @@ from . import condensation_mean_shift  # noqa: E402,F401  cho2005: condensation,
 from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
 from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
+from . import bacf  # noqa: E402,F401  kianigaloogahi2017: bacf (background-aware correlation filters)
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
