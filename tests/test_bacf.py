@@ -163,12 +163,13 @@ def red_cube():
 
 
 def test_tracks_the_red_cube(red_cube):
-    r = trackbook.evaluate("bacf", red_cube, seed=0)
+    # the first 90 frames (the cube's turn and its way back), to keep the test fast
+    r = trackbook.evaluate("bacf", red_cube, seed=0, max_frames=90)
     assert r.scores["auc"] > 0.6
     assert r.ok[1:].mean() > 0.9
 
 
-def _growing_clip(n=40, grow=1.3):
+def _growing_clip(n=30, grow=1.25):
     """A textured target that grows from 40 x 32 px by ``grow`` while it drifts right.
 
     Rendered with the sample clips' compositing engine, so every box is exact."""
@@ -190,8 +191,8 @@ def test_scale_follows_a_growing_target():
     t = trackers.create("bacf", seed=0, failure=False)
     t.init(frames[0], boxes[0])
     widths = [t.update(f)[1][2] for f in frames[1:]]
-    # the truth grows by 1.3 (0.7 % a frame, within the pyramid's ±2 % a frame); the pyramid's
-    # 1 % steps follow it with a lag (measured: 0.93 of the true width at the end), so: the
+    # the truth grows by 1.25 (0.8 % a frame, within the pyramid's ±2 % a frame); the pyramid's
+    # 1 % steps follow it with a lag (measured: 0.97 of the true width at the end), so: the
     # estimate grows by more than half the truth's growth and ends within 10 % of it
     ratio = widths[-1] / boxes[-1][2]
     assert 0.9 < ratio < 1.1, ratio
@@ -233,3 +234,17 @@ def test_redetect_finds_the_target_again_after_a_jump():
     far = b + np.array([-100.0, -80.0, 0, 0])
     s = t._score_boxes(frames[8], np.array([far, b]))
     assert s[1] > s[0]
+
+
+@pytest.mark.parametrize("centre", [(40, 30), (5, 5), (75, 55), (-10, 70), (200, 200)])
+def test_window_crop_repeats_the_border(centre):
+    import cv2
+    frame = (np.random.default_rng(0).random((60, 80, 3)) * 255).astype(np.uint8)
+    t = trackers.create("bacf", seed=0)
+    t.init(frame, (30, 20, 12, 10))
+    n = t._win_px
+    x0, y0 = int(np.floor(centre[0] - n / 2)), int(np.floor(centre[1] - n / 2))
+    ys = np.clip(np.arange(y0, y0 + n), 0, 59)
+    xs = np.clip(np.arange(x0, x0 + n), 0, 79)
+    np.testing.assert_array_equal(t._patch(frame, centre, 1.0),
+                                  cv2.resize(frame[np.ix_(ys, xs)], (n, n)))

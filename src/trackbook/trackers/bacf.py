@@ -192,12 +192,18 @@ class BacfTracker(Tracker):
         x0 = int(np.floor(centre[0] - n / 2.0))
         y0 = int(np.floor(centre[1] - n / 2.0))
         H, W = frame.shape[:2]
-        xs = np.clip(np.arange(x0, x0 + n), 0, W - 1)
-        ys = np.clip(np.arange(y0, y0 + n), 0, H - 1)
         if x0 >= 0 and y0 >= 0 and x0 + n <= W and y0 + n <= H:
             crop = frame[y0:y0 + n, x0:x0 + n]
         else:
-            crop = frame[np.ix_(ys, xs)]
+            # the part inside the frame, its border pixels repeated out to the square
+            ax, ay = min(max(x0, 0), W - 1), min(max(y0, 0), H - 1)
+            bx, by = max(min(x0 + n, W), ax + 1), max(min(y0 + n, H), ay + 1)
+            pads = (ay - y0, y0 + n - by, ax - x0, x0 + n - bx)
+            if min(pads) >= 0:
+                crop = cv2.copyMakeBorder(frame[ay:by, ax:bx], *pads, cv2.BORDER_REPLICATE)
+            else:                       # a square wholly outside the frame: index it
+                crop = frame[np.ix_(np.clip(np.arange(y0, y0 + n), 0, H - 1),
+                                    np.clip(np.arange(x0, x0 + n), 0, W - 1))]
         size = self._win_px
         interp = cv2.INTER_AREA if n > size else cv2.INTER_LINEAR
         return cv2.resize(crop, (size, size), interpolation=interp)
