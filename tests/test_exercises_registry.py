@@ -319,6 +319,19 @@ def lk_window(I, J, x, y, r, iterations=1):
     return d
 
 
+def reset_count(overlaps, skip, first=1):
+    """VOT's reset rule; ``first=0`` is the wrong one that also reads an initialisation frame."""
+    inits, failures, start = [0], [], 0
+    while True:
+        fail = next((t for t in range(start + (first if inits[-1] else 1), len(overlaps))
+                     if overlaps[t] == 0), None)
+        if fail is None or fail + skip >= len(overlaps):
+            return tuple(inits), tuple(failures + ([fail] if fail is not None else []))
+        failures.append(fail)
+        start = fail + skip
+        inits.append(start)
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -353,6 +366,13 @@ RIGHT_AND_WRONG = {
                                             for a in on for b in off])),
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
     "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
+    # 14.4: the noisy-OR by bag; wrong: the mean of the instances instead of the noisy-OR
+    "14.4": (lambda p, b, lab: (lambda s: (1 - np.exp(s), float(np.sum(
+                 np.where(lab == 1, np.log1p(-np.exp(s)), s)))))(
+                 np.bincount(b, weights=np.log1p(-p), minlength=len(lab))),
+             lambda p, b, lab: (lambda q: (q, float(np.sum(
+                 lab * np.log(q) + (1 - lab) * np.log1p(-q)))))(
+                 np.bincount(b, weights=p, minlength=len(lab)) / np.bincount(b))),
     # 17.4: the RTS step; wrong: the smoother gain with Fᵀ on the wrong side, P F (P⁻)⁻¹
     "17.4": (rts_step, lambda x, P, xs, Ps, F, Q: rts_step(x, P, xs, Ps, F, Q, transposed=True)),
     # 17.5: ω normalised over the current mode j (rows) instead of over the previous mode i
@@ -369,6 +389,8 @@ RIGHT_AND_WRONG = {
     "16.7": (_idf1_best, _idf1_greedy),
     # 12.7: one window's Lucas-Kanade; wrong: a single step, whatever `iterations` says
     "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
+    # 19.5: VOT's reset rule; wrong: a zero on a re-initialisation frame counted as a failure
+    "19.5": (reset_count, lambda o, skip: reset_count(o, skip, first=0)),
 }
 
 

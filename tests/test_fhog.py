@@ -201,3 +201,118 @@ def test_shapes_inputs_and_zero_channel():
     for bad in (np.zeros((7, 40)), np.zeros((10, 10, 2)), np.zeros(5)):
         with pytest.raises(ValueError):
             fhog(bad)
+
+# The float64 implementation (atan2, one bincount of float64 votes) that the float32 one
+# replaced, verbatim: the fast path must reproduce it to float32 rounding.
+def _prev_gradients(img: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per-pixel gradient (gx, gy) of the colour channel with the largest gradient norm.
+
+    Central differences (I(x+1) - I(x-1)) / 2, one-sided I(1) - I(0) and I(w-1) - I(w-2) on
+    the first and last column (and likewise for rows), as ``grad1`` of the reference computes
+    them. ``img`` is (h, w, c) float with the channels in the reference's order (R, G, B).
+    """
+    gx = np.empty_like(img); gy = np.empty_like(img)
+    np.subtract(img[:, 2:], img[:, :-2], out=gx[:, 1:-1]); gx[:, 1:-1] *= 0.5
+    gx[:, 0] = img[:, 1] - img[:, 0]; gx[:, -1] = img[:, -1] - img[:, -2]
+    np.subtract(img[2:], img[:-2], out=gy[1:-1]); gy[1:-1] *= 0.5
+    gy[0] = img[1] - img[0]; gy[-1] = img[-1] - img[-2]
+    if img.shape[2] == 1:
+        return gx[..., 0], gy[..., 0]
+    # The channel of largest squared norm wins; argmax keeps the first on a tie, as the
+    # reference's strict "greater than" over channels in order does.
+    best = np.argmax(gx * gx + gy * gy, axis=2)[..., None]
+    return (np.take_along_axis(gx, best, axis=2)[..., 0],
+            np.take_along_axis(gy, best, axis=2)[..., 0])
+
+
+def _prev_spatial_votes(n: int, cell: int, cells: int) -> tuple[np.ndarray, np.ndarray]:
+    """Bilinear votes of pixels 0..n-1 along one axis into ``cells`` cells.
+
+    Pixel p sits at cell coordinate u = (p + 0.5) / cell - 0.5; it votes 1 - (u - floor u) to
+    cell floor(u) and u - floor(u) to cell floor(u) + 1; votes to cells outside
+    0..cells-1 are dropped. Returns (index, weight), each (n, 2), with dropped votes given
+    weight 0 and a clipped index.
+    """
+    u = (np.arange(n) + 0.5) / cell - 0.5
+    lo = np.floor(u).astype(np.int64)
+    frac = u - lo
+    idx = np.stack([lo, lo + 1], axis=1)
+    wgt = np.stack([1.0 - frac, frac], axis=1)
+    inside = (idx >= 0) & (idx < cells)
+    return np.clip(idx, 0, cells - 1), np.where(inside, wgt, 0.0)
+
+
+def _previous_fhog(image, cell, n_orient, clip, zero_channel=False):
+    img = np.asarray(image)
+    if img.ndim == 3 and img.shape[2] == 3:
+        img = img[..., ::-1]                 # BGR -> RGB: the reference's channel order
+    elif img.ndim == 3 and img.shape[2] == 1:
+        pass
+    elif img.ndim == 2:
+        img = img[..., None]
+    else:
+        raise ValueError(f"image has shape {img.shape}; pass an (h, w) grey image or an "
+                         "(h, w, 3) BGR image.")
+    if int(cell) != cell or cell < 1 or int(n_orient) != n_orient or n_orient < 1:
+        raise ValueError(f"cell ({cell}) and n_orient ({n_orient}) must be positive integers.")
+    cell, n_orient = int(cell), int(n_orient)
+    h, w = img.shape[:2]
+    rows, cols = h // cell, w // cell
+    if rows < 2 or cols < 2:
+        raise ValueError(f"an image of {w}x{h} px holds {cols}x{rows} cells of {cell} px; "
+                         "FHOG's block normalisation needs at least 2x2 cells.")
+    n_sens = 2 * n_orient
+
+    # float32 gradients are exact for 8-bit images (multiples of 1/2 below 2^8)
+    gx, gy = _prev_gradients(img.astype(np.float32))
+    gx, gy = gx.astype(np.float64), gy.astype(np.float64)
+    mag = np.sqrt(gx * gx + gy * gy)
+    theta = np.mod(np.arctan2(gy, gx), 2.0 * np.pi)
+    # The 1e-9 (of a bin) makes an exact tie, which atan2 may land a rounding error either
+    # side of, go to the counter-clockwise bin; distinct gradient directions of an image are
+    # far further than that from a bin edge.
+    obin = np.floor(theta * (n_sens / (2.0 * np.pi)) + 0.5 + 1e-9).astype(np.int64) % n_sens
+
+    # Spatial votes of the pixels in the whole cells: one bincount over the 2 x 2 (row, column)
+    # vote pairs of every pixel, into the flat (row, col, bin) histogram.
+    h0, w0 = rows * cell, cols * cell
+    iy, wy = _prev_spatial_votes(h0, cell, rows)
+    ix, wx = _prev_spatial_votes(w0, cell, cols)
+    flat = ((iy[:, :, None, None] * cols + ix[None, None, :, :]) * n_sens
+            + obin[:h0, None, :w0, None])
+    votes = (wy[:, :, None, None] * wx[None, None, :, :]
+             * (mag[:h0, None, :w0, None] / (cell * cell)))
+    C = np.bincount(flat.ravel(), weights=votes.ravel(), minlength=rows * cols * n_sens)
+    C = C.reshape(rows, cols, n_sens)
+    sides = np.zeros((rows, cols))
+    sides[0] += 1; sides[-1] += 1; sides[:, 0] += 1; sides[:, -1] += 1
+    C *= ((8.0 / 7.0) ** sides)[..., None]
+
+    D = C[..., :n_orient] + C[..., n_orient:]
+    E = np.einsum("ijb,ijb->ij", D, D)
+    eps = 1e-4 / (4.0 * cell ** 4)
+    N = 1.0 / np.sqrt(E[:-1, :-1] + E[1:, :-1] + E[:-1, 1:] + E[1:, 1:] + eps)
+    P = np.pad(N, 1, mode="edge")            # P[i + 1, j + 1] = N(i, j)
+    # (rows, cols, 4): below-right, above-right, below-left, above-left (the reference's order)
+    Nl = np.stack([P[1:, 1:], P[:-1, 1:], P[1:, :-1], P[:-1, :-1]], axis=-1)
+
+    TC = np.minimum(C[:, :, None, :] * Nl[..., None], clip)     # (rows, cols, 4, 2p)
+    TD = np.minimum(D[:, :, None, :] * Nl[..., None], clip)     # (rows, cols, 4, p)
+    parts = [0.5 * TC.sum(axis=2), 0.5 * TD.sum(axis=2), 0.2357 * TC.sum(axis=3)]
+    if zero_channel:
+        parts.append(np.zeros((rows, cols, 1)))
+    return np.concatenate(parts, axis=2).astype(np.float32)
+
+
+@pytest.mark.parametrize("shape, cell, n_orient", [
+    ((64, 64, 3), 4, 9), ((37, 50), 3, 9), ((45, 61, 3), 5, 6), ((128, 96, 3), 8, 9),
+    ((201, 199, 3), 4, 9), ((30, 30, 1), 2, 9),
+])
+def test_equals_previous_implementation(shape, cell, n_orient):
+    rng = np.random.default_rng(11)
+    for img in (rng.integers(0, 256, shape).astype(np.uint8),
+                rng.random(shape).astype(np.float32)):
+        want = _previous_fhog(img, cell, n_orient, 0.2)
+        got = fhog(img, cell, n_orient, 0.2)
+        assert got.dtype == np.float32 and got.shape == want.shape
+        np.testing.assert_allclose(got, want, rtol=1e-5, atol=0)

@@ -13,7 +13,7 @@ package. Layers, bottom up:
    trackers' params they back: it reads the trackers' declarations)
 5. ``viz``
 6. ``playground``
-7. ``widgets``, ``cli``, ``_cli_output``, ``_cli_errors``, ``__main__``, ``exercises``, ``sphinx_*``
+7. ``widgets``, ``cli``, ``_cli_output``, ``_cli_errors``, ``_cli_notebooks``, ``__main__``, ``exercises``, ``sphinx_*``
 
 A module may import its own layer or a lower one. The package's ``__init__`` re-exports the
 public names and may import any layer.
@@ -37,7 +37,7 @@ LAYERS = {
     "evaluation": 4, "metrics": 4, "results": 4, "quotes": 4,
     "viz": 5,
     "playground": 6,
-    "widgets": 7, "cli": 7, "_cli_output": 7, "_cli_errors": 7, "__main__": 7, "exercises": 7,
+    "widgets": 7, "cli": 7, "_cli_output": 7, "_cli_errors": 7, "_cli_notebooks": 7, "__main__": 7, "exercises": 7,
 }
 
 

@@ -9,6 +9,11 @@ so one tolerance (a float's round trip) fits every file. In a grid that runs a t
 several configurations, seed 0 of each configuration is checked. OpenCV's MIL is left out: its
 score depends on OpenCV's build. When a tracker changes on purpose, regenerate the result with
 ``python -m trackbook.evaluation.experiments run NAME`` (the lab notes give each command).
+
+A row of another evaluation protocol (its ``protocol`` field: TRE, SRE, the reset protocol)
+is re-run through that protocol (:mod:`trackbook.evaluation.protocols`) and checked on its
+own scores: the pooled AUC for TRE and SRE; the accuracy, the failure count and the EAO for
+the reset protocol.
 """
 
 import functools
@@ -19,6 +24,7 @@ import pytest
 
 import trackbook
 from trackbook import results
+from trackbook.evaluation import protocol_bench, protocols
 from trackbook.trackers import plugins
 
 from .conftest import SEQUENCES, needs_sequences
@@ -36,6 +42,21 @@ def _auc(tracker: str, seed: int, params: str, preset: str, plugin_specs: tuple,
     source = str(SEQUENCES[clip]) if clip == CLIP else clip      # a sample clip by name
     return trackbook.evaluate(tracker, source, seed=seed, preset=preset,
                               **json.loads(params)).scores["auc"]
+
+
+@functools.lru_cache(maxsize=None)
+def _protocol_scores(protocol: str, tracker: str, seed: int, params: str, preset: str,
+                     clip: str = CLIP) -> dict:
+    source = str(SEQUENCES[clip]) if clip == CLIP else clip
+    kw = dict(seed=seed, preset=preset, **json.loads(params))
+    name, starts = protocol_bench.parse(protocol)
+    if name == "reset":
+        run = protocols.evaluate_reset(tracker, source, **kw)
+        return {"accuracy": run.accuracy, "failures": run.n_failures,
+                "eao": protocols.eao([run])}
+    res = (protocols.evaluate_tre(tracker, source, n_segments=starts, **kw) if name == "tre"
+           else protocols.evaluate_sre(tracker, source, **kw))
+    return {"auc": res.scores["auc"]}
 
 
 def _clip_of(table) -> str:
@@ -57,19 +78,29 @@ def _cases():
             # seeds' runs come from the same code as the first seed's
             if r["tracker"] == "opencv-mil" or int(r["seed"]) != first:
                 continue
+            proto = r.get("protocol", "ope")
+            proto = "ope" if proto != proto else proto           # nan: a one-pass file
             yield pytest.param(name, r["label"], r["tracker"], r["seed"], r["params"],
-                               r["preset"], plugs, r["auc"], clip,
-                               id=f"{name}:{r['label']}:{r['preset']}:seed{r['seed']}")
+                               r["preset"], plugs, r, clip, proto,
+                               id=f"{name}:{r['label']}:{r['preset']}:seed{r['seed']}"
+                               + ("" if proto == "ope" else f":{proto}"))
 
 
 @needs_sequences
 @pytest.mark.shared
 @pytest.mark.slow
 @pytest.mark.skipif(CLIP not in SEQUENCES, reason=f"sequence {CLIP} not found")
-@pytest.mark.parametrize("name, label, tracker, seed, params, preset, plugin_specs, committed, "
-                         "clip", list(_cases()))
+@pytest.mark.parametrize("name, label, tracker, seed, params, preset, plugin_specs, row, "
+                         "clip, protocol", list(_cases()))
 def test_committed_auc_is_reproduced(name, label, tracker, seed, params, preset, plugin_specs,
-                                     committed, clip):
+                                     row, clip, protocol):
+    if protocol != "ope":
+        new = _protocol_scores(protocol, tracker, seed, params, preset, clip)
+        assert new == pytest.approx({k: row[k] for k in new}, abs=TOL), (
+            f"the committed result {name!r} is stale for {label} ({tracker}, {protocol}) on "
+            f"{clip}; regenerate it with: python -m trackbook.evaluation.experiments run {name}")
+        return
+    committed = row["auc"]
     assert _auc(tracker, seed, params, preset, plugin_specs, clip) == pytest.approx(
         committed, abs=TOL), (
         f"the committed result {name!r} is stale for {label} ({tracker}, seed {seed}) on {clip}; "

@@ -77,20 +77,25 @@ def test_an_area_shrinking_through_zero_stops_shrinking():
 
 # --- assignment --------------------------------------------------------------------------
 
-def test_associate_takes_the_assignment_with_most_pairs_inside_the_gate():
+def test_associate_solves_on_all_pairs_then_gates_as_sort_does_or_gates_first():
     # 10 x 10 boxes shifted along x by d have IoU (10 − d) / (10 + d).
     # tracks t0 at x = 0, t1 at x = 4; detections d0 at x = 1, d1 at x = −3:
     #   d0–t0: d = 1, 9/11 = 0.818   d0–t1: d = 3, 7/13 = 0.538
-    #   d1–t0: d = 3, 0.538          d1–t1: d = 7, 3/17 = 0.176 (< 0.3, outside the gate)
-    # Taking the best pair first (d0–t0) would leave d1 with t1 only, outside the gate: one pair.
-    # The assignment pairs d0–t1 and d1–t0: two pairs. d2 and t2 are far from everything.
+    #   d1–t0: d = 3, 0.538          d1–t1: d = 7, 3/17 = 0.176
+    # Largest total IoU: d0–t1 + d1–t0 = 1.077 beats d0–t0 + d1–t1 = 0.995. d2 and t2 are far
+    # from everything (IoU 0: paired by the optimum, then rejected by any gate).
     dets = [(1, 0, 10, 10), (-3, 0, 10, 10), (500, 500, 10, 10)]
     tracks = [(0, 0, 10, 10), (4, 0, 10, 10), (-500, 0, 10, 10)]
-    matches, lone_dets, lone_tracks = mot.associate(dets, tracks, iou_threshold=0.3)
-    assert matches.tolist() == [[0, 1], [1, 0]]
-    assert lone_dets.tolist() == [2] and lone_tracks.tolist() == [2]
-    # a higher gate forbids the 0.538 pairs: only d0–t0 is left
-    assert mot.associate(dets, tracks, iou_threshold=0.6)[0].tolist() == [[0, 0]]
+    for gate_first in (False, True):          # at 0.3 both orders keep the two 0.538 pairs
+        matches, lone_dets, lone_tracks = mot.associate(dets, tracks, iou_threshold=0.3,
+                                                        gate_first=gate_first)
+        assert matches.tolist() == [[0, 1], [1, 0]]
+        assert lone_dets.tolist() == [2] and lone_tracks.tolist() == [2]
+    # at 0.6 SORT's optimum is still the crossing pairs, both below the gate: nothing is kept;
+    # gating first forbids the 0.538 pairs before solving, so d0–t0 (0.818) is kept
+    assert mot.associate(dets, tracks, iou_threshold=0.6)[0].tolist() == []
+    assert mot.associate(dets, tracks, iou_threshold=0.6,
+                         gate_first=True)[0].tolist() == [[0, 0]]
     empty = mot.associate(np.zeros((0, 4)), tracks)
     assert empty[0].shape == (0, 2) and empty[2].tolist() == [0, 1, 2]
 

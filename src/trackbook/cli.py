@@ -26,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from . import _cli_output as _out
-from ._cli_errors import CLIError, report
+from ._cli_errors import report
+from ._cli_notebooks import _chapters, cmd_notebooks, find_book  # noqa: F401  (cli.find_book)
 from ._cli_output import annotate  # noqa: F401  (trackbook.cli.annotate, used by the book)
 
 
@@ -363,7 +364,7 @@ def cmd_bench(args) -> int:
                          progress=not args.quiet, force=args.force, workers=args.workers,
                          scheduler=args.scheduler, imports=args.imports or (),
                          preset=args.preset, max_runs=args.max_runs,
-                         scheduler_timeout=args.scheduler_timeout)
+                         scheduler_timeout=args.scheduler_timeout, protocol=args.protocol)
     except KeyboardInterrupt as e:   # Ctrl-C, or SIGTERM/SIGHUP (parallel.Stopped)
         signum = getattr(e, "signum", 2)
         print(f"\ntrackbook: {'interrupted' if signum == 2 else 'stopped by a signal'}; "
@@ -373,13 +374,13 @@ def cmd_bench(args) -> int:
     except ImportError as e:   # --scheduler without the dask extra
         print(f"trackbook: error: {e}", file=sys.stderr)
         return 2
-    print(bench.markdown_table(rows))
+    print(getattr(rows, "table", "") or bench.markdown_table(rows))
     read_back, ran = getattr(rows, "read_back", 0), getattr(rows, "ran", len(rows))
     print(f"{read_back} read back, {ran} run"      # Path: no doubled slash from --out dir/
           + (f" (the {read_back} read back from {Path(args.out, 'runs')} keep the timings of "
              "the bench that saved them; --force re-runs them)" if read_back else ""))
-    print(f"wrote {Path(args.out, 'results.csv')}, results.json, table.md, success.png, "
-          "precision.png")
+    print(f"wrote {Path(args.out, 'results.csv')}, results.json, table.md, " + ("eao.png" if
+          args.protocol == "reset" else "success.png, precision.png"))
     return 0
 
 
@@ -404,48 +405,6 @@ def _bench_param(tracker: str, kv: str, flag: str = "") -> dict:
         if cls is not None:
             return {name: parse(cls, name, value)}
     return _parse_params([f"{name}={value}"])
-
-
-def _chapters(book: Path) -> list[Path]:
-    return (sorted(book.glob("[0-9][0-9]_*.md")) + sorted(book.glob("appendix_*.md"))
-            + sorted(book.glob("lab_notes_*.md")))
-
-
-def find_book(book=None) -> Path:
-    """The folder of the book's chapters: ``--book`` if given; else ``./book``; else the
-    chapters installed with the package (``trackbook/_book``, or the repository's ``book/``
-    beside ``src/`` in an editable install)."""
-    if book is not None:
-        return Path(book)
-    here = Path(__file__).resolve().parent
-    for cand in (Path("book"), here / "_book", here.parents[1] / "book"):
-        if _chapters(cand):
-            return cand
-    return here / "_book"
-
-
-def cmd_notebooks(args) -> int:
-    try:
-        import jupytext
-    except ImportError:
-        raise CLIError("trackbook notebooks needs jupytext, which the book extra installs: "
-                       "pip install 'trackbook[book]' (or pip install jupytext).") from None
-    book = find_book(args.book)
-    chapters = _chapters(book)
-    if not chapters:
-        raise ValueError(f"no chapters in {book}; pass --book FOLDER (the book/ folder of the "
-                         "repository).")
-    out = _out.check_out_dir(args.out)
-    files = {md: out / (md.stem + ".ipynb") for md in chapters}
-    # a notebook a student has edited is never replaced unless asked
-    _out.refuse_existing(files.values(), args.force)
-    _out.out_dir(out)
-    for md, path in files.items():
-        text = jupytext.writes(jupytext.read(md), fmt="ipynb")
-        with _out.staged([path]) as tmp:
-            tmp[path].write_text(text, encoding="utf-8")
-        print(path)
-    return 0
 
 
 class _Parser(argparse.ArgumentParser):
@@ -544,6 +503,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="start every tracker from the book's defaults or the printed values")
     b.add_argument("--max-runs", type=int, default=None, metavar="N",
                    help="the most runs one bench may do (default 5000)")
+    b.add_argument("--protocol", default="ope", help="ope (one pass, default), tre (20 starts; "
+                   "tre:N for N), sre (12 perturbed first boxes) or reset (VOT's)")
     b.set_defaults(fn=cmd_bench)
 
     n = sub.add_parser("notebooks", help="export the chapters to .ipynb for class use")

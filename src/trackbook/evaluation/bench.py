@@ -36,7 +36,7 @@ import numpy as np
 
 from .. import clips as _clips
 from .._checks import check_max_frames
-from . import metrics, parallel
+from . import metrics, parallel, protocol_bench
 from .runs import (PLAN_FILE, ClipRef, Task, _jsonable, check_same_plan,  # noqa: F401
                    check_tracker_name, code_fingerprint, fingerprint, load_imports, load_run,
                    plan_record, run_group, safe_name, write_atomic)
@@ -195,11 +195,13 @@ def _check_max_runs(max_runs) -> int:
 
 def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
          seeds=None, preset: str = "book", max_runs: int | None = None,
-         imports=()) -> list[Task]:
+         imports=(), protocol: str = "ope") -> list[Task]:
     """The runs a bench would do, in order (clips, then seeds, then trackers); MIL, which
     ignores the seed, runs with the first seed only. More than ``max_runs`` runs (default
     :data:`MAX_RUNS`) is a ``ValueError`` naming the count and the flag that raises the cap.
-    ``imports`` are loaded first (user trackers; see :func:`run`)."""
+    ``imports`` are loaded first (user trackers; see :func:`run`). ``protocol`` (see
+    :func:`trackbook.evaluation.protocol_bench.parse`) makes each task a protocol's runs."""
+    protocol = protocol_bench.canonical(protocol)
     load_imports(imports)
     max_runs = _check_max_runs(max_runs)
     if preset not in PRESETS:
@@ -228,12 +230,16 @@ def plan(trackers, clips, seed=0, max_frames=None, params=None, reference=True,
         clip = ref.load()
         fp = fingerprint(clip)
         n = len(clip) if max_frames is None else min(int(max_frames), len(clip))
+        if protocol.startswith("tre") and n < 21:     # TRE: every segment 20 frames or more
+            raise ValueError(f"clip {ref.name!r} has {n} frames to track; --protocol tre needs "
+                             "at least 21 (each start leaves 20 frames), so give a longer "
+                             "clip or a larger --max-frames.")
         for s in seeds:
             for t in trackers:
                 if t == REFERENCE and s != seeds[0]:
                     continue
                 tasks.append(Task(t, ref, s, max_frames, _frozen(params.get(t, {})), fp, n,
-                                  preset=preset, code=code[t]))
+                                  preset=preset, code=code[t], protocol=protocol))
     return tasks
 
 
@@ -247,7 +253,8 @@ def _check_out(out) -> Path:
 def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=True,
         force=False, reference=True, seeds=None, workers: int = 1,
         scheduler: str | None = None, imports=(), preset: str = "book",
-        max_runs: int | None = None, scheduler_timeout: float | None = None) -> list[dict]:
+        max_runs: int | None = None, scheduler_timeout: float | None = None,
+        protocol: str = "ope") -> list[dict]:
     """Run every tracker on every clip (and seed); write the tables and plots; return the rows.
 
     Parameters
@@ -274,19 +281,23 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     max_runs : the most runs this bench may do (default :data:`MAX_RUNS`)
     scheduler_timeout : seconds a Dask scheduler has to connect and answer (default
         ``$TRACKBOOK_DASK_TIMEOUT`` or 5)
+    protocol : ``"ope"`` (one pass from the first frame), ``"tre"`` (``"tre:N"``), ``"sre"``
+        or ``"reset"`` (see :mod:`trackbook.evaluation.protocol_bench`): each (tracker, clip,
+        seed) is then that protocol's runs, saved as one record; part of each run's key and
+        of ``plan.json``
 
     Returns
     -------
     Rows
         A list of row dicts, with ``read_back`` and ``ran`` (runs read back from ``out`` and
-        runs done now).
+        runs done now) and ``table`` (the text of ``table.md``).
     """
     out = _check_out(out)
     workers = parallel.check_workers(workers)
     imports = [str(i) for i in ([imports] if isinstance(imports, (str, os.PathLike))
                                 else (imports or ()))]
     tasks = plan(trackers, clips, seed, max_frames, params, reference, seeds, preset=preset,
-                 max_runs=max_runs, imports=imports)
+                 max_runs=max_runs, imports=imports, protocol=protocol)
     scheduler = scheduler or os.environ.get(parallel.ENV_SCHEDULER) or None
     if isinstance(scheduler, (str, os.PathLike)):  # fail in seconds, before any run
         parallel.check_scheduler(scheduler, parallel.check_timeout(scheduler_timeout))
@@ -326,17 +337,18 @@ def run(trackers, clips, out, seed=0, max_frames=None, params=None, progress=Tru
     records = [done[t] for t in tasks]
     write_summary(records, out)
     write_atomic(out / PLAN_FILE, json.dumps(plan_record(tasks), indent=1))
-    return Rows((r["row"] for r in records), read_back=len(tasks) - len(todo), ran=len(todo))
+    return Rows((r["row"] for r in records), read_back=len(tasks) - len(todo), ran=len(todo),
+                table=(out / "table.md").read_text())
 
 
 class Rows(list):
     """The rows :func:`run` returns (a list), with how many runs were read back from
     ``OUT/runs`` (``read_back``: their ``ms_*`` are the timings of the bench that saved them)
-    and how many ran now (``ran``)."""
+    and how many ran now (``ran``), and the text of ``table.md`` (``table``)."""
 
-    def __init__(self, rows=(), read_back: int = 0, ran: int = 0):
+    def __init__(self, rows=(), read_back: int = 0, ran: int = 0, table: str = ""):
         super().__init__(rows)
-        self.read_back, self.ran = read_back, ran
+        self.read_back, self.ran, self.table = read_back, ran, table
 
 
 def load(out) -> list[dict]:
@@ -423,8 +435,12 @@ def _csv(rows, cols) -> str:
 
 def write_summary(records, out) -> None:
     """results.csv / results.json / curves.json / table.md / success.png / precision.png from
-    the runs; with attributes also attributes.csv / attributes.md and per-attribute plots."""
+    the runs; with attributes also attributes.csv / attributes.md and per-attribute plots.
+    Records of a protocol other than OPE: see :func:`write_protocol_summary`."""
     out = Path(out)
+    if records and records[0]["row"].get("protocol", "ope") != "ope":
+        return write_protocol_summary(records, out)
+    (out / "eao.png").unlink(missing_ok=True)                    # a reset bench's
     rows = [r["row"] for r in records]
     extra_cols = sorted({k for r in rows for k in r} - set(COLUMNS))
     write_atomic(out / "results.csv", _csv(rows, COLUMNS + extra_cols))
@@ -460,6 +476,31 @@ def write_summary(records, out) -> None:
                   suffix=f"_{safe}", title=f" ({a})")
 
 
+def write_protocol_summary(records, out) -> None:
+    """The tables of a TRE, SRE or reset bench: results.csv / results.json (a row per
+    tracker, clip and seed), table.md (:func:`protocol_bench.markdown_table`), curves.json
+    (:func:`protocol_bench.curves`) and the plots (TRE/SRE: success.png and precision.png of
+    the pooled curves; reset: eao.png). Files of a one-pass bench it does not write (the
+    ``otb/`` results, per-attribute tables and plots) are removed."""
+    out = Path(out)
+    rows = [r["row"] for r in records]
+    cols = list(dict.fromkeys(k for r in rows for k in r))
+    write_atomic(out / "results.csv", _csv(rows, cols))
+    write_atomic(out / "results.json", json.dumps(_jsonable(rows), indent=1))
+    write_atomic(out / "curves.json", json.dumps(_jsonable(protocol_bench.curves(records))))
+    write_atomic(out / "table.md", protocol_bench.markdown_table(records))
+    _remove_stale(out / "otb", keep=())
+    reset = rows[0]["protocol"] == "reset"
+    for p in [*out.glob("success_*.png"), *out.glob("precision_*.png"), out / "attributes.csv",
+              out / "attributes.md",
+              *([out / "success.png", out / "precision.png"] if reset else [out / "eao.png"])]:
+        p.unlink(missing_ok=True)
+    if reset:
+        write_atomic(out / "eao.png", protocol_bench.eao_plot(records))
+    else:
+        _plot(records, out)
+
+
 def otb_paths(tracker: str, clip: str, out) -> tuple[Path, Path]:
     """Where :func:`write_otb` puts one run: ``OUT/otb/<tracker>/<clip>.txt`` and
     ``OUT/otb/<tracker>/times/<clip>_time.txt`` (got10k's layout: timings in a folder of
@@ -491,7 +532,7 @@ def _remove_stale(folder: Path, keep) -> None:
     for p in sorted(folder.rglob("*.txt")):
         if p not in keep:
             p.unlink()
-    for d in sorted((d for d in folder.rglob("*") if d.is_dir()), reverse=True):
+    for d in [*sorted((d for d in folder.rglob("*") if d.is_dir()), reverse=True), folder]:
         if not any(d.iterdir()):
             d.rmdir()
 

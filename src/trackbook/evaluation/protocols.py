@@ -510,7 +510,12 @@ def eao_curve(runs, n_max: int | None = None) -> np.ndarray:
     runs, where it is defined, each fragment weighing the same. This is the toolkit's
     supervised EAO curve (fragments cut at the initialisations, zero-padded after a
     failure, each of weight 1); like it, no burn-in applies here. Frames of unknown ground
-    truth are left out of a fragment's mean.
+    truth are left out of a fragment's mean. Two details differ from the toolkit's
+    ``estimate_expected_overlap.m``: its length :math:`N_s` counts the initialisation frame
+    (whose overlap it does not score), so its :math:`N_s` is N + 1 here; and a failure in the
+    last ``skip`` frames of a run, after which no re-initialisation follows, leaves the
+    toolkit's last fragment unpadded (as if it had reached the end), while here it is a
+    failed fragment like any other.
 
     Returns
     -------
@@ -555,10 +560,12 @@ def eao(runs, n_range: tuple[int, int] | None = None) -> float:
 
     VOT picks :math:`[N_{lo}, N_{hi}]` from its dataset's sequence lengths, the interval
     around the mode of their density holding half the mass (VOT2015: [108, 371]); pass that
-    as ``n_range`` for such a dataset. The default for trackbook's short clips is
-    :math:`[1, L - 1]`, L the longest run's length: one clip has one length, so there is no
-    distribution to take an interval of, and a fixed VOT interval longer than the clip would
-    leave only failed fragments defined (a tracker that never fails would have no score).
+    as ``n_range``, less 1 at both ends (the toolkit's lengths count the initialisation
+    frame, see :func:`eao_curve`), for such a dataset. The default for trackbook's short
+    clips is :math:`[1, L - 1]`, L the longest run's length: one clip has one length, so
+    there is no distribution to take an interval of, and a fixed VOT interval longer than the
+    clip would leave only failed fragments defined (a tracker that never fails would have no
+    score).
     On :math:`[1, L - 1]` every N has a defined fragment (the longest run's first one: it
     failed, or reached the end after L - 1 frames), and all horizons up to the clip's weigh
     the same.

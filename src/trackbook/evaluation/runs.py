@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import clips as _clips
-from . import metrics
+from . import metrics, protocol_bench
 from .runner import evaluate, evaluate_many
 
 
@@ -267,7 +267,8 @@ class Task:
     """One run: tracker, clip, seed; ``key`` decides whether a saved run can be reused.
 
     ``preset`` (``"book"`` or ``"paper"``) and ``code`` (:func:`code_fingerprint`) are part of
-    the key like the params.
+    the key like the params, and so is ``protocol`` when it is not ``"ope"`` (see
+    :mod:`trackbook.evaluation.protocol_bench`; a one-pass run keeps the key it always had).
     """
 
     tracker: str
@@ -279,13 +280,15 @@ class Task:
     frames: int  # frames this run tracks (for the progress bar)
     preset: str = "book"
     code: str = ""
+    protocol: str = "ope"
 
     @property
     def settings(self) -> dict:
+        extra = {} if self.protocol == "ope" else {"protocol": self.protocol}
         return _jsonable({"tracker": self.tracker, "seed": self.seed,
                           "max_frames": self.max_frames, "params": dict(self.params),
                           "clip": self.clip.identity, "fingerprint": self.fingerprint,
-                          "preset": self.preset, "code": self.code})
+                          "preset": self.preset, "code": self.code, **extra})
 
     @property
     def key(self) -> str:
@@ -367,9 +370,18 @@ def run_group(tasks, out=None, multi_seed=False, on_frames=None) -> list[dict]:
     tasks = list(tasks)
     clip = tasks[0].clip.load()
     by: dict = {}
-    for t in tasks:
-        by.setdefault((t.max_frames, t.preset), []).append(t)
     recs = {}
+    for t in tasks:
+        if t.protocol != "ope":     # several runs of its own (TRE, SRE, resets): one by one
+            recs[t] = _jsonable(protocol_bench.record(t, clip))
+            if multi_seed:
+                recs[t]["row"]["seed"] = t.seed
+            if out is not None:
+                save_run(t, recs[t], out)
+            if on_frames is not None:
+                on_frames(t.frames)
+        else:
+            by.setdefault((t.max_frames, t.preset), []).append(t)
     for (max_frames, preset), ts in by.items():
         if len(ts) == 1:  # kept separate so tests can patch evaluate()
             t = ts[0]
@@ -396,7 +408,7 @@ PLAN_FILE = "plan.json"
 
 def plan_record(tasks) -> dict:
     """What decides a bench's tables: its trackers, clips (name and identity), seeds, params,
-    preset and ``max_frames``; written to ``OUT/plan.json`` with the tables."""
+    preset, ``max_frames`` and protocol; written to ``OUT/plan.json`` with the tables."""
     t0 = tasks[0] if tasks else None
     return _jsonable({
         "trackers": list(dict.fromkeys(t.tracker for t in tasks)),
@@ -404,7 +416,8 @@ def plan_record(tasks) -> dict:
         "clip_identities": list(dict.fromkeys(t.clip.identity for t in tasks)),
         "seeds": sorted({t.seed for t in tasks}),
         "params": {t.tracker: dict(t.params) for t in tasks if t.params},
-        "preset": t0.preset if t0 else None, "max_frames": t0.max_frames if t0 else None})
+        "preset": t0.preset if t0 else None, "max_frames": t0.max_frames if t0 else None,
+        "protocol": t0.protocol if t0 else "ope"})
 
 
 def _plan_text(p: dict) -> str:
@@ -416,6 +429,8 @@ def _plan_text(p: dict) -> str:
         text += f", seeds {few(p['seeds'])}"
     if p.get("max_frames") is not None:
         text += f", max-frames {p['max_frames']}"
+    if p.get("protocol", "ope") != "ope":
+        text += f", protocol {p['protocol']}"
     if p.get("preset") not in (None, "book"):
         text += f", preset {p['preset']}"
     if p.get("params"):
@@ -449,7 +464,7 @@ _LABEL = {"clip_identities": "clip folders", "max_frames": "max-frames"}
 
 def check_same_plan(tasks, out) -> None:
     """A ``ValueError`` when ``out`` holds the tables of another bench (other trackers, clips,
-    seeds, params, preset or ``max_frames``): its results would be replaced and its
+    seeds, params, preset, ``max_frames`` or protocol): its results would be replaced and its
     ``otb/`` files mixed with this bench's. The same bench is resumed; ``force`` replaces."""
     out = Path(out)
     saved = _saved_plan(out)
@@ -462,8 +477,9 @@ def check_same_plan(tasks, out) -> None:
                                       t.frames] for t in tasks)}
         differs = [] if saved["rows"] == new["rows"] else ["rows"]
     else:
+        saved = {"protocol": "ope", **saved}   # a plan.json from before protocols: one pass
         differs = [k for k in ("trackers", "clips", "clip_identities", "seeds", "params",
-                               "preset", "max_frames") if saved.get(k) != new.get(k)]
+                               "preset", "max_frames", "protocol") if saved.get(k) != new.get(k)]
     if not differs:
         return
     if "clips" in differs:               # the same names from other folders: say so only then

@@ -12,13 +12,16 @@ in :func:`fhog`, so a tracker fed with it sees the features its authors' code sa
 
 Departures from the reference code, all at the level of its floating-point shortcuts: the
 gradient magnitude is the exact square root (the reference uses SSE's approximate reciprocal
-square root, relative error ~4e-4), the orientation is the exact ``atan2`` (the reference
-looks ``arccos`` up in a table of 10^4 steps, so gradients within 1e-4 of vertical count as
+square root, relative error ~4e-4), the orientation bin is the exact nearest centre (found
+by comparing a pseudo-angle with the bin edges, which needs no ``atan2``; the reference looks
+``arccos`` up in a table of 10^4 steps, so gradients within 1e-4 of vertical count as
 vertical) and a pixel with no gradient votes nothing (the reference floors the magnitude at
 1e-10, which leaves values ~1e-7 on a flat image).
 """
 
 from __future__ import annotations
+
+from functools import lru_cache
 
 import numpy as np
 
@@ -36,25 +39,64 @@ TEXTURE_SCALE = 0.2357
 BOUNDARY_GAIN = 8.0 / 7.0
 
 
-def _gradients(img: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _gradients(imgs: np.ndarray, order: tuple[int, ...]
+               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Per-pixel gradient (gx, gy) of the colour channel with the largest gradient norm.
 
     Central differences (I(x+1) - I(x-1)) / 2, one-sided I(1) - I(0) and I(w-1) - I(w-2) on
     the first and last column (and likewise for rows), as ``grad1`` of the reference computes
-    them. ``img`` is (h, w, c) float with the channels in the reference's order (R, G, B).
+    them. ``imgs`` is (n, h, w, c) float32; ``order`` lists the channels in the reference's
+    order (R, G, B), which decides ties. Returns gx, gy and gx^2 + gy^2, (n, h, w) float32.
     """
-    gx = np.empty_like(img); gy = np.empty_like(img)
-    np.subtract(img[:, 2:], img[:, :-2], out=gx[:, 1:-1]); gx[:, 1:-1] *= 0.5
-    gx[:, 0] = img[:, 1] - img[:, 0]; gx[:, -1] = img[:, -1] - img[:, -2]
-    np.subtract(img[2:], img[:-2], out=gy[1:-1]); gy[1:-1] *= 0.5
-    gy[0] = img[1] - img[0]; gy[-1] = img[-1] - img[-2]
-    if img.shape[2] == 1:
-        return gx[..., 0], gy[..., 0]
-    # The channel of largest squared norm wins; argmax keeps the first on a tie, as the
-    # reference's strict "greater than" over channels in order does.
-    best = np.argmax(gx * gx + gy * gy, axis=2)[..., None]
-    return (np.take_along_axis(gx, best, axis=2)[..., 0],
-            np.take_along_axis(gy, best, axis=2)[..., 0])
+    gx = np.empty_like(imgs); gy = np.empty_like(imgs)
+    np.subtract(imgs[:, :, 2:], imgs[:, :, :-2], out=gx[:, :, 1:-1]); gx[:, :, 1:-1] *= 0.5
+    np.subtract(imgs[:, :, 1], imgs[:, :, 0], out=gx[:, :, 0])
+    np.subtract(imgs[:, :, -1], imgs[:, :, -2], out=gx[:, :, -1])
+    np.subtract(imgs[:, 2:], imgs[:, :-2], out=gy[:, 1:-1]); gy[:, 1:-1] *= 0.5
+    np.subtract(imgs[:, 1], imgs[:, 0], out=gy[:, 0])
+    np.subtract(imgs[:, -1], imgs[:, -2], out=gy[:, -1])
+    first = order[0]
+    norm2 = gx * gx + gy * gy
+    bx, by, best = gx[..., first], gy[..., first], norm2[..., first]
+    # A later channel wins only with a strictly larger squared norm, so a tie keeps the first,
+    # as the reference's "greater than" over channels in order does.
+    for c in order[1:]:
+        wins = norm2[..., c] > best
+        best = np.where(wins, norm2[..., c], best)
+        bx = np.where(wins, gx[..., c], bx); by = np.where(wins, gy[..., c], by)
+    return bx, by, best
+
+
+@lru_cache(maxsize=16)
+def _bin_edges(n_sens: int) -> np.ndarray:
+    """Edges between the orientation bins, as values of the pseudo-angle of :func:`_bins`.
+
+    Edge k lies half-way between centres k and k + 1, moved clockwise by 1e-9 of a bin so
+    that a gradient exactly on it goes to the counter-clockwise bin (the reference's tie rule).
+    """
+    theta = (np.arange(n_sens) + 0.5 - 1e-9) * (2.0 * np.pi / n_sens)
+    c, s = np.cos(theta), np.sin(theta)
+    q = c / (np.abs(c) + np.abs(s))
+    return np.where(s >= 0, 1.0 - q, 3.0 + q)
+
+
+def _bins(gx: np.ndarray, gy: np.ndarray, n_sens: int) -> np.ndarray:
+    """Nearest of the ``n_sens`` orientation centres of each gradient, without ``atan2``.
+
+    The pseudo-angle q = 1 - gx / (|gx| + |gy|) for gy >= 0 and 3 + gx / (|gx| + |gy|)
+    below grows strictly with the angle atan2(gy, gx) in [0, 2 pi) (from 0 to 4), so the bin
+    is the number of bin edges at or below q, taken modulo ``n_sens`` (the last edge is 10 deg
+    short of 360 for 18 bins; beyond it is bin 0 again). Computed in float64 so that the
+    1e-9-bin tie margin survives rounding.
+    """
+    x = gx.astype(np.float64); y = gy.astype(np.float64)
+    den = np.abs(x) + np.abs(y)
+    den[den == 0] = 1.0                  # a zero gradient votes nothing: any bin does
+    q = x / den
+    q = np.where(y >= 0, 1.0 - q, 3.0 + q)
+    b = np.searchsorted(_bin_edges(n_sens), q, side="right")
+    b[b == n_sens] = 0
+    return b
 
 
 def _spatial_votes(n: int, cell: int, cells: int) -> tuple[np.ndarray, np.ndarray]:
@@ -66,12 +108,70 @@ def _spatial_votes(n: int, cell: int, cells: int) -> tuple[np.ndarray, np.ndarra
     weight 0 and a clipped index.
     """
     u = (np.arange(n) + 0.5) / cell - 0.5
-    lo = np.floor(u).astype(np.int64)
+    lo = np.floor(u).astype(np.intp)
     frac = u - lo
     idx = np.stack([lo, lo + 1], axis=1)
     wgt = np.stack([1.0 - frac, frac], axis=1)
     inside = (idx >= 0) & (idx < cells)
     return np.clip(idx, 0, cells - 1), np.where(inside, wgt, 0.0)
+
+
+@lru_cache(maxsize=16)
+def _vote_layout(h0: int, w0: int, cell: int, n_sens: int) -> tuple[np.ndarray, np.ndarray]:
+    """The four (cell, weight) spatial votes of every pixel, (h0, w0, 4) each.
+
+    They depend on the image size only, so they are built once per size (a tracker extracts
+    patches of a handful of sizes); the index is the flat offset of bin 0 of the cell in the
+    (rows, cols, bins) histogram, the weight includes the 1/k^2.
+    """
+    rows, cols = h0 // cell, w0 // cell
+    iy, wy = _spatial_votes(h0, cell, rows)
+    ix, wx = _spatial_votes(w0, cell, cols)
+    index = (iy[:, None, :, None] * cols + ix[None, :, None, :]) * n_sens
+    weight = wy[:, None, :, None] * wx[None, :, None, :] / (cell * cell)
+    return index.reshape(h0, w0, 4), weight.reshape(h0, w0, 4)
+
+
+def _histograms(mag: np.ndarray, obin: np.ndarray, cell: int, n_sens: int) -> np.ndarray:
+    """Contrast-sensitive cell histograms C, (n, rows, cols, n_sens) float32, boundary gain
+    included.
+
+    One ``bincount`` over the four spatial votes of every pixel. (Separable filtering of an
+    (h, w, bins) stack, or matrix products over it, touch 2p times more memory than the
+    pixels' votes, and a BLAS call's threads cost more than they save on a shared machine.)
+    """
+    n, h0, w0 = mag.shape
+    rows, cols = h0 // cell, w0 // cell
+    index, weight = _vote_layout(h0, w0, cell, n_sens)
+    size = rows * cols * n_sens
+    flat = index + (obin + (np.arange(n) * size)[:, None, None])[..., None]
+    votes = weight * mag[..., None]
+    C = np.bincount(flat.ravel(), weights=votes.ravel(), minlength=n * size)
+    C = C.astype(np.float32).reshape(n, rows, cols, n_sens)
+    C[:, [0, -1]] *= BOUNDARY_GAIN
+    C[:, :, [0, -1]] *= BOUNDARY_GAIN
+    return C
+
+
+def _normalise(C: np.ndarray, n_orient: int, clip: float, cell: int,
+               zero_channel: bool) -> np.ndarray:
+    """Block normalisation, truncation and the analytic projection (steps 4-6 of :func:`fhog`).
+    """
+    n, rows, cols, n_sens = C.shape
+    D = C[..., :n_orient] + C[..., n_orient:]
+    E = np.einsum("...b,...b->...", D, D)
+    eps = np.float32(1e-4 / (4.0 * cell ** 4))
+    N = 1.0 / np.sqrt(E[:, :-1, :-1] + E[:, 1:, :-1] + E[:, :-1, 1:] + E[:, 1:, 1:] + eps)
+    P = np.pad(N, ((0, 0), (1, 1), (1, 1)), mode="edge")     # P[:, i + 1, j + 1] = N(i, j)
+    # (n, rows, cols, 4): below-right, above-right, below-left, above-left (reference order)
+    Nl = np.stack([P[:, 1:, 1:], P[:, :-1, 1:], P[:, 1:, :-1], P[:, :-1, :-1]], axis=-1)
+    TC = np.minimum(C[..., None, :] * Nl[..., None], clip)    # (n, rows, cols, 4, 2p)
+    TD = np.minimum(D[..., None, :] * Nl[..., None], clip)    # (n, rows, cols, 4, p)
+    out = np.zeros((n, rows, cols, 3 * n_orient + 4 + int(zero_channel)), np.float32)
+    np.multiply(TC.sum(axis=3), 0.5, out=out[..., :n_sens])
+    np.multiply(TD.sum(axis=3), 0.5, out=out[..., n_sens:3 * n_orient])
+    np.multiply(TC.sum(axis=4), TEXTURE_SCALE, out=out[..., 3 * n_orient:3 * n_orient + 4])
+    return out
 
 
 def fhog(image: np.ndarray, cell: int = CELL, n_orient: int = N_ORIENT, clip: float = CLIP,
@@ -156,64 +256,39 @@ def fhog(image: np.ndarray, cell: int = CELL, n_orient: int = N_ORIENT, clip: fl
     :math:`4 \times 2p` normalised, truncated values (section 6.2).
     """
     img = np.asarray(image)
-    if img.ndim == 3 and img.shape[2] == 3:
-        img = img[..., ::-1]                 # BGR -> RGB: the reference's channel order
-    elif img.ndim == 3 and img.shape[2] == 1:
-        pass
-    elif img.ndim == 2:
-        img = img[..., None]
-    else:
+    if img.ndim not in (2, 3):
         raise ValueError(f"image has shape {img.shape}; pass an (h, w) grey image or an "
+                         "(h, w, 3) BGR image.")
+    return _fhog_batch(img[None], cell, n_orient, clip, zero_channel)[0]
+
+
+def _fhog_batch(stack: np.ndarray, cell, n_orient, clip, zero_channel: bool) -> np.ndarray:
+    """FHOG of an (n, h, w) or (n, h, w, c) stack, c = 1 or 3 (BGR)."""
+    if stack.ndim == 3:
+        stack = stack[..., None]
+    if stack.shape[3] == 3:
+        order = (2, 1, 0)                    # BGR: the reference's order R, G, B decides ties
+    elif stack.shape[3] == 1:
+        order = (0,)
+    else:
+        raise ValueError(f"image has shape {stack.shape[1:]}; pass an (h, w) grey image or an "
                          "(h, w, 3) BGR image.")
     if int(cell) != cell or cell < 1 or int(n_orient) != n_orient or n_orient < 1:
         raise ValueError(f"cell ({cell}) and n_orient ({n_orient}) must be positive integers.")
     cell, n_orient = int(cell), int(n_orient)
-    h, w = img.shape[:2]
+    h, w = stack.shape[1:3]
     rows, cols = h // cell, w // cell
     if rows < 2 or cols < 2:
         raise ValueError(f"an image of {w}x{h} px holds {cols}x{rows} cells of {cell} px; "
                          "FHOG's block normalisation needs at least 2x2 cells.")
     n_sens = 2 * n_orient
-
     # float32 gradients are exact for 8-bit images (multiples of 1/2 below 2^8)
-    gx, gy = _gradients(img.astype(np.float32))
-    gx, gy = gx.astype(np.float64), gy.astype(np.float64)
-    mag = np.sqrt(gx * gx + gy * gy)
-    theta = np.mod(np.arctan2(gy, gx), 2.0 * np.pi)
-    # The 1e-9 (of a bin) makes an exact tie, which atan2 may land a rounding error either
-    # side of, go to the counter-clockwise bin; distinct gradient directions of an image are
-    # far further than that from a bin edge.
-    obin = np.floor(theta * (n_sens / (2.0 * np.pi)) + 0.5 + 1e-9).astype(np.int64) % n_sens
-
-    # Spatial votes of the pixels in the whole cells: one bincount over the 2 x 2 (row, column)
-    # vote pairs of every pixel, into the flat (row, col, bin) histogram.
+    gx, gy, norm2 = _gradients(stack.astype(np.float32), order)
+    # Only the pixels of whole cells vote; the others entered the differences above.
     h0, w0 = rows * cell, cols * cell
-    iy, wy = _spatial_votes(h0, cell, rows)
-    ix, wx = _spatial_votes(w0, cell, cols)
-    flat = ((iy[:, :, None, None] * cols + ix[None, None, :, :]) * n_sens
-            + obin[:h0, None, :w0, None])
-    votes = (wy[:, :, None, None] * wx[None, None, :, :]
-             * (mag[:h0, None, :w0, None] / (cell * cell)))
-    C = np.bincount(flat.ravel(), weights=votes.ravel(), minlength=rows * cols * n_sens)
-    C = C.reshape(rows, cols, n_sens)
-    sides = np.zeros((rows, cols))
-    sides[0] += 1; sides[-1] += 1; sides[:, 0] += 1; sides[:, -1] += 1
-    C *= (BOUNDARY_GAIN ** sides)[..., None]
-
-    D = C[..., :n_orient] + C[..., n_orient:]
-    E = np.einsum("ijb,ijb->ij", D, D)
-    eps = 1e-4 / (4.0 * cell ** 4)
-    N = 1.0 / np.sqrt(E[:-1, :-1] + E[1:, :-1] + E[:-1, 1:] + E[1:, 1:] + eps)
-    P = np.pad(N, 1, mode="edge")            # P[i + 1, j + 1] = N(i, j)
-    # (rows, cols, 4): below-right, above-right, below-left, above-left (the reference's order)
-    Nl = np.stack([P[1:, 1:], P[:-1, 1:], P[1:, :-1], P[:-1, :-1]], axis=-1)
-
-    TC = np.minimum(C[:, :, None, :] * Nl[..., None], clip)     # (rows, cols, 4, 2p)
-    TD = np.minimum(D[:, :, None, :] * Nl[..., None], clip)     # (rows, cols, 4, p)
-    parts = [0.5 * TC.sum(axis=2), 0.5 * TD.sum(axis=2), TEXTURE_SCALE * TC.sum(axis=3)]
-    if zero_channel:
-        parts.append(np.zeros((rows, cols, 1)))
-    return np.concatenate(parts, axis=2).astype(np.float32)
+    gx, gy, norm2 = gx[:, :h0, :w0], gy[:, :h0, :w0], norm2[:, :h0, :w0]
+    C = _histograms(np.sqrt(norm2), _bins(gx, gy, n_sens), cell, n_sens)
+    return _normalise(C, n_orient, clip, cell, zero_channel)
 
 
 __all__ = ["BOUNDARY_GAIN", "CELL", "CLIP", "N_ORIENT", "TEXTURE_SCALE", "fhog"]

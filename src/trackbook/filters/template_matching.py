@@ -28,7 +28,6 @@ per pair), as Median Flow uses it to compare the patches around a point in two f
 from __future__ import annotations
 
 import numpy as np
-from scipy.signal import fftconvolve
 
 __all__ = ["best_match", "ncc_map", "patch_ncc", "ssd_map", "window_sums"]
 
@@ -62,6 +61,10 @@ def window_sums(a: np.ndarray, h: int, w: int) -> np.ndarray:
 
 def _correlate(I, T):
     """sum_{u,v} T(u, v) I(x + u, y + v) at every valid (x, y): a convolution with T flipped."""
+    # imported here: scipy.signal takes seconds to import, and `import trackbook` (every page
+    # of the book, every command) would pay for it through the trackers that use this module
+    from scipy.signal import fftconvolve
+
     return fftconvolve(I, T[::-1, ::-1], mode="valid")
 
 

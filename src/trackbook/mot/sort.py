@@ -4,7 +4,9 @@ Every frame a detector gives boxes without identities. SORT keeps one *track* pe
 
 1. each track's Kalman filter **predicts** its box in the new frame (constant velocity);
 2. detections are **assigned** to tracks by the Hungarian method on IoU between detection
-   and predicted box; a pair with IoU below ``iou_threshold`` is never assigned (the gate);
+   and predicted box (the largest total IoU), and an assigned pair with IoU below
+   ``iou_threshold`` is then rejected (the gate), as Bewley et al. 2016 and their reference
+   code do; ``gate_first=True`` is the book's variant that forbids those pairs before solving;
 3. an assigned track **updates** its filter with its detection; a detection left over starts a
    new (tentative) track; a track left over coasts on its prediction;
 4. a track is **reported** in a frame where it was detected and its last ``min_hits`` frames
@@ -99,17 +101,22 @@ class _Track:
         self.kf.update(box_to_z(box))
 
 
-def associate(detections, predicted, iou_threshold: float = 0.3):
-    """Assign detections to tracks' predicted boxes: Hungarian on IoU, gated at ``iou_threshold``.
+def associate(detections, predicted, iou_threshold: float = 0.3, *, gate_first: bool = False):
+    """Assign detections to tracks' predicted boxes by the Hungarian method on IoU, gated.
 
-    Among the one-to-one matchings whose pairs all have IoU ≥ ``iou_threshold`` it takes one
-    with the most pairs and, among those, the largest total IoU.
+    SORT's order (``gate_first=False``, Bewley et al. 2016 and their reference code): the
+    one-to-one matching with the largest total IoU over all pairs, then every matched pair
+    with IoU below ``iou_threshold`` is rejected. The book's variant (``gate_first=True``):
+    among the matchings whose pairs all have IoU ≥ ``iou_threshold``, one with the most pairs
+    and, among those, the largest total IoU. They differ only when SORT's optimum uses a pair
+    below the threshold (the several-targets chapter works an example).
 
     Parameters
     ----------
     detections : (n, 4) boxes (x, y, w, h)
     predicted : (m, 4) boxes (x, y, w, h)
     iou_threshold : float
+    gate_first : bool
 
     Returns
     -------
@@ -122,10 +129,17 @@ def associate(detections, predicted, iou_threshold: float = 0.3):
     """
     iou = iou_matrix(detections, predicted)
     n, m = iou.shape
-    pairs = assign(1.0 - iou, allowed=iou >= iou_threshold) if n and m else []
+    pairs = _matched(iou, iou_threshold, gate_first) if n and m else []
     matches = np.array(pairs, dtype=int).reshape(-1, 2)
     return (matches, np.setdiff1d(np.arange(n), matches[:, 0]),
             np.setdiff1d(np.arange(m), matches[:, 1]))
+
+
+def _matched(iou, iou_threshold, gate_first) -> list:
+    """The (row, column) pairs of ``associate`` on an IoU matrix."""
+    if gate_first:
+        return assign(1.0 - iou, allowed=iou >= iou_threshold)
+    return [(r, c) for r, c in assign(1.0 - iou) if iou[r, c] >= iou_threshold]
 
 
 def _check_detections(detections) -> np.ndarray:
@@ -154,14 +168,16 @@ class Sort:
         one that started it, not counted).
     iou_threshold : float
         The least IoU between a detection and a track's predicted box for them to be paired.
+    gate_first : bool
+        False (SORT): solve the assignment on all pairs, then reject pairs below
+        ``iou_threshold``. True (the book's variant): forbid those pairs before solving, so
+        one that cannot be kept never pushes aside two that can (see :func:`associate`).
 
     The defaults (1, 3, 0.3) are SORT's reference code defaults. Two differences from that code,
     both for the book's use: ids count 1, 2, … per tracker (not across all trackers of a
     process), so the same detections always give the same ids; and tracks are not reported
     before they have ``min_hits`` hits (the reference code reports every track during its first
-    ``min_hits`` frames). The assignment forbids pairs below the threshold before solving
-    (the reference solves first, then drops them); the two can differ only when the Hungarian
-    optimum uses a pair below the threshold.
+    ``min_hits`` frames).
 
     Examples
     --------
@@ -173,7 +189,8 @@ class Sort:
     [1.0, 2.0]
     """
 
-    def __init__(self, max_age: int = 1, min_hits: int = 3, iou_threshold: float = 0.3):
+    def __init__(self, max_age: int = 1, min_hits: int = 3, iou_threshold: float = 0.3, *,
+                 gate_first: bool = False):
         for name, value in (("max_age", max_age), ("min_hits", min_hits)):
             if int(value) != value or value < 0:
                 raise ValueError(f"{name} must be a whole number >= 0, got {value!r}.")
@@ -182,6 +199,7 @@ class Sort:
         self.max_age = int(max_age)
         self.min_hits = int(min_hits)
         self.iou_threshold = float(iou_threshold)
+        self.gate_first = bool(gate_first)
         self.reset()
 
     def reset(self) -> None:
@@ -209,7 +227,8 @@ class Sort:
         predicted = np.array([t.predict() for t in self._tracks]).reshape(-1, 4)
         alive = np.all(np.isfinite(predicted), axis=1)
         self._tracks = [t for t, ok in zip(self._tracks, alive) if ok]
-        matches, new, _ = associate(dets, predicted[alive], self.iou_threshold)
+        matches, new, _ = associate(dets, predicted[alive], self.iou_threshold,
+                                    gate_first=self.gate_first)
         for d, t in matches:
             self._tracks[t].update(dets[d])
         for d in new:

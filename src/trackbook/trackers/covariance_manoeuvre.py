@@ -42,7 +42,8 @@ class KalmanCovarianceManoeuvre(KalmanCovarianceTracker):
 
     A constant-velocity model with Q = I cannot follow a bounce (the velocity reverses in one
     frame), and the best window inside the small Kalman window is then some background whose
-    Förstner distance d_F (``rho`` in the code, after Lee 2015) can still be below
+    Förstner distance d_F (``rho`` in the code, the letter of Lee 2015's eq. 5
+    [quote: lee2015.distance_eq5]) can still be below
     ``threshold``. So when the best d_F exceeds ``manoeuvre_gate`` times the median d_F of the
     last accepted frames, the prediction is redone from the previous
     posterior with σ_v² = ``manoeuvre_sigma``² added to the velocity variance (an impulsive

@@ -8,11 +8,13 @@ On every frame:
    (:func:`trackbook.filters.lucas_kanade.forward_backward`); each point gets its
    forward-backward error FB and the zero-mean NCC between the patches around it in the two
    frames (:func:`trackbook.filters.template_matching.patch_ncc`).
-2. Failure, as published: the median FB of the grid above ``fb_threshold`` (10 px) means the
-   motion cannot be trusted: ``ok=False``, the box stays.
+2. Failure, as in the authors' released code: the median FB of the grid above
+   ``fb_threshold`` (10 px) means the motion cannot be trusted: ``ok=False``, the box stays.
 3. Otherwise the points with FB at most the median and NCC at least the median are kept (the
-   published filter: about half survive); the box moves by the median of their displacements
-   and scales by the median of the ratios of their pairwise distances after and before.
+   paper drops the worse half of the predictions; the authors' code applies the two median
+   tests together, which keeps at most half); the box moves by the median of their
+   displacements and scales by the median of the ratios of their pairwise distances after
+   and before.
 
 The failure-detection layer judges the confidence below on every frame besides Median Flow's
 own rule (step 2): a frame it judges lost, or a frame whose grey levels span at most
@@ -55,8 +57,10 @@ from .registry import register
 
 @dataclasses.dataclass(frozen=True)
 class MedianFlowParams:
-    # Kalal, Mikolajczyk, Matas, ICPR 2010: the grid, the half kept and the 10 px failure rule
-    # are the paper's; the Lucas-Kanade settings are not printed there.
+    # Kalal, Mikolajczyk, Matas, ICPR 2010: the grid in the box, the worse half dropped and
+    # the medians are the paper's; the 10 x 10 grid, the two median tests (FB and NCC) and the
+    # 10 px failure rule are also those of the authors' released TLD code;
+    # the Lucas-Kanade settings are the book's.
     grid: int = param(
         10, 2, 30, 1, doc="points per side of the grid laid in the box (grid x grid points)",
         paper=10)           # Kalal et al. 2010: a 10 x 10 grid of points in the box
