@@ -34,6 +34,7 @@ from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, k
 from . import dsst  # noqa: E402,F401  danelljan2014: dsst
 from . import staple  # noqa: E402,F401  bertinetto2016: staple
 from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
+from . import bacf  # noqa: E402,F401  kianigaloogahi2017: bacf (background-aware correlation filters)
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
