@@ -25,8 +25,9 @@ def start():
 
 def test_every_registered_tracker():
     # the four papers' eleven, the book's kalman-covariance-manoeuvre, the correlation filters
-    # mosse and kcf, staple, camshift and median-flow (and the -redetect variant of each)
-    assert len([n for n in NAMES if not n.endswith("-redetect")]) == 17
+    # mosse and kcf, dsst, staple, bacf, camshift and median-flow (and the -redetect variant
+    # of each)
+    assert len([n for n in NAMES if not n.endswith("-redetect")]) == 19
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -31,7 +31,9 @@ BOOK_GROUPS = [["color-pf", "color-pf-redetect", "color-hog-pf",               #
                 "condensation-mean-shift-redetect"],
                ["camshift", "camshift-redetect"],                               # bradski1998
                ["mosse", "mosse-redetect", "kcf", "kcf-redetect"],              # correlation
+               ["dsst", "dsst-redetect"],                                       # danelljan2014
                ["staple", "staple-redetect"],                                   # bertinetto2016
+               ["bacf", "bacf-redetect"],                                       # kianigaloogahi2017
                ["median-flow", "median-flow-redetect"]]                         # kalal2010
 BOOK_ORDER = [n for g in BOOK_GROUPS for n in g]
 

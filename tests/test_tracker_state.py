@@ -34,6 +34,8 @@ KIND = {
     "mosse": {"search_window"},
     "kcf": {"search_window"},
     "staple": {"search_window"},
+    "dsst": {"search_window"},
+    "bacf": {"search_window"},
     "camshift": {"search_window", "ellipse"},
     "median-flow": set(),
     "kalman-covariance-manoeuvre": {"search_window", "candidates", "ellipse"},

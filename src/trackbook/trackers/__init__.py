@@ -33,8 +33,8 @@ from . import camshift  # noqa: E402,F401  bradski1998: camshift
 from . import correlation  # noqa: E402,F401  bolme2010, henriques2015: mosse, kcf (10_correlation_filters)
 from . import dsst  # noqa: E402,F401  danelljan2014: dsst
 from . import staple  # noqa: E402,F401  bertinetto2016: staple
-from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 from . import bacf  # noqa: E402,F401  kianigaloogahi2017: bacf (background-aware correlation filters)
+from . import median_flow  # noqa: E402,F401  kalal2010: median-flow
 
 
 __all__ = ["MultiTracker", "PRESETS", "REFERENCE", "Tracker", "TrackerState", "available",
