@@ -30,9 +30,10 @@ of $\hat x^+ = \hat x^- + \tfrac12(z - \hat x^-)$?
 Expand:
 
 $$\begin{aligned}
-(I-KH)P^-(I-KH)^T + KRK^T &= (I-KH)P^- - (I-KH)P^-H^TK^T + KRK^T,\\
--(I-KH)P^-H^TK^T + KRK^T &= -P^-H^TK^T + K(HP^-H^T + R)K^T\\
-&= -P^-H^TK^T + KSK^T .
+&(I-KH)P^-(I-KH)^T + KRK^T\\
+&\qquad = (I-KH)P^- - (I-KH)P^-H^TK^T + KRK^T,\\
+&-(I-KH)P^-H^TK^T + KRK^T\\
+&\qquad = -P^-H^TK^T + K(HP^-H^T + R)K^T = -P^-H^TK^T + KSK^T .
 \end{aligned}$$
 
 At the optimal gain $KS = P^-H^T$, so $KSK^T = P^-H^TK^T$ and the two cancel. With $K = 1/2$: the
