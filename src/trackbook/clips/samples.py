@@ -111,6 +111,19 @@ def render_masks(name: str, visible: bool = False) -> np.ndarray:
     return r.visible if visible else r.support
 
 
+def in_view(name: str, share: float = 0.5) -> np.ndarray:
+    """Per frame of sample clip ``name``: whether its target shows at least ``share`` of its
+    pixels (an N-long bool array).
+
+    A target mostly hidden behind something drawn over it (a tree, the other face) keeps its
+    whole box as ground truth, yet a tracker that reports it lost there is right, whatever
+    its box's overlap: this is the mask the failure contract's false-loss count uses.
+    """
+    support = render_masks(name).sum(axis=(1, 2))
+    visible = render_masks(name, visible=True).sum(axis=(1, 2))
+    return visible >= share * np.maximum(support, 1)
+
+
 @functools.lru_cache(maxsize=None)
 def build(name: str) -> Clip:
     """The sample clip ``name`` as a read-only :class:`Clip` (rendered once per process)."""

@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import clips as _clips
+from ..clips import samples as _samples
 from . import metrics, protocol_bench
 from .runner import evaluate, evaluate_many
 
@@ -354,6 +355,11 @@ def _record(task: Task, r, clip, multi_seed: bool) -> dict:
     rec = {"key": task.key, "settings": task.settings, "row": row, "boxes": r.boxes,
            "ms": r.ms, "params": r.params, "attributes": list(clip.attributes)}
     try:
+        # the failure contract's count (frames reported lost with the box on the target); on a
+        # sample clip only where its target is at least half in view
+        in_view = (_samples.in_view(clip.name)
+                   if getattr(clip, "source", None) == "sample" else None)
+        rec["false_losses"] = list(metrics.false_losses(r.ok, r.boxes, gt, in_view))
         rec["success"] = metrics.success_curve(r.boxes[1:], gt[1:])[1]
         rec["precision"] = metrics.precision_curve(r.boxes[1:], gt[1:])[1]
     except ValueError:
