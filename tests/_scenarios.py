@@ -276,8 +276,9 @@ def scenario(key):
 @lru_cache(maxsize=None)
 def evaluated(name, key):
     """``trackbook.evaluate(name, scenario(key).clip, seed=0)``, once per process: the failure
-    contract and the confidence checks judge the same runs (``tests/conftest.py`` keeps a
-    tracker's cells of both files on one worker, so the second asks this cache)."""
+    contract and the confidence checks judge the same runs, and a worker that meets both
+    cells of one run makes it once (``--dist loadgroup`` could put them on one worker, but
+    pytest 9.2 ignores xdist's groups: pytest-xdist issue #1386)."""
     import trackbook
 
     return trackbook.evaluate(name, scenario(key).clip, seed=0)

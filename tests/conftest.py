@@ -80,20 +80,6 @@ def moving_square_frames(n, *, size=(100, 80), side=20, grey=(90, 140), top=30, 
     return frames, (left, top, side, side)
 
 
-#: Files whose cells run a tracker (the ``name`` parameter) on the same scenario clips; their
-#: runs are cached per process (``_scenarios.evaluated`` and the files' own caches).
-SHARED_RUNS = ("test_failure_contract.py", "test_confidence.py")
-
-
-def pytest_collection_modifyitems(config, items):
-    """Under ``pytest -n N --dist loadgroup`` (the README's command) every cell of one tracker
-    in ``SHARED_RUNS`` goes to one worker, so a run two checks judge is made once."""
-    for item in items:
-        params = getattr(getattr(item, "callspec", None), "params", {})
-        if item.path.name in SHARED_RUNS and isinstance(params.get("name"), str):
-            item.add_marker(pytest.mark.xdist_group(f"tracker-{params['name']}"))
-
-
 # ---- the browser checks of the built book ----------------------------------------------------
 
 @pytest.fixture(scope="module")
