@@ -116,3 +116,8 @@ def test_false_losses_counts_frames_reported_lost_with_the_box_on_the_target():
     # frame 4 with the target mostly hidden: neither on target nor a false loss
     in_view = np.array([True, True, True, True, False, True])
     assert metrics.false_losses(ok, pred, gt, in_view) == (1, 2)
+    # a run shorter than the clip (max_frames) reads the mask's first frames; a mask shorter
+    # than the run is refused, not broadcast
+    assert metrics.false_losses(ok[:3], pred[:3], gt, in_view) == (1, 2)
+    with pytest.raises(ValueError, match="one flag per frame"):
+        metrics.false_losses(ok, pred, gt, in_view[:2])

@@ -6,8 +6,12 @@ or a feature can leave them stale without any chapter failing (the edge-ray resu
 (Crossing, 120 frames; a result of the sample clips only, on its shortest clip) and demands
 the committed AUC: the files are written at full precision,
 so one tolerance (a float's round trip) fits every file. A row that carries the failure
-contract's count (``false_losses``: frames reported lost with the box on the target, and
-frames with the box on the target) must give the same two numbers exactly. In a grid that runs a tracker under
+contract's counts (``false_losses``: frames reported lost with the box on the target, and
+frames with the box on the target) must give the same two numbers exactly; and since the
+contract's tests read every such row, not one clip's, each of those rows also names the code
+it came from (``code``: the tracker's code and calibrated thresholds, versions left out),
+which must be this commit's -- OpenCV's MIL included (its wrapper and child script; not
+OpenCV's own MIL, whose boxes depend on OpenCV's build). In a grid that runs a tracker under
 several configurations, seed 0 of each configuration is checked. OpenCV's MIL is left out: its
 score depends on OpenCV's build. When a tracker changes on purpose, regenerate the result with
 ``python -m trackbook.evaluation.experiments run NAME`` (the lab notes give each command).
@@ -28,6 +32,7 @@ import trackbook
 from trackbook import clips, results
 from trackbook.clips import samples
 from trackbook.evaluation import metrics, protocol_bench, protocols
+from trackbook.evaluation.runs import code_fingerprint
 from trackbook.trackers import plugins
 
 from .conftest import SEQUENCES, needs_sequences
@@ -46,7 +51,7 @@ def _run(tracker: str, seed: int, params: str, preset: str, plugin_specs: tuple,
     source = str(SEQUENCES[clip]) if clip == CLIP else clip      # a sample clip by name
     c = clips.load(source)
     r = trackbook.evaluate(tracker, c, seed=seed, preset=preset, **json.loads(params))
-    in_view = samples.in_view(clip) if clip != CLIP else None
+    in_view = samples.in_view(clip) if clip in samples.names() else None
     return r.scores["auc"], list(metrics.false_losses(r.ok, r.boxes, c.groundtruth, in_view))
 
 
@@ -112,3 +117,23 @@ def test_committed_auc_is_reproduced(name, label, tracker, seed, params, preset,
     assert auc == pytest.approx(row["auc"], abs=TOL), stale
     if "false_losses" in row:       # the failure contract's counts: frame counts, exactly
         assert losses == list(row["false_losses"]), stale
+
+
+def _counted_rows():
+    for name in results.available():
+        for r in results.load(name):
+            if "false_losses" in r:
+                yield name, r
+
+
+def test_every_committed_false_loss_count_comes_from_this_code():
+    """No run needed: a change to a tracker's code or its failure thresholds changes the
+    fingerprint, so a count on a clip the test above does not re-run cannot go stale."""
+    rows = list(_counted_rows())
+    assert {n for n, _ in rows} >= {"real", "failure_samples"}
+    stale = sorted({(n, r["tracker"]) for n, r in rows
+                    if r.get("code") != code_fingerprint(r["tracker"], versions=False)})
+    assert not stale, ("committed false-loss counts from other code: "
+                       + ", ".join(f"{t} in {n}" for n, t in stale)
+                       + "; regenerate with: python -m trackbook.evaluation.experiments run "
+                       + " / ".join(sorted({n for n, _ in stale})))

@@ -85,6 +85,11 @@ class Experiment:
     protocols: tuple = ("ope",)
     false_losses: bool = False
 
+    def __post_init__(self):
+        if self.false_losses and tuple(self.protocols) != ("ope",):
+            raise ValueError(f"experiment {self.name!r}: false_losses counts one-pass runs; "
+                             "give it protocols=('ope',).")
+
     def grid(self) -> list[Config]:
         """The configurations, in order (MIL last when ``reference``)."""
         if self.configs is None:
@@ -328,7 +333,10 @@ def _row(c: Config, task: Task, rec: dict, exp: Experiment) -> dict:
             if k in rec and not (k == "starts" and task.protocol == "sre"):
                 scores[name] = rec[k]
     if exp.false_losses:
+        # the counts, and the code they came from (versions left out): the contract's tests
+        # read every row, so every row must name its code (tests/test_results_fresh.py)
         scores["false_losses"] = rec["false_losses"]
+        scores["code"] = code_fingerprint(c.tracker, versions=False)
     return {"label": c.label, "tracker": c.tracker, "preset": c.preset,
             "params": json.dumps(c.params, sort_keys=True), "clip": rec["row"]["clip"],
             "seed": task.seed, **scores}
@@ -347,7 +355,8 @@ def run(name: str, runs="experiment-runs", clips=None, workers: int = 1, schedul
     exp = get(name)
     pairs = plan(exp, clips, root, seeds)
     out = Path(runs) / exp.name
-    done = {} if force else {t: r for _, t in pairs if (r := load_run(t, out)) is not None}
+    done = {} if force else {t: r for _, t in pairs if (r := load_run(t, out)) is not None
+                             and (not exp.false_losses or "false_losses" in r)}
     todo = [t for _, t in pairs if t not in done]
     bar = None
     if progress:
