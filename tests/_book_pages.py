@@ -23,6 +23,7 @@ import functools
 import hashlib
 import http.server
 import pickle
+import re
 import threading
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -77,11 +78,19 @@ def open_watched(browser, url) -> Opened:
     watch_errors(page, o.errors)
     local_only(page, o.blocked)
     page.on("request", lambda r: o.loaded.append(r.url))
-    page.goto(url, wait_until="load", timeout=60_000)
+    resp = page.goto(url, wait_until="load", timeout=60_000)
+    # index.html only redirects (a meta refresh, after its load, later on a busy machine):
+    # wait until the page it leads to has loaded before anything reads the page
+    try:
+        first = resp.text() if resp is not None else ""
+    except Exception:      # noqa: BLE001  a body the browser no longer holds: read the file
+        first = ""
+    if not first and url.startswith("file://"):
+        first = Path(unquote(urlparse(url).path)).read_text(encoding="utf-8", errors="ignore")
+    if re.search(r"http-equiv=\W?refresh", first, re.I):
+        page.wait_for_url(lambda u: u != url, timeout=60_000)
+        page.wait_for_load_state("load")
     page.wait_for_timeout(300)
-    # index.html only redirects (a meta refresh, right after its load): let the page it leads
-    # to load before reading it
-    page.wait_for_load_state("load")
     settle(page)
     return o
 
