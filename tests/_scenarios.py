@@ -278,7 +278,7 @@ def evaluated(name, key):
     """``trackbook.evaluate(name, scenario(key).clip, seed=0)``, once per process: the failure
     contract and the confidence checks judge the same runs, and a worker that meets both
     cells of one run makes it once (``--dist loadgroup`` could put them on one worker, but
-    pytest 9.2 ignores xdist's groups: pytest-xdist issue #1386)."""
+    pytest 9.2 ignores xdist's groups: pytest-dev/pytest-xdist#1386)."""
     import trackbook
 
     return trackbook.evaluate(name, scenario(key).clip, seed=0)
