@@ -265,3 +265,20 @@ def false_losses(result, clip) -> tuple[int, int]:
     iou = np.nan_to_num(metrics.iou(result.boxes, clip.groundtruth), nan=0.0)[1:]
     on = (iou > 0.5) & in_view(clip.name)[1:len(iou) + 1]
     return int((~np.asarray(result.ok, bool)[1:][on]).sum()), int(on.sum())
+
+
+@lru_cache(maxsize=None)
+def scenario(key):
+    """``SCENARIOS[key]()``, built once per process."""
+    return SCENARIOS[key]()
+
+
+@lru_cache(maxsize=None)
+def evaluated(name, key):
+    """``trackbook.evaluate(name, scenario(key).clip, seed=0)``, once per process: the failure
+    contract and the confidence checks judge the same runs, and a worker that meets both
+    cells of one run makes it once (``--dist loadgroup`` could put them on one worker, but
+    pytest 9.2 ignores xdist's groups: pytest-dev/pytest-xdist#1386)."""
+    import trackbook
+
+    return trackbook.evaluate(name, scenario(key).clip, seed=0)

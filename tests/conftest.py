@@ -78,3 +78,32 @@ def moving_square_frames(n, *, size=(100, 80), side=20, grey=(90, 140), top=30, 
             f[top:top + side:5, x:x + side] = stripes
         frames.append(f)
     return frames, (left, top, side, side)
+
+
+# ---- the browser checks of the built book ----------------------------------------------------
+
+@pytest.fixture(scope="module")
+def browser():
+    """A headless Chromium for the module (Playwright's sync API allows one at a time in a
+    thread, and some tests start their own: it closes with its module)."""
+    from ._playground_browser import CHROMIUM
+
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
+        yield b
+        b.close()
+
+
+@pytest.fixture(scope="session")
+def book_visits(tmp_path_factory):
+    """Each page of a built book opened once over http for all its checks, shared by the
+    run's test processes (tests/_book_pages.py)."""
+    import os
+
+    from ._book_pages import Visits
+
+    base = tmp_path_factory.getbasetemp()
+    # an xdist worker's temporary folder lies in its run's folder, which all workers share
+    return Visits((base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base)
+                  / "book-visits")

@@ -6,27 +6,23 @@ playground and offline checks at another build (e.g. a one-page throwaway book);
 the book's own pages then skip. The playground's static page is also checked without any book
 build (``test_static_playground_*``). Pages are served from 127.0.0.1 (MathJax and the theme load
 their files by script, which ``file://`` pages may block). Screenshots of every page are kept in
-``_build/screenshots/`` as test artifacts (never committed).
+``_build/screenshots/`` as test artifacts (never committed). The checks that read a page over
+http read the one visit of it that ``_book_pages.py`` makes for them and for
+``test_browser_reading.py``.
 """
 
 from __future__ import annotations
 
-import functools
 import json
-import http.server
 import os
 import re
-import shutil
-import subprocess
-import tempfile
-import threading
 from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
 
-from ._playground_browser import (CHROMIUM, check_pairs, exercise, local_only, overflow, settle,
-                                  watch_errors)
+from ._book_pages import assert_offline, open_watched, own_weight, playground_fails, serve
+from ._playground_browser import CHROMIUM, exercise, settle, watch_errors
 
 ROOT = Path(__file__).resolve().parents[1]
 OTHER_HTML = os.environ.get("TRACKBOOK_BOOK_HTML")
@@ -47,31 +43,11 @@ def _toc_pages():
     return re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())
 
 
-def _serve(directory):
-    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(directory))
-    handler.log_message = lambda *a, **k: None
-    httpd = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    t = threading.Thread(target=httpd.serve_forever, daemon=True)
-    t.start()
-    return httpd, f"http://127.0.0.1:{httpd.server_address[1]}"
-
-
 @pytest.fixture(scope="module")
 def server():
-    httpd, url = _serve(HTML)
+    httpd, url = serve(HTML)
     yield url
     httpd.shutdown()
-
-
-def _chromium(*args, timeout=120):
-    profile = tempfile.mkdtemp(prefix="tb-chromium-")
-    cmd = [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-           "--no-first-run", "--disable-background-networking", "--disable-component-update",
-           "--disable-sync", f"--user-data-dir={profile}", "--virtual-time-budget=20000", *args]
-    try:
-        return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
-    finally:
-        shutil.rmtree(profile, ignore_errors=True)
 
 
 class _Page(HTMLParser):
@@ -135,23 +111,24 @@ class _Page(HTMLParser):
             self.raw_tables += 1
 
 
-def _render(server, page, *args):
-    """The page's DOM once its scripts have run (``args``: more switches for the same launch,
-    e.g. a screenshot taken at the same moment)."""
-    dom = _chromium(*args, "--dump-dom", f"{server}/{page}.html").stdout
+def _parsed(v):
+    """The visit's DOM read by :class:`_Page`."""
     p = _Page()
-    p.feed(dom)
-    return p, dom
+    p.feed(v.dom)
+    return p
 
 
+# The page's checks read its one visit over http (tests/_book_pages.py): the DOM once MathJax
+# has typeset it, at the screenshot's 1280 px, a reader's window, and the screenshot of the same
+# load (the page was once loaded a second time for these, by a chromium --dump-dom of its own).
 @own_book
 @pytest.mark.parametrize("page", _toc_pages())
-def test_page_renders(server, page):
-    # one launch both dumps the DOM and takes the screenshot (the page is loaded once); the
-    # DOM is read at the screenshot's 1280 px, a reader's window
+def test_page_renders(browser, book_visits, server, page):
+    v = book_visits(browser, server, HTML, f"{page}.html")
     SHOTS.mkdir(parents=True, exist_ok=True)
     shot = SHOTS / (Path(page).name + ".png")
-    p, dom = _render(server, page, "--window-size=1280,2000", f"--screenshot={shot}")
+    shot.write_bytes(v.shot)
+    p, dom = _parsed(v), v.dom
     assert "</html>" in dom, f"{page} did not load"
     assert p.tracebacks == 0, f"{page} shows a traceback"
     assert p.raw_tables == 0, f"{page} shows a markdown table as raw text"
@@ -172,8 +149,8 @@ def test_page_renders(server, page):
 
 
 @own_book
-def test_navigation_lists_chapters_in_order(server):
-    p, _ = _render(server, "book/00_introduction")
+def test_navigation_lists_chapters_in_order(browser, book_visits, server):
+    p = _parsed(book_visits(browser, server, HTML, "book/00_introduction.html"))
     listed = [re.sub(r"(\.html)?(#.*)?$", "", h).split("/")[-1] for h in p.nav]
     pages = [Path(f).name for f in _toc_pages()][1:]    # the root is the home page
     order = [listed.index(name) for name in pages if name in listed]
@@ -185,37 +162,10 @@ def test_navigation_lists_chapters_in_order(server):
 
 # ---- the playgrounds: live offline, from disk and over http ---------------------------------
 
-@pytest.fixture(scope="module")
-def browser():
-    sync_api = pytest.importorskip("playwright.sync_api")
-    with sync_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
-        yield b
-        b.close()
-
-
 def _pages_of(html_dir: Path):
     return sorted(str(p.relative_to(html_dir)) for p in html_dir.rglob("*.html")
                   if "_static" not in p.parts and "_sources" not in p.parts
                   and p.name not in ("genindex.html", "search.html"))
-
-
-#: most bytes a chapter page may load before the reader touches it
-MAX_FIRST_LOAD = 1_500_000
-#: the widths the playground must fit: a laptop's window and a phone's
-WIDTHS = (1280, 390)
-
-
-def _local_file(url, root: Path, base: str | None):
-    """The file on disk behind a request of the page (None for data: and the like)."""
-    from urllib.parse import unquote, urlparse
-
-    u = urlparse(url)
-    if u.scheme == "file":
-        return Path(unquote(u.path))
-    if base and url.startswith(base):
-        return root / unquote(u.path).lstrip("/")
-    return None
 
 
 def _check_page(browser, url, root_dir: Path = HTML, base: str | None = None):
@@ -224,41 +174,12 @@ def _check_page(browser, url, root_dir: Path = HTML, base: str | None = None):
     the column at 1280 px and at 390 px; the page loads at most 1.5 MB of its own (HTML,
     figures, playground files; the theme's shared files aside) before the reader touches it;
     no request leaves the machine; no script error."""
-    page = browser.new_page(viewport={"width": WIDTHS[0], "height": 900})
-    errors, blocked, loaded = [], [], []
-    watch_errors(page, errors)
-    local_only(page, blocked)
-    page.on("request", lambda r: loaded.append(r.url))
-    page.goto(url, wait_until="load")
-    page.wait_for_timeout(300)
-    settle(page)
-    files = {f for f in {_local_file(u, root_dir, base) for u in loaded}
-             if f is not None and f.is_file()}
-    # the theme's and MathJax's files (_static, outside _static/playground) are the same for
-    # every page of the book and cached after the first: the page's own weight is the rest
-    own = sum(f.stat().st_size for f in files
-              if not ("_static" in f.parts and "playground" not in f.parts))
-    fails = []
-    roots = page.query_selector_all(".tb-playground")
-    if any(r.get_attribute("data-tb-static") is not None for r in roots) \
-            and own > MAX_FIRST_LOAD:
-        fails.append(f"{own} bytes of its own at first load, over {MAX_FIRST_LOAD}")
-    for i, root in enumerate(roots):
-        if root.query_selector("script.tb-data") and '"kind":"playground"' in \
-                root.query_selector("script.tb-data").text_content():
-            pair_fails, _ = check_pairs(page, root)
-            fails += [f"playground {i}: {f}" for f in pair_fails]
-        fails += [f"playground {i} at {WIDTHS[0]} px: {f}" for f in overflow(root)]
-        fails += [f"playground {i}: {f}" for f in exercise(page, root)]
-    page.set_viewport_size({"width": WIDTHS[1], "height": 844})
-    page.wait_for_timeout(300)
-    for i, root in enumerate(roots):
-        fails += [f"playground {i} at {WIDTHS[1]} px: {f}" for f in overflow(root)]
-    n = len(roots)
-    page.close()
-    assert not blocked, f"{url} requested off-machine: {blocked[:5]}"
-    assert not errors, f"{url} raised: {errors[:5]}"
-    assert not fails, f"{url}: {fails}"
+    o = open_watched(browser, url)
+    try:
+        fails, n = playground_fails(o.page, own_weight(list(o.loaded), root_dir, base), walk=True)
+    finally:
+        o.page.close()
+    assert_offline(url, o.blocked, o.errors, fails)
     return n
 
 
@@ -270,9 +191,21 @@ BUILT_PAGES = _pages_of(HTML) if BUILT else []
 @needs_build
 @pytest.mark.parametrize("rel", BUILT_PAGES)
 @pytest.mark.parametrize("scheme", ["file", "http"])
-def test_built_pages_offline_and_playgrounds_live(browser, server, scheme, rel):
-    url = (HTML / rel).as_uri() if scheme == "file" else f"{server}/{rel}"
-    seen = _check_page(browser, url, HTML, None if scheme == "file" else server)
+def test_built_pages_offline_and_playgrounds_live(browser, book_visits, server, scheme, rel):
+    """From file:// the whole check of :func:`_check_page`. Over http the same, except the
+    walk through every knob, sampled value, choice, frame slider and play button: the two
+    schemes differ only in how the page and its files arrive (the theme's and MathJax's
+    scripts, the playgrounds' run and frame files by <script> tag, which Chromium treats more
+    strictly from file://), and over http that is checked on every file the playgrounds load
+    at first and on the run and first frames of every clip x tracker pair (the pair walk, under
+    a second); what the walk then checks is the viewer's code drawing the same run files,
+    which arrive through the same loader in both schemes and differ in nothing once there."""
+    if scheme == "file":
+        seen = _check_page(browser, (HTML / rel).as_uri(), HTML, None)
+    else:
+        v = book_visits(browser, server, HTML, rel)
+        assert_offline(v.url, v.blocked, v.errors, v.fails)
+        seen = v.playgrounds
     src = ROOT / Path(rel).with_suffix(".md")
     if not OTHER_HTML and src.is_file() and "Playground(" in src.read_text():
         assert seen > 0, f"{rel}: the chapter calls Playground but the page has no .tb-playground"
@@ -308,7 +241,7 @@ def static_page(tmp_path_factory):
 
 @pytest.mark.parametrize("scheme", ["file", "http"])
 def test_static_playground_answers(browser, static_page, scheme):
-    httpd, base = _serve(static_page)
+    httpd, base = serve(static_page)
     try:
         url = (static_page / "index.html").as_uri() if scheme == "file" else f"{base}/index.html"
         assert _check_page(browser, url, static_page, base) == 1

@@ -8,6 +8,8 @@ import trackbook.results
 from trackbook.evaluation import bench, experiments
 from trackbook.papers import PAPERS
 
+from . import _scenarios
+
 
 #: experiments load their plugin trackers (edge-ray-x): leave the registry as it was
 pytestmark = pytest.mark.usefixtures("clean_registry")
@@ -64,14 +66,18 @@ def test_an_experiment_row_is_what_evaluate_gives(tmp_path, monkeypatch):
         experiments.Config("cov", "covariance"),
         experiments.Config("cov paper", "covariance", preset="paper"),
         experiments.Config("cov q", "kalman-covariance", {"q": 5.0})),
-        clips=("red-cube",), seeds=(0, 1))
+        clips=("red-cube",), seeds=(0, 1), false_losses=True)
     monkeypatch.setitem(experiments.EXPERIMENTS, "tiny", e)
     doc = experiments.run("tiny", tmp_path / "runs", progress=False)
     assert len(doc["rows"]) == 6
+    clip = trackbook.clips.load("red-cube")
     for r in doc["rows"]:
-        want = trackbook.evaluate(r["tracker"], "red-cube", seed=r["seed"], preset=r["preset"],
-                                  **json.loads(r["params"])).scores
+        run = trackbook.evaluate(r["tracker"], clip, seed=r["seed"], preset=r["preset"],
+                                 **json.loads(r["params"]))
+        want = run.scores
         assert r["auc"] == want["auc"] and r["tracking_rate"] == want["tracking_rate"]
+        # the failure contract's count, against the contract tests' own counting
+        assert r["false_losses"] == list(_scenarios.false_losses(run, clip))
     path = experiments.write(doc, tmp_path)
     t = trackbook.results.read(path)
     assert [x["auc"] for x in t] == [x["auc"] for x in doc["rows"]]   # full precision

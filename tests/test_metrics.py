@@ -102,3 +102,22 @@ def test_center_error_is_the_shift(a, dx, dy):
     a = np.array([a])
     b = a + np.array([[dx, dy, 0, 0]])
     assert metrics.center_error(b, a)[0] == pytest.approx(np.hypot(dx, dy), abs=1e-9)
+
+
+def test_false_losses_counts_frames_reported_lost_with_the_box_on_the_target():
+    # frame 0 is the given box and never counts; IoUs below by hand: a 10 x 10 box against
+    # the same box (1), shifted 2 px (80/120 = 0.67), shifted 5 px (50/150 = 0.33), no box
+    gt = np.array([[0, 0, 10, 10]] * 6, dtype=float)
+    pred = np.array([[0, 0, 10, 10], [0, 0, 10, 10], [2, 0, 10, 10], [5, 0, 10, 10],
+                     [0, 0, 10, 10], [np.nan] * 4])
+    ok = np.array([False, False, True, False, False, False])
+    # on target (IoU > 0.5): frames 1, 2, 4; reported lost there: 1, 4
+    assert metrics.false_losses(ok, pred, gt) == (2, 3)
+    # frame 4 with the target mostly hidden: neither on target nor a false loss
+    in_view = np.array([True, True, True, True, False, True])
+    assert metrics.false_losses(ok, pred, gt, in_view) == (1, 2)
+    # a run shorter than the clip (max_frames) reads the mask's first frames; a mask shorter
+    # than the run is refused, not broadcast
+    assert metrics.false_losses(ok[:3], pred[:3], gt, in_view) == (1, 2)
+    with pytest.raises(ValueError, match="one flag per frame"):
+        metrics.false_losses(ok, pred, gt, in_view[:2])

@@ -5,7 +5,13 @@ or a feature can leave them stale without any chapter failing (the edge-ray resu
 ``hog-pf`` rows from before a HOG fix). This re-runs every committed row on one short sequence
 (Crossing, 120 frames; a result of the sample clips only, on its shortest clip) and demands
 the committed AUC: the files are written at full precision,
-so one tolerance (a float's round trip) fits every file. In a grid that runs a tracker under
+so one tolerance (a float's round trip) fits every file. A row that carries the failure
+contract's counts (``false_losses``: frames reported lost with the box on the target, and
+frames with the box on the target) must give the same two numbers exactly; and since the
+contract's tests read every such row, not one clip's, each of those rows also names the code
+it came from (``code``: the tracker's code and calibrated thresholds, versions left out),
+which must be this commit's -- OpenCV's MIL included (its wrapper and child script; not
+OpenCV's own MIL, whose boxes depend on OpenCV's build). In a grid that runs a tracker under
 several configurations, seed 0 of each configuration is checked. OpenCV's MIL is left out: its
 score depends on OpenCV's build. When a tracker changes on purpose, regenerate the result with
 ``python -m trackbook.evaluation.experiments run NAME`` (the lab notes give each command).
@@ -23,8 +29,10 @@ from pathlib import Path
 import pytest
 
 import trackbook
-from trackbook import results
-from trackbook.evaluation import protocol_bench, protocols
+from trackbook import clips, results
+from trackbook.clips import samples
+from trackbook.evaluation import metrics, protocol_bench, protocols
+from trackbook.evaluation.runs import code_fingerprint
 from trackbook.trackers import plugins
 
 from .conftest import SEQUENCES, needs_sequences
@@ -35,13 +43,16 @@ TOL = 1e-12                # the AUC written as a float and read back
 
 
 @functools.lru_cache(maxsize=None)
-def _auc(tracker: str, seed: int, params: str, preset: str, plugin_specs: tuple,
-         clip: str = CLIP) -> float:
+def _run(tracker: str, seed: int, params: str, preset: str, plugin_specs: tuple,
+         clip: str = CLIP) -> tuple[float, list]:
+    """The run's AUC and its ``[lost, on]`` false-loss count (what the rows carry)."""
     for spec in plugin_specs:
         plugins.load(str(ROOT / spec) if spec.endswith(".py") else spec)
     source = str(SEQUENCES[clip]) if clip == CLIP else clip      # a sample clip by name
-    return trackbook.evaluate(tracker, source, seed=seed, preset=preset,
-                              **json.loads(params)).scores["auc"]
+    c = clips.load(source)
+    r = trackbook.evaluate(tracker, c, seed=seed, preset=preset, **json.loads(params))
+    in_view = samples.in_view(clip) if clip in samples.names() else None
+    return r.scores["auc"], list(metrics.false_losses(r.ok, r.boxes, c.groundtruth, in_view))
 
 
 @functools.lru_cache(maxsize=None)
@@ -100,8 +111,29 @@ def test_committed_auc_is_reproduced(name, label, tracker, seed, params, preset,
             f"the committed result {name!r} is stale for {label} ({tracker}, {protocol}) on "
             f"{clip}; regenerate it with: python -m trackbook.evaluation.experiments run {name}")
         return
-    committed = row["auc"]
-    assert _auc(tracker, seed, params, preset, plugin_specs, clip) == pytest.approx(
-        committed, abs=TOL), (
-        f"the committed result {name!r} is stale for {label} ({tracker}, seed {seed}) on {clip}; "
-        f"regenerate it with: python -m trackbook.evaluation.experiments run {name}")
+    auc, losses = _run(tracker, seed, params, preset, plugin_specs, clip)
+    stale = (f"the committed result {name!r} is stale for {label} ({tracker}, seed {seed}) on "
+             f"{clip}; regenerate it with: python -m trackbook.evaluation.experiments run {name}")
+    assert auc == pytest.approx(row["auc"], abs=TOL), stale
+    if "false_losses" in row:       # the failure contract's counts: frame counts, exactly
+        assert losses == list(row["false_losses"]), stale
+
+
+def _counted_rows():
+    for name in results.available():
+        for r in results.load(name):
+            if "false_losses" in r:
+                yield name, r
+
+
+def test_every_committed_false_loss_count_comes_from_this_code():
+    """No run needed: a change to a tracker's code or its failure thresholds changes the
+    fingerprint, so a count on a clip the test above does not re-run cannot go stale."""
+    rows = list(_counted_rows())
+    assert {n for n, _ in rows} >= {"real", "failure_samples"}
+    stale = sorted({(n, r["tracker"]) for n, r in rows
+                    if r.get("code") != code_fingerprint(r["tracker"], versions=False)})
+    assert not stale, ("committed false-loss counts from other code: "
+                       + ", ".join(f"{t} in {n}" for n, t in stale)
+                       + "; regenerate with: python -m trackbook.evaluation.experiments run "
+                       + " / ".join(sorted({n for n, _ in stale})))

@@ -9,10 +9,11 @@ import pytest
 from trackbook import results
 
 ROOT = Path(__file__).resolve().parents[1]
-#: The results the chapters and lab notes read.
-NAMES = ["claims", "cho2005_real", "kim2016_edges", "kim2016_real", "lee2012_learning",
-         "lee2012_learning_samples", "lee2012_real", "lee2015_real", "protocols", "real",
-         "samples"]
+#: The results the chapters and lab notes read (and ``failure_samples``, the failure
+#: contract's tests).
+NAMES = ["claims", "cho2005_real", "failure_samples", "kim2016_edges", "kim2016_real",
+         "lee2012_learning", "lee2012_learning_samples", "lee2012_real", "lee2015_real",
+         "protocols", "real", "samples"]
 
 
 @pytest.mark.parametrize("cwd", [ROOT / "book", ROOT, ROOT / "tests"])

@@ -112,6 +112,21 @@ def render_masks(name: str, visible: bool = False) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=None)
+def in_view(name: str, share: float = 0.5) -> np.ndarray:
+    """Per frame of sample clip ``name``: whether its target shows at least ``share`` of its
+    pixels (an N-long bool array).
+
+    A target mostly hidden behind something drawn over it (a tree, the other face) keeps its
+    whole box as ground truth, yet a tracker that reports it lost there is right, whatever
+    its box's overlap: this is the mask the failure contract's false-loss count uses.
+    """
+    r = render(name)          # once: a benchmark records every run of a clip with it
+    out = r.visible.sum(axis=(1, 2)) >= share * np.maximum(r.support.sum(axis=(1, 2)), 1)
+    out.setflags(write=False)
+    return out
+
+
+@functools.lru_cache(maxsize=None)
 def build(name: str) -> Clip:
     """The sample clip ``name`` as a read-only :class:`Clip` (rendered once per process)."""
     s = _SAMPLES[name]

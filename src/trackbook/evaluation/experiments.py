@@ -65,6 +65,9 @@ class Experiment:
     reference : also run OpenCV's MIL, once per clip (the first seed)
     plugins : modules or ``.py`` files (relative to the repository root) defining trackers the
         configurations use that the library does not register
+    false_losses : rows carry ``false_losses``, ``[lost, on]`` of
+        :func:`trackbook.evaluation.metrics.false_losses` (on a sample clip, over the frames
+        whose target is at least half in view): what the failure contract's tests read
     protocols : the evaluation protocols every (configuration, clip, seed) runs through
         (:func:`trackbook.evaluation.protocol_bench.parse`: ``ope``, ``tre``, ``tre:N``,
         ``sre``, ``reset``); rows then carry a ``protocol`` field unless it is ``("ope",)``
@@ -80,6 +83,12 @@ class Experiment:
     plugins: tuple = ()
     trackers: tuple | None = None
     protocols: tuple = ("ope",)
+    false_losses: bool = False
+
+    def __post_init__(self):
+        if self.false_losses and tuple(self.protocols) != ("ope",):
+            raise ValueError(f"experiment {self.name!r}: false_losses counts one-pass runs; "
+                             "give it protocols=('ope',).")
 
     def grid(self) -> list[Config]:
         """The configurations, in order (MIL last when ``reference``)."""
@@ -199,6 +208,12 @@ def _plain(*names) -> tuple:
     return tuple(Config(t, t) for t in names)
 
 
+# ------------------------------------------------------------------ the failure contract
+#: The trackers the failure contract holds to "no false losses": every registered tracker
+#: but the re-detecting halves (those are judged on re-detection instead).
+_CANONICAL = tuple(t for t in _trackers.available(reference=False)
+                   if not t.endswith("-redetect"))
+
 # ------------------------------------------------------------------ evaluation protocols
 #: The trackers of the protocols experiment: the book's canonical trackers that run at a few
 #: milliseconds a frame (Median Flow and OpenCV's MIL take ~100 ms a frame, too slow for the
@@ -211,7 +226,11 @@ PROTOCOLS = ("ope", "tre:10", "sre", "reset")
 
 EXPERIMENTS = {e.name: e for e in (
     Experiment("real", "every registered tracker at the book's defaults on the real "
-               "sequences, seed 0, with OpenCV's MIL", reference=True),
+               "sequences, seed 0, with OpenCV's MIL", reference=True, false_losses=True),
+    Experiment("failure_samples", "every tracker without re-detection at the book's defaults "
+               "on the sample clips, seed 0, with OpenCV's MIL (the false-loss counts the "
+               "failure contract's tests read)", clips=("samples",), trackers=_CANONICAL,
+               reference=True, false_losses=True),
     Experiment("claims", "the four papers' trackers, both presets, the real sequences, seeds "
                "0-2 (the paired comparisons of 09_trackers_compared)",
                seeds=(0, 1, 2), presets=("book", "paper"), trackers=_papers.TRACKERS),
@@ -313,6 +332,11 @@ def _row(c: Config, task: Task, rec: dict, exp: Experiment) -> dict:
                         ("failures", "failure_frames"), ("overlaps", "overlaps")):
             if k in rec and not (k == "starts" and task.protocol == "sre"):
                 scores[name] = rec[k]
+    if exp.false_losses:
+        # the counts, and the code they came from (versions left out): the contract's tests
+        # read every row, so every row must name its code (tests/test_results_fresh.py)
+        scores["false_losses"] = rec["false_losses"]
+        scores["code"] = code_fingerprint(c.tracker, versions=False)
     return {"label": c.label, "tracker": c.tracker, "preset": c.preset,
             "params": json.dumps(c.params, sort_keys=True), "clip": rec["row"]["clip"],
             "seed": task.seed, **scores}
@@ -331,7 +355,8 @@ def run(name: str, runs="experiment-runs", clips=None, workers: int = 1, schedul
     exp = get(name)
     pairs = plan(exp, clips, root, seeds)
     out = Path(runs) / exp.name
-    done = {} if force else {t: r for _, t in pairs if (r := load_run(t, out)) is not None}
+    done = {} if force else {t: r for _, t in pairs if (r := load_run(t, out)) is not None
+                             and (not exp.false_losses or "false_losses" in r)}
     todo = [t for _, t in pairs if t not in done]
     bar = None
     if progress:

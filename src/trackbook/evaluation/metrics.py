@@ -165,6 +165,28 @@ def summary(pred, gt) -> dict:
     }
 
 
+def false_losses(ok, pred, gt, in_view=None) -> tuple[int, int]:
+    """Frames a run reported lost while its box was on the target.
+
+    Over frames 1..N-1 (frame 0 is the given box), two counts ``(lost, on)``: ``on`` counts the
+    frames whose box overlaps the ground truth with IoU > 0.5 (and, when ``in_view`` is
+    given, whose target is in view there: a bool array over the clip's frames) and ``lost``
+    those of them with ``ok`` False. ``lost / on`` is the share the failure contract bounds.
+    """
+    pred = np.asarray(pred, dtype=float)
+    n = len(pred)
+    overlap = np.nan_to_num(iou(pred, np.asarray(gt, dtype=float)[:n]), nan=0.0)[1:]
+    on = overlap > 0.5
+    if in_view is not None:
+        in_view = np.asarray(in_view, bool)
+        if in_view.ndim != 1 or len(in_view) < n:
+            raise ValueError(f"in_view must hold one flag per frame of the run ({n}), got "
+                             f"shape {in_view.shape}; pass the clip's whole mask.")
+        on &= in_view[1:n]
+    ok = np.asarray(ok, bool)[1:n]
+    return int((~ok[on]).sum()), int(on.sum())
+
+
 def scores_line(scores: dict, *, ms: bool = True, sep: str = " \u00b7 ") -> str:
     """A run's headline scores as one line of text (the playground, the animations, the CLI).
 
@@ -184,6 +206,6 @@ def scores_line(scores: dict, *, ms: bool = True, sep: str = " \u00b7 ") -> str:
 
 __all__ = [
     "iou", "center_error", "success_curve", "auc", "precision_curve", "precision",
-    "tracking_rate", "mean_center_error", "summary", "SUCCESS_THRESHOLDS",
+    "tracking_rate", "mean_center_error", "summary", "false_losses", "SUCCESS_THRESHOLDS",
     "PRECISION_THRESHOLDS", "scores_line",
 ]

@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import clips as _clips
+from ..clips import samples as _samples
 from . import metrics, protocol_bench
 from .runner import evaluate, evaluate_many
 
@@ -189,13 +190,14 @@ def code_modules(cls) -> list:
     return [found[k] for k in sorted(found)]
 
 
-def code_fingerprint(name: str) -> str:
+def code_fingerprint(name: str, versions: bool = True) -> str:
     """A hash of the code behind tracker ``name``: the source of :func:`code_modules` (and of
     any ``.py`` script such a module names, e.g. the MIL child), the failure layer's
-    calibrated thresholds for it, the installed trackbook version and OpenCV's version
-    (cached per process)."""
-    if name in _CODE:
-        return _CODE[name]
+    calibrated thresholds for it, and (``versions``) the installed trackbook version and
+    OpenCV's version (cached per process). Without the versions it names the code alone, as
+    the committed results' rows that carry it do (a release does not make them stale)."""
+    if (name, versions) in _CODE:
+        return _CODE[name, versions]
     import cv2
 
     from .. import trackers as _trackers
@@ -208,7 +210,9 @@ def code_fingerprint(name: str) -> str:
 
     cls = _trackers.get(name)
     h = hashlib.blake2b(digest_size=16)
-    h.update(f"{version};{cv2.__version__};{cls.__module__}.{cls.__qualname__};".encode())
+    if versions:
+        h.update(f"{version};{cv2.__version__};".encode())
+    h.update(f"{cls.__module__}.{cls.__qualname__};".encode())
     # the failure layer's thresholds are data, not code, and decide ok and learning too
     h.update(repr(calibrated_params(name)).encode())
     for m in code_modules(cls):
@@ -222,8 +226,8 @@ def code_fingerprint(name: str) -> str:
                 h.update(code_text(f))
             except OSError:  # a module without a readable file (zip import): key by name only
                 pass
-    _CODE[name] = h.hexdigest()
-    return _CODE[name]
+    _CODE[name, versions] = h.hexdigest()
+    return _CODE[name, versions]
 
 
 def code_text(path) -> bytes:
@@ -358,6 +362,12 @@ def _record(task: Task, r, clip, multi_seed: bool) -> dict:
         rec["precision"] = metrics.precision_curve(r.boxes[1:], gt[1:])[1]
     except ValueError:
         pass
+    # the failure contract's count (frames reported lost with the box on the target); on a
+    # sample clip only where its target is at least half in view (the clip's own name: a bench
+    # may show it under another)
+    ident = task.clip.identity
+    in_view = _samples.in_view(ident.split(":", 1)[1]) if ident.startswith("sample:") else None
+    rec["false_losses"] = list(metrics.false_losses(r.ok, r.boxes, gt, in_view))
     return _jsonable(rec)
 
 

@@ -9,13 +9,13 @@ TEXT = r"""
 === 14.1 ★ pen and paper | The noisy-OR by hand
 A positive bag holds three patches whose instance probabilities are 0.3, 0.4 and 0.5; a
 negative bag holds two patches of probability 0.1 each. Compute both bag probabilities and
-the bag log-likelihood $\mathcal{L}$. Then show that one negative bag of $n$ instances
+the bag log-likelihood $\mathrm{L}$. Then show that one negative bag of $n$ instances
 contributes exactly what $n$ negative bags of one instance each contribute, so it does not
 matter how the negatives are grouped.
 --- solution
 The positive bag: $\pi = 1 - (0.7)(0.6)(0.5) = 1 - 0.21 = 0.79$. The negative bag:
 $\pi = 1 - (0.9)(0.9) = 0.19$. With the labels 1 and 0,
-$\mathcal{L} = \ln 0.79 + \ln(1 - 0.19) = -0.2357 - 0.2107 = -0.4464$.
+$\mathrm{L} = \ln 0.79 + \ln(1 - 0.19) = -0.2357 - 0.2107 = -0.4464$.
 
 A negative bag contributes $\ln(1 - \pi_i) = \ln \prod_j (1 - \pi_{ij}) = \sum_j
 \ln(1 - \pi_{ij})$, which is the sum of what each instance contributes as a bag of its own
@@ -24,7 +24,9 @@ $\ln \pi_i = \ln\big(1 - \prod_j (1 - \pi_{ij})\big)$ does not split into a sum.
 
 === 14.2 ★★ pen and paper | The gradient of the bag log-likelihood
 Let $\pi_{ij} = \operatorname{sig}(\Psi_{ij})$ with $\Psi_{ij} = \Psi(z_{ij})$. Show that
-$$\frac{\partial \mathcal{L}}{\partial \Psi_{ij}} = \frac{\ell_i - \pi_i}{\pi_i}\,\pi_{ij}.$$
+
+$$\frac{\partial \mathrm{L}}{\partial \Psi_{ij}} = \frac{\ell_i - \pi_i}{\pi_i}\,\pi_{ij}.$$
+
 Evaluate it for the three instances of the positive bag of the chapter's hand-worked example
 ($\pi_{ij} = 0.5, 0.2, 0.1$; $\pi_i = 0.64$) and for an instance of a negative bag. What does
 the result say about which patch of a positive bag the learner pushes up?
@@ -50,10 +52,12 @@ detector after learning iteration $\tau$. The N-expert flags a share $\mathrm{Re
 of the false positives and is right with precision $\mathrm{Pr}^-$; the P-expert flags a share
 $\mathrm{Re}^+$ of the false negatives with precision $\mathrm{Pr}^+$. Every flagged example is relabelled and learned, and learning a
 relabelled example fixes or makes exactly one error. Show that
+
 $$\begin{pmatrix} e^+ \\ e^- \end{pmatrix}(\tau + 1) = \begin{pmatrix} 1 - \mathrm{Re}^- &
 \frac{(1 - \mathrm{Pr}^+)\mathrm{Re}^+}{\mathrm{Pr}^+} \\
 \frac{(1 - \mathrm{Pr}^-)\mathrm{Re}^-}{\mathrm{Pr}^-} & 1 - \mathrm{Re}^+ \end{pmatrix}
 \begin{pmatrix} e^+ \\ e^- \end{pmatrix}(\tau),$$
+
 and that both errors go to zero when the matrix's eigenvalues are smaller than one in
 magnitude. Check it for $\mathrm{Pr}^+ = 0.8$, $\mathrm{Re}^+ = 0.5$, $\mathrm{Pr}^- = 0.9$,
 $\mathrm{Re}^- = 0.6$. What happens with perfect experts ($\mathrm{Pr}^\pm = 1$)?
@@ -83,8 +87,8 @@ instance probabilities $\pi_{ij}$ of all instances, `bags[k]` the bag (0, 1, …
 is the noisy-OR $\pi_i = 1 - \prod_j (1 - \pi_{ij})$ and `L` the bag log-likelihood
 $\sum_i \ell_i \ln \pi_i + (1 - \ell_i) \ln(1 - \pi_i)$. No Python loop over instances. The
 check uses the chapter's hand-worked example ($\pi_i = 0.64, 0.28$ and
-$\mathcal{L} = \ln 0.64 + \ln 0.72$), the same instances in another order, bags of one instance
-(where $\mathcal{L}$ is the ordinary log-likelihood) and a bag with a certain instance.
+$\mathrm{L} = \ln 0.64 + \ln 0.72$), the same instances in another order, bags of one instance
+(where $\mathrm{L}$ is the ordinary log-likelihood) and a bag with a certain instance.
 --- hint
 Sum $\ln(1 - \pi_{ij})$ per bag with `np.bincount(bags, weights=..., minlength=...)`; that sum
 is $\ln(1 - \pi_i)$.

@@ -27,9 +27,16 @@ $S = HP^-H^T + R$. Then take the scalar case $P^- = 4$, $H = 1$, $R = 12$ and th
 non-optimal gain $K = 1/2$: compute both expressions. Which one is the variance of the error
 of $\hat x^+ = \hat x^- + \tfrac12(z - \hat x^-)$?
 --- solution
-Expand: $(I-KH)P^-(I-KH)^T + KRK^T = (I-KH)P^- - (I-KH)P^-H^TK^T + KRK^T$, and
-$-(I-KH)P^-H^TK^T + KRK^T = -P^-H^TK^T + K(HP^-H^T + R)K^T = -P^-H^TK^T + KSK^T$. At the
-optimal gain $KS = P^-H^T$, so $KSK^T = P^-H^TK^T$ and the two cancel. With $K = 1/2$: the
+Expand:
+
+$$\begin{aligned}
+&(I-KH)P^-(I-KH)^T + KRK^T\\
+&\qquad = (I-KH)P^- - (I-KH)P^-H^TK^T + KRK^T,\\
+&-(I-KH)P^-H^TK^T + KRK^T\\
+&\qquad = -P^-H^TK^T + K(HP^-H^T + R)K^T = -P^-H^TK^T + KSK^T .
+\end{aligned}$$
+
+At the optimal gain $KS = P^-H^T$, so $KSK^T = P^-H^TK^T$ and the two cancel. With $K = 1/2$: the
 Joseph form is $\tfrac14 \cdot 4 + \tfrac14 \cdot 12 = 4$, the short form
 $\tfrac12 \cdot 4 = 2$. The error is $\tfrac12$(prior error) $+ \tfrac12$(sensor error) with
 variance $1 + 3 = 4$: the Joseph form is the truth; the short form claims half of it (the
