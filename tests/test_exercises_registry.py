@@ -332,6 +332,15 @@ def reset_count(overlaps, skip, first=1):
         inits.append(start)
 
 
+def staple_merged(tmpl, beta, box, gamma):
+    """20.4: (1 - γ) tmpl + γ × the box means of beta, from a zero-padded integral image."""
+    h, w = box
+    S = np.zeros((beta.shape[0] + 1, beta.shape[1] + 1))
+    S[1:, 1:] = np.asarray(beta, float).cumsum(axis=0).cumsum(axis=1)
+    means = (S[h:, w:] - S[:-h, w:] - S[h:, :-w] + S[:-h, :-w]) / (h * w)
+    return (1 - gamma) * np.asarray(tmpl, float) + gamma * means
+
+
 RIGHT_AND_WRONG = {
     "0.4": (iou, iou_over_sum),
     "0.5": (lambda i: np.mean([(np.asarray(i) > t).mean() for t in np.linspace(0, 1, 21)]),
@@ -391,6 +400,9 @@ RIGHT_AND_WRONG = {
     "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
     # 19.5: VOT's reset rule; wrong: a zero on a re-initialisation frame counted as a failure
     "19.5": (reset_count, lambda o, skip: reset_count(o, skip, first=0)),
+    # 20.4: box means by an integral image, then the merge; wrong: the weights swapped
+    "20.4": (lambda t, b, box, g: staple_merged(t, b, box, g),
+             lambda t, b, box, g: staple_merged(t, b, box, 1 - g)),
 }
 
 

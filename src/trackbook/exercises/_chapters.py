@@ -6,4 +6,5 @@ CHAPTERS = ("00_introduction", "01_kernel_histograms", "02_particle_filters", "0
             "11_knowing_you_are_lost", "12_template_matching_and_optical_flow",
             "13_camshift", "14_tracking_by_detection", "15_background_subtraction",
             "16_several_targets", "17_kalman_filter_design",
-            "18_sigma_points_and_proposals", "19_evaluation_protocols")
+            "18_sigma_points_and_proposals", "19_evaluation_protocols",
+            "20_correlation_filters_ii")
