@@ -302,6 +302,24 @@ KNOWN_ABSENT: dict = {
     ('staple-redetect', 'lookalike-13'): 'ok=False on 0% of the absent frames',
     ('staple-redetect', 'edge-exit'): 'ok=False on 0% of the absent frames',
     ('staple-redetect', 'leave-and-return'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'exit-0'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'exit-1'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'occlusion-3'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'cut-5'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'fade-7'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'shrink-9'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'lookalike-12'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'edge-exit'): 'ok=False on 0% of the absent frames',
+    ('bacf', 'occluder'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'exit-0'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'exit-1'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'occlusion-3'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'cut-5'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'fade-7'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'shrink-9'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'lookalike-12'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'edge-exit'): 'ok=False on 0% of the absent frames',
+    ('bacf-redetect', 'occluder'): 'ok=False on 0% of the absent frames',
 }
 #: ... and a re-detecting name that does not find the target within 10 frames of its return.
 KNOWN_RECOVERY: dict = {
@@ -360,6 +378,11 @@ KNOWN_RECOVERY: dict = {
     ('staple-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
     ('staple-redetect', 'edge-exit'): 'IoU > 0.5 never after the return',
     ('staple-redetect', 'leave-and-return'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'edge-exit'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'leave-and-return'): 'IoU > 0.5 never after the return',
 }
 #: ("samples" | "real", tracker) -> the false losses measured where there are more than 1 %.
 FALSE_LOSSES: dict = {
