@@ -280,6 +280,96 @@ def test_static_playground_ships_the_widget_module(static_page):
     assert len(html.encode()) < 300_000          # the runs and frames are files of their own
 
 
+@pytest.fixture(scope="module")
+def cf_page(tmp_path_factory):
+    """A correlation filter's playground (and mean-shift's, which has no response) as the book
+    shows it, without a book build."""
+    from trackbook.playground.export import STATIC_BASE, static_html
+    from trackbook.playground.static import OUT_ENV
+    from trackbook.sphinx_playground import STATIC_DIR, copy_files
+    from trackbook.widgets import Playground
+
+    d = tmp_path_factory.mktemp("cf")
+    mp = pytest.MonkeyPatch()
+    mp.setenv(OUT_ENV, str(d / "store"))
+    try:
+        pg = Playground(clips=["yellow-ball"], trackers=["dsst", "mean-shift"], params=["eta"],
+                        n_frames=16, samples={"eta": [0.01, 0.025]})
+        body = static_html(pg, workers=1).replace(STATIC_BASE, STATIC_DIR + "/")
+        (d / "site").mkdir()
+        (d / "site" / "index.html").write_text(
+            '<!doctype html><html><head><meta charset="utf-8">'
+            '<meta name="viewport" content="width=device-width, initial-scale=1"></head>'
+            f'<body style="margin:0 auto;max-width:688px">{body}</body></html>', encoding="utf-8")
+        assert copy_files(d / "site") > 0
+    finally:
+        mp.undo()
+    return d / "site"
+
+
+#: per panel of the viewer (data-tb-panels, CSS px): how many pixels have the colour ``rgb``
+#: (within 40 a channel) and how many distinct colours it holds
+PANEL_PIXELS = """([root, name, rgb]) => {
+  const p = JSON.parse(root.getAttribute('data-tb-panels'))[name];
+  if (!p) return null;
+  const c = root.querySelector('canvas'), k = c.width / parseFloat(c.style.width);
+  const d = c.getContext('2d').getImageData(Math.round(p.x * k), Math.round(p.y * k),
+                                            Math.round(p.w * k), Math.round(p.h * k)).data;
+  let hits = 0; const seen = new Set();
+  for (let i = 0; i < d.length; i += 4) {
+    if (Math.abs(d[i] - rgb[0]) < 40 && Math.abs(d[i + 1] - rgb[1]) < 40 &&
+        Math.abs(d[i + 2] - rgb[2]) < 40) hits++;
+    seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+  }
+  return [hits, seen.size];
+}"""
+
+
+@pytest.mark.parametrize("width", [1280, 390])
+@pytest.mark.parametrize("scheme", ["file", "http"])
+def test_correlation_filter_playground_draws_confidence_and_response(browser, cf_page, scheme,
+                                                                     width):
+    """DSST's run: the confidence curve is drawn in its colour beside the IoU curve, and the
+    response inset holds a heat map (many colours) on a frame past the first; mean-shift's run
+    keeps the curve and has no inset."""
+    from trackbook.style import VIEWER
+
+    httpd, base = serve(cf_page)
+    try:
+        url = (cf_page / "index.html").as_uri() if scheme == "file" else f"{base}/index.html"
+        page = browser.new_page(viewport={"width": width, "height": 900})
+        errors, missing = [], []
+        watch_errors(page, errors)
+        # a 404 is told by URL (the console's message has none; the browser asks for a favicon)
+        page.on("response", lambda r: missing.append(r.url) if r.status >= 400
+                and not r.url.endswith("favicon.ico") else None)
+        page.goto(url, wait_until="load")
+        settle(page)
+        root = page.query_selector(".tb-playground")
+        page.wait_for_timeout(300)
+        fr = root.query_selector("[data-frame]")
+        fr.evaluate("e => { e.value = 8; e.dispatchEvent(new Event('input', {bubbles: true})); }")
+        conf_rgb = [int(VIEWER["conf"][i:i + 2], 16) for i in (1, 3, 5)]
+        conf = page.evaluate(PANEL_PIXELS, [root, "conf", conf_rgb])
+        resp = page.evaluate(PANEL_PIXELS, [root, "resp", [0, 0, 0]])
+        assert conf is not None and conf[0] > 30, conf            # the curve's pixels
+        assert resp is not None and resp[1] > 12, resp            # a heat map, not a blank
+        assert "confidence" in root.query_selector(".tb-frame-label").inner_text()
+        width_px = page.evaluate("() => document.documentElement.scrollWidth")
+        assert width_px <= width, "the playground must not widen the page"
+        sel = root.query_selector('[data-control="tracker"]')
+        sel.select_option("mean-shift")
+        settle(page)
+        page.wait_for_timeout(100)
+        assert page.evaluate(PANEL_PIXELS, [root, "resp", [0, 0, 0]]) is None
+        assert page.evaluate(PANEL_PIXELS, [root, "conf", conf_rgb])[0] > 30
+        assert not missing, missing
+        assert not [e for e in errors if "Failed to load resource" not in e], errors
+        page.close()
+    finally:
+        httpd.shutdown()
+
+
 def test_partial_run_shows_progress_and_never_a_blank_frame(browser, tmp_path):
     """A run payload with n_done < n_total (the Jupyter widget streams them): the slider spans
     the whole clip, the scores line says how far the run is, and past n_done the frame is

@@ -16,7 +16,8 @@ from trackbook.trackers import TrackerState
 from trackbook.trackers.particle_filter import ParticleFilterTracker
 
 BOX0 = (30.0, 40.0, 30.0, 30.0)
-FIELDS = ("particles", "weights", "search_window", "ellipse", "candidates", "rays")
+FIELDS = ("particles", "weights", "search_window", "ellipse", "candidates", "rays", "response",
+          "response_box")
 
 #: what each tracker's kind has (the rest must be None)
 KIND = {
@@ -31,11 +32,11 @@ KIND = {
     "condensation": {"particles", "weights", "ellipse"},
     "condensation-mean-shift": {"particles", "weights", "ellipse"},
     "mean-shift": {"particles", "weights", "ellipse"},
-    "mosse": {"search_window"},
-    "kcf": {"search_window"},
-    "staple": {"search_window"},
-    "dsst": {"search_window"},
-    "bacf": {"search_window"},
+    "mosse": {"search_window", "response", "response_box"},
+    "kcf": {"search_window", "response", "response_box"},
+    "staple": {"search_window", "response", "response_box"},
+    "dsst": {"search_window", "response", "response_box"},
+    "bacf": {"search_window", "response", "response_box"},
     "camshift": {"search_window", "ellipse"},
     "median-flow": set(),
     "kalman-covariance-manoeuvre": {"search_window", "candidates", "ellipse"},
@@ -91,7 +92,7 @@ def test_state_has_the_fields_of_its_kind(runs, name):
     assert st.ok == ok and np.allclose(st.box, box)
     for f in FIELDS:
         assert (getattr(st, f) is not None) == (f in KIND[name]), f
-    for f in ("particles", "weights", "candidates", "rays"):
+    for f in ("particles", "weights", "candidates", "rays", "response"):
         a = getattr(st, f)
         if a is not None:
             assert not a.flags.writeable, f"{f} must be read-only"
@@ -191,3 +192,24 @@ def test_playground_and_figures_draw_from_state(runs):
     img = np.zeros((100, 100, 3), np.uint8)
     draw_state_cv(img, fake)
     assert img[20, 10].any() and img[50, 60].any()      # a particle dot, the ellipse's edge
+
+
+# MOSSE, whose window is the box itself, loses this square (its last frame is judged lost and
+# keeps the previous box: nothing to compare the peak with)
+@pytest.mark.parametrize("name", [n for n in sorted(KIND)
+                                  if "response" in KIND[n] and not n.startswith("mosse")])
+def test_the_responses_brightest_cell_is_where_the_box_went(runs, name):
+    """A correlation filter's drawn response is laid out over ``response_box``: the centre of
+    its brightest cell is the centre of the box the last ``update`` returned, up to the
+    parabola that refines the peak (half a cell each way)."""
+    t, (ok, box), _ = runs[name]
+    st = t.state()
+    r = np.asarray(st.response)
+    R, C = r.shape
+    x, y, w, h = st.response_box
+    i, j = np.unravel_index(int(np.argmax(r)), r.shape)
+    assert ok, "the moving square is easy: every tracker keeps it"
+    peak = (x + (j + 0.5) * w / C, y + (i + 0.5) * h / R)
+    centre = (box[0] + box[2] / 2, box[1] + box[3] / 2)
+    assert abs(peak[0] - centre[0]) <= 0.5 * w / C + 1e-6
+    assert abs(peak[1] - centre[1]) <= 0.5 * h / R + 1e-6

@@ -35,7 +35,8 @@ CYCLE = [OKABE_ITO[k] for k in ("vermillion", "blue", "orange", "reddish purple"
 VIEWER = {"gt": GT_COLOR, "est": EST_COLOR, "particle": OKABE_ITO["blue"],
           "window": OKABE_ITO["orange"], "ellipse": OKABE_ITO["reddish purple"],
           "cand": "#8c8c8c", "ray": OKABE_ITO["sky blue"], "curve": EST_COLOR,
-          "grid": "#dddddd"}
+          "grid": "#dddddd", "conf": OKABE_ITO["blue"], "lost": OKABE_ITO["vermillion"],
+          "response": OKABE_ITO["sky blue"]}
 
 
 def bgr(colour: str) -> tuple:

@@ -1,7 +1,10 @@
 """The playground: pick a clip, a tracker and its knobs; scrub, play, compare.
 
 One JavaScript module (``viewer.js``, shipped in this package) draws everything on a canvas:
-the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve and the scores.
+the frame, ground truth, estimate, the tracker's state, the IoU-per-frame curve, the tracker's
+confidence per frame (``TrackerState.confidence``, frames judged lost shaded), a correlation
+filter's response map as an inset (``TrackerState.response``, its area dotted on the frame) and
+the scores.
 
 In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob change re-runs
 the tracker in the kernel and sends only boxes and state, first up to the frame on screen, then

@@ -2,7 +2,8 @@
 
 A *clip payload* holds the frames (base64 JPEG) and the ground truth; a *run payload* holds a
 tracker's boxes, ``ok`` flags, IoU per frame, the scores line and the state the chapter draws
-(particles subsampled and quantised, search window, ellipse, candidates, rays). The same
+(particles subsampled and quantised, search window, ellipse, candidates, rays, the tracker's
+confidence per frame and a correlation filter's response map, shrunk and quantised). The same
 payloads feed the Jupyter widget (sent over the comm) and the static HTML book (embedded in the
 page), so one JavaScript module draws both.
 """
@@ -30,6 +31,14 @@ VIEWER_CSS = Path(__file__).parent / "viewer.css"
 MAX_PARTICLES = 40
 #: most candidate boxes sent per frame
 MAX_CANDIDATES = 12
+#: most cells a side of a response map sent per frame (the inset is ~100 px: more is not seen)
+MAX_RESPONSE_SIDE = 32
+#: most bytes of response maps per run (uint8 cells, before base64; a 120-frame run: 14 x 14
+#: cells a map, some 31 KB of base64 beside its 7 KB of boxes): a long clip's maps are
+#: shrunk below ``MAX_RESPONSE_SIDE`` so a run file keeps its state under the file cap
+RESPONSE_BYTES = 24_000
+#: fewest cells a side of a shrunk response map (the peak and its side lobes still show)
+MIN_RESPONSE_SIDE = 8
 JPEG_QUALITY = 72
 
 
@@ -58,6 +67,20 @@ def clip_payload(clip, n: int, quality: int = JPEG_QUALITY) -> dict:
     return {"name": clip.name, "w": int(w), "h": int(h), "frames": frames,
             "gt": [[round(float(v), 1) for v in b] if np.isfinite(b).all() else None
                    for b in gt] if has_gt else None}
+
+
+def downsample_response(r, side: int = MAX_RESPONSE_SIDE) -> np.ndarray:
+    """A response map shrunk to at most ``side`` cells a side, its aspect kept, each new cell
+    the mean of the cells it covers (OpenCV's area interpolation: a block mean when the sizes
+    divide); a map already that small is returned as it is (as float)."""
+    r = np.asarray(r, dtype=float)
+    R, C = r.shape
+    if max(R, C) <= side:
+        return r
+    f = side / max(R, C)
+    nr, nc = max(1, min(side, round(R * f))), max(1, min(side, round(C * f)))
+    # float32 is what cv2.resize averages in; a response has no use for more digits
+    return cv2.resize(r.astype(np.float32), (nc, nr), interpolation=cv2.INTER_AREA).astype(float)
 
 
 def snapshot(state) -> dict:
@@ -89,12 +112,75 @@ def snapshot(state) -> dict:
         if len(c) > MAX_CANDIDATES:
             c = c[np.linspace(0, len(c) - 1, MAX_CANDIDATES).round().astype(int)]
         snap["candidates"] = c.copy()
+    conf = getattr(state, "confidence", None)
+    if conf is not None:
+        snap["confidence"] = float(conf)
+    resp, rbox = getattr(state, "response", None), getattr(state, "response_box", None)
+    if resp is not None and rbox is not None and np.ndim(resp) == 2 and np.size(resp):
+        snap["response"] = downsample_response(resp)
+        snap["response_box"] = [float(v) for v in rbox]
     return snap
+
+
+def _sig(x: float, digits: int = 4):
+    """``x`` to ``digits`` significant digits (None for NaN or infinity: JSON has neither)."""
+    x = float(x)
+    return None if not math.isfinite(x) else float(f"{x:.{digits}g}")
+
+
+def encode_responses(maps: list, budget: int = RESPONSE_BYTES) -> dict:
+    """Per-frame response maps (None where a frame has none) as the run payload's entries:
+    ``rshape`` ([rows, cols] per frame), ``rrange`` ([lo, hi] per frame, 6 significant
+    digits) and ``response``, base64 of every map's cells as uint8, row by row, frame after
+    frame: cell = lo + q / 255 (hi - lo). Maps are shrunk (:func:`downsample_response`) until
+    all of them fit ``budget`` bytes, but never below ``MIN_RESPONSE_SIDE`` cells a side."""
+    have = [m for m in maps if m is not None]
+    side = MAX_RESPONSE_SIDE
+    if have:
+        cells = max(np.shape(m)[0] * np.shape(m)[1] for m in have)
+        while side > MIN_RESPONSE_SIDE and min(cells, side * side) * len(have) > budget:
+            side -= 1
+    shapes, ranges, flat = [], [], []
+    for m in maps:
+        if m is None:
+            shapes.append(None)
+            ranges.append(None)
+            continue
+        m = downsample_response(m, side)
+        finite = np.isfinite(m)
+        lo = _sig(m[finite].min(), 6) if finite.any() else 0.0
+        hi = _sig(m[finite].max(), 6) if finite.any() else 0.0
+        span = hi - lo
+        q = (np.zeros(m.shape) if span <= 0 else
+             np.round((np.where(finite, m, lo) - lo) / span * 255))
+        flat.append(np.clip(q, 0, 255).astype(np.uint8).ravel())
+        shapes.append([int(m.shape[0]), int(m.shape[1])])
+        ranges.append([lo, hi])
+    return {"rshape": shapes, "rrange": ranges,
+            "response": _b64(np.concatenate(flat)) if flat else ""}
+
+
+def decode_responses(state: dict) -> list:
+    """The maps of :func:`encode_responses`'s entries (None where a frame has none), as the
+    viewer reads them."""
+    raw = np.frombuffer(base64.b64decode(state.get("response", "")), dtype=np.uint8)
+    out, o = [], 0
+    for shape, rng in zip(state["rshape"], state["rrange"]):
+        if shape is None:
+            out.append(None)
+            continue
+        n = shape[0] * shape[1]
+        q = raw[o:o + n].reshape(shape).astype(float)
+        o += n
+        out.append(rng[0] + q / 255.0 * (rng[1] - rng[0]))
+    return out
 
 
 def _encode_state(states: list[dict]) -> dict:
     """Per-frame snapshots -> compact arrays: particles as base64 int16 (x, y in half pixels;
-    weight relative to the frame's largest, 0..1000), the rest rounded to 0.1 px."""
+    weight relative to the frame's largest, 0..1000), response maps as base64 uint8
+    (:func:`encode_responses`), the confidence to four significant digits, the rest rounded
+    to 0.1 px."""
     out: dict = {}
     if any("particles" in s for s in states):
         counts, flat = [], []
@@ -122,8 +208,14 @@ def _encode_state(states: list[dict]) -> dict:
                         tidy(np.round(np.asarray(s[key], dtype=float), 1).tolist())
                         for s in states]
 
-    for key in ("search_window", "ellipse", "candidates", "rays"):
+    for key in ("search_window", "ellipse", "candidates", "rays", "response_box"):
         rounded(key)
+    if any("confidence" in s for s in states):
+        # four significant digits: a curve 100-odd px high shows no more
+        out["confidence"] = [_sig(s["confidence"]) if "confidence" in s else None
+                             for s in states]
+    if any("response" in s for s in states):
+        out.update(encode_responses([s.get("response") for s in states]))
     return out
 
 

@@ -1,6 +1,7 @@
 // trackbook playground viewer: one ES module for the Jupyter widget (anywidget) and the
 // static HTML book. It draws on a canvas the frame, ground truth, estimate, the tracker's
-// state, the IoU-per-frame curve with a cursor and the scores line. Frames arrive once as
+// state, the IoU-per-frame curve with a cursor, the tracker's confidence per frame (frames
+// judged lost shaded), a correlation filter's response map as an inset, and the scores line. Frames arrive once as
 // JPEG; everything else is drawn here, so a frame step costs no Python and no network.
 // Contract: root element .tb-playground, knob inputs [data-knob], frame input [data-frame],
 // play button [data-play].
@@ -26,23 +27,54 @@ function fmt(v) {
 
 function same(a, b) { return JSON.stringify(a) === JSON.stringify(b); }
 
-// particles: base64 little-endian int16 triples (2x, 2y, weight*1000), pcount per frame
+function bytesOf(b64) {
+  const bin = atob(b64);
+  const bytes = new Uint8Array(bin.length);
+  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  return bytes;
+}
+
+// particles: base64 little-endian int16 triples (2x, 2y, weight*1000), pcount per frame;
+// response maps: base64 uint8 cells (lo + q / 255 (hi - lo)), rshape [rows, cols] per frame
 function decodeState(run) {
   const st = (run && run.state) || {};
   const out = { particles: null };
   if (st.pcount && st.particles) {
-    const bin = atob(st.particles);
-    const bytes = new Uint8Array(bin.length);
-    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
-    const a = new Int16Array(bytes.buffer);
+    const a = new Int16Array(bytesOf(st.particles).buffer);
     const per = [];
     let o = 0;
     for (const c of st.pcount) { per.push(a.subarray(o, o + 3 * c)); o += 3 * c; }
     out.particles = per;
   }
-  for (const k of ["search_window", "ellipse", "candidates", "rays"]) out[k] = st[k] || null;
+  for (const k of ["search_window", "ellipse", "candidates", "rays", "response_box", "confidence"])
+    out[k] = st[k] || null;
+  out.response = null;
+  if (st.rshape && st.response !== undefined) {
+    const a = bytesOf(st.response);
+    const per = [];
+    let o = 0;
+    st.rshape.forEach((sh, k) => {
+      if (!sh) { per.push(null); return; }
+      const n = sh[0] * sh[1];
+      per.push({ rows: sh[0], cols: sh[1], q: a.subarray(o, o + n), range: st.rrange[k] });
+      o += n;
+    });
+    out.response = per;
+  }
   return out;
 }
+
+// a perceptually ordered colour map (viridis, from its published stops) for the response
+const VIRIDIS = [[68, 1, 84], [72, 40, 120], [62, 74, 137], [49, 104, 142], [38, 130, 142],
+  [31, 158, 137], [53, 183, 121], [109, 205, 89], [180, 222, 44], [253, 231, 37]];
+const LUT = (() => {
+  const t = new Uint8ClampedArray(256 * 3), n = VIRIDIS.length - 1;
+  for (let q = 0; q < 256; q++) {
+    const f = q / 255 * n, i = Math.min(n - 1, Math.floor(f)), u = f - i;
+    for (let c = 0; c < 3; c++) t[3 * q + c] = VIRIDIS[i][c] * (1 - u) + VIRIDIS[i + 1][c] * u;
+  }
+  return t;
+})();
 
 const RAY_DIRS = [[1, 0], [1, -1], [0, -1], [-1, -1], [-1, 0], [-1, 1], [0, 1], [1, 1]];
 
@@ -120,6 +152,10 @@ class Viewer {
     } else this.stale = false;
     if (run && !this.stale && run.boxes && !(run.n_done < run.n_total)) this.lastFull = run;
     if (run !== this.run) { this.run = run; this.state = decodeState(run); }
+    // the confidence curve and the response inset take room only when the run has them
+    const st = this.state || {};
+    const panels = [!!(st.confidence && !(run && run.curve)), !!st.response].join();
+    if (panels !== this.panelSig) { this.panelSig = panels; this.layout(); }
     this.buildKnobs();
     const n = this.nFrames();
     this.slider.max = Math.max(0, n - 1);
@@ -195,8 +231,36 @@ class Viewer {
     this.fh = Math.round(clip.h * this.scale);
     this.cx0 = side ? this.fw + 16 : 0;
     this.cy0 = side ? 0 : this.fh + 8;
-    this.ch = side ? this.fh : 150;
-    const W = side ? this.cx0 + this.cw : avail, H = side ? this.fh : this.cy0 + this.ch;
+    const [hasConf, hasResp] = (this.panelSig || "false,false").split(",").map((x) => x === "true");
+    // the response inset: a square, under the curves beside the frame, or beside the
+    // confidence curve under it (a phone's column holds ~370 px)
+    const inset = hasResp ? (side ? Math.min(this.cw - 44, 110) : Math.min(110, Math.round(avail * 0.3))) : 0;
+    let H;
+    this.panels = {};
+    if (side) {
+      const need = 110 + (hasConf ? 100 : 0) + (hasResp ? inset + 36 : 0);
+      const colH = Math.max(this.fh, need);
+      const curves = colH - (hasResp ? inset + 36 : 0);
+      const hi = hasConf ? Math.round(curves * 0.55) : curves;
+      this.panels.iou = { x: this.cx0, y: 0, w: this.cw, h: hi };
+      if (hasConf) this.panels.conf = { x: this.cx0, y: hi, w: this.cw, h: curves - hi };
+      if (hasResp) this.panels.resp = { x: this.cx0 + 34, y: curves + 18, w: inset, h: inset };
+      H = colH;
+    } else {
+      this.panels.iou = { x: 0, y: this.cy0, w: avail, h: 150 };
+      let y = this.cy0 + 150;
+      if (hasConf || hasResp) {
+        const rowH = Math.max(120, inset + 36);
+        if (hasConf) this.panels.conf = { x: 0, y, w: avail - (hasResp ? inset + 12 : 0), h: rowH };
+        if (hasResp) this.panels.resp = { x: avail - inset, y: y + 18, w: inset, h: inset };
+        y += rowH;
+      }
+      H = y;
+    }
+    this.ch = this.panels.iou.h;
+    const W = side ? this.cx0 + this.cw : avail;
+    // where each panel sits (CSS px of the canvas), for whoever checks the drawing
+    this.root.setAttribute("data-tb-panels", JSON.stringify(this.panels));
     this.W = W; this.H = H;
     const dpr = window.devicePixelRatio || 1;
     this.canvas.width = Math.round(W * dpr);
@@ -344,6 +408,7 @@ class Viewer {
     if (this.stale) c.globalAlpha = 0.45;
     if (r && r.boxes && i < done) {
       if (st.search_window && st.search_window[i]) this.box(st.search_window[i], this.colors.window, 1.5, [5, 4]);
+      if (st.response_box && st.response_box[i]) this.box(st.response_box[i], this.colors.response, 1, [2, 3]);
       if (st.candidates && st.candidates[i]) for (const b of st.candidates[i]) this.box(b, this.colors.cand, 1);
       if (st.particles && st.particles[i]) {
         const p = st.particles[i];
@@ -378,8 +443,10 @@ class Viewer {
     c.restore();
     this.curve();
     const iou = r && r.iou ? r.iou[i] : null;
+    const conf = this.state && this.state.confidence && r && i < done ? this.state.confidence[i] : null;
     this.frameLabel.textContent = `frame ${i} / ${Math.max(0, this.nFrames() - 1)}` +
       (iou !== null && iou !== undefined ? ` \u00b7 IoU ${iou.toFixed(2)}` : "") +
+      (conf !== null && conf !== undefined ? ` \u00b7 confidence ${fmt(conf)}` : "") +
       (r && r.ok ? (r.ok[i] ? "" : " \u00b7 lost") : "") +
       (r && r.captions && r.captions[i] ? " \u00b7 " + r.captions[i] : "");
   }
@@ -391,6 +458,11 @@ class Viewer {
     for (const e of (this.run && this.run.extra_boxes) || []) items.push([e.label, e.color]);
     if (this.run && this.run.seeds && !this.run.seeds.deterministic)
       items.push(["IoU range over the seeds", this.colors.curve, 0.25]);
+    if (this.panels && this.panels.conf) {
+      items.push(["confidence", this.colors.conf]);
+      items.push(["frames judged lost", this.colors.lost, 0.25]);
+    }
+    if (this.panels && this.panels.resp) items.push(["response map's area", this.colors.response]);
     const sig = JSON.stringify(items);
     if (sig === this.legendSig) return;
     this.legendSig = sig;
@@ -405,13 +477,100 @@ class Viewer {
   }
 
   curve() {
-    const c = this.ctx, x0 = this.cx0 + 34, y0 = this.cy0 + 12, w = this.cw - 44, h = this.ch - 40;
+    const P = this.panels || {};
+    this.iouCurve(P.iou || { x: this.cx0, y: this.cy0, w: this.cw, h: this.ch });
+    if (P.conf) this.confCurve(P.conf);
+    if (P.resp) this.inset(P.resp);
+  }
+
+  // frames judged lost (ok = 0) as shaded columns of a plot
+  lostBands(X, y0, h) {
+    const r = this.run, c = this.ctx;
+    if (!r || !r.ok) return;
+    const n = this.nFrames(), dx = n > 1 ? (X(1) - X(0)) : 0;
+    c.save(); c.fillStyle = this.colors.lost; c.globalAlpha = 0.25;
+    r.ok.forEach((v, k) => { if (!v) c.fillRect(X(k) - dx / 2, y0, Math.max(1, dx), h); });
+    c.restore();
+  }
+
+  // the tracker's own confidence per frame (its scale is the tracker's: PSR, likelihood, ...)
+  confCurve(p) {
+    const c = this.ctx, x0 = p.x + 34, y0 = p.y + 12, w = p.w - 44, h = p.h - 40;
+    const ys = this.state.confidence, n = this.nFrames();
+    const fin = ys.filter((v) => v !== null && v !== undefined && isFinite(v));
+    let lo = Math.min(0, ...fin), hi = Math.max(...fin, lo + 1e-9);
+    if (!(hi > lo)) hi = lo + 1;
+    const X = (k) => x0 + (n > 1 ? k / (n - 1) : 0) * w, Y = (v) => y0 + h - (v - lo) / (hi - lo) * h;
+    this.lostBands(X, y0, h);
+    c.strokeStyle = "#000"; c.lineWidth = 1; c.strokeRect(x0, y0, w, h);
+    c.fillStyle = "#000"; c.font = "11px sans-serif";
+    c.save(); c.translate(p.x + 8, y0 + h / 2); c.rotate(-Math.PI / 2);
+    c.textAlign = "center"; c.fillText("confidence", 0, 0); c.restore();
+    c.textAlign = "right";      // the scale's ends, in the tracker's own units
+    c.fillText(fmt(hi), x0 - 2, y0 - 2); c.fillText(fmt(lo), x0 - 2, y0 + h);
+    c.textAlign = "left";
+    c.fillText("frame", x0 + w / 2 - 14, y0 + h + 24);
+    if (this.stale) c.globalAlpha = 0.35;
+    c.strokeStyle = this.colors.conf; c.lineWidth = 1.5; c.beginPath();
+    let pen = false;
+    ys.forEach((v, k) => {
+      if (v === null || v === undefined || !isFinite(v)) { pen = false; return; }
+      if (pen) c.lineTo(X(k), Y(v)); else c.moveTo(X(k), Y(v));
+      pen = true;
+    });
+    c.stroke();
+    c.globalAlpha = 1;
+    c.strokeStyle = "#000"; c.lineWidth = 1; c.setLineDash([2, 2]);
+    c.beginPath(); c.moveTo(X(this.frame), y0); c.lineTo(X(this.frame), y0 + h); c.stroke();
+    c.setLineDash([]);
+  }
+
+  // the current frame's response map over its area (the dotted box on the frame): the middle
+  // cell is "no move" (crossed), the brightest is where the search put the target
+  inset(p) {
+    const c = this.ctx, i = this.frame, r = this.run;
+    const done = r && r.boxes ? (r.n_done !== undefined ? r.n_done : r.boxes.length) : 0;
+    const m = i < done && this.state.response ? this.state.response[i] : null;
+    c.fillStyle = "#000"; c.font = "11px sans-serif"; c.textAlign = "left";
+    c.fillText(m ? "response, this frame" : "response (none on this frame)", p.x, p.y - 5);
+    c.strokeStyle = "#000"; c.lineWidth = 1; c.strokeRect(p.x - 0.5, p.y - 0.5, p.w + 1, p.h + 1);
+    if (!m) { c.fillStyle = "#eee"; c.fillRect(p.x, p.y, p.w, p.h); return; }
+    if (!this.cellCanvas) this.cellCanvas = document.createElement("canvas");
+    const cc = this.cellCanvas;
+    cc.width = m.cols; cc.height = m.rows;
+    const g = cc.getContext("2d"), img = g.createImageData(m.cols, m.rows);
+    let best = 0;
+    for (let k = 0; k < m.q.length; k++) {
+      const q = m.q[k];
+      if (q > m.q[best]) best = k;
+      img.data[4 * k] = LUT[3 * q]; img.data[4 * k + 1] = LUT[3 * q + 1];
+      img.data[4 * k + 2] = LUT[3 * q + 2]; img.data[4 * k + 3] = 255;
+    }
+    g.putImageData(img, 0, 0);
+    c.save();
+    if (this.stale) c.globalAlpha = 0.45;
+    c.imageSmoothingEnabled = false;       // cells stay cells
+    c.drawImage(cc, p.x, p.y, p.w, p.h);
+    c.restore();
+    const sx = p.w / m.cols, sy = p.h / m.rows;
+    const mx = p.x + (Math.floor(m.cols / 2) + 0.5) * sx, my = p.y + (Math.floor(m.rows / 2) + 0.5) * sy;
+    c.strokeStyle = "#fff"; c.lineWidth = 1;
+    c.beginPath(); c.moveTo(mx - 4, my); c.lineTo(mx + 4, my); c.moveTo(mx, my - 4); c.lineTo(mx, my + 4); c.stroke();
+    const bx = p.x + (best % m.cols + 0.5) * sx, by = p.y + (Math.floor(best / m.cols) + 0.5) * sy;
+    c.strokeStyle = this.colors.est; c.lineWidth = 1.5;
+    c.beginPath(); c.arc(bx, by, Math.max(3, Math.min(sx, sy)), 0, 2 * Math.PI); c.stroke();
+    c.fillStyle = "#000";
+    if (m.range) c.fillText(`${fmt(m.range[0])} \u2026 ${fmt(m.range[1])}`, p.x, p.y + p.h + 13);
+  }
+
+  iouCurve(p) {
+    const c = this.ctx, x0 = p.x + 34, y0 = p.y + 12, w = p.w - 44, h = p.h - 40;
     const r = this.run, n = this.nFrames();
     c.strokeStyle = "#000"; c.lineWidth = 1; c.strokeRect(x0, y0, w, h);
     c.fillStyle = "#000"; c.font = "11px sans-serif";
     const custom = r && r.curve;          // animations: any per-step series, 0..1
     const useIou = !custom && r && r.iou;
-    c.save(); c.translate(this.cx0 + 10, y0 + h / 2); c.rotate(-Math.PI / 2);
+    c.save(); c.translate(p.x + 10, y0 + h / 2); c.rotate(-Math.PI / 2);
     c.textAlign = "center";
     c.fillText(custom ? custom.label : useIou ? "IoU with ground truth" : "tracker ok", 0, 0);
     c.restore();

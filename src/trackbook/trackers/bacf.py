@@ -40,7 +40,7 @@ from ..features.fhog import fhog
 from ..filters import bacf as bf
 from ..filters import correlation as cf
 from ..params import param
-from .base import Tracker, readonly, redetecting
+from .base import Tracker, centred_response, readonly, redetecting
 from .registry import register
 
 _REF_CODE = ("the authors' release (run_BACF.m, BACF_optimized.m, BACF_Demo_single_seq.m; "
@@ -230,6 +230,7 @@ class BacfTracker(Tracker):
         self._train()
         self.confidence = float("inf")
         self.response = np.zeros((self._cells, self._cells))
+        self._response_step = None
         self.search_window = self._window_box(self._centre, self._scale)
 
     def _train(self):
@@ -244,6 +245,7 @@ class BacfTracker(Tracker):
         self.search_window = self._window_box(self._centre, self._scale)
         if self._is_flat(frame):
             self.response, self.confidence = np.zeros((self._cells, self._cells)), 0.0
+            self._response_step = self._cell * self._scale
             return self._box_at(self._centre, self._scale), 0.0
         scales = self._scale * self._factors
         zf = self._spectra(frame, self._centre, scales)
@@ -256,6 +258,7 @@ class BacfTracker(Tracker):
         centre = (self._centre[0] + dx * step, self._centre[1] + dy * step)
         scale = float(np.clip(scales[best], self._min_scale, self._max_scale))
         self.response, self.confidence = r, conf
+        self._response_step = step
         return self._box_at(centre, scale), conf
 
     def _learn(self, frame, box):
@@ -319,9 +322,17 @@ class BacfTracker(Tracker):
         return readonly(self._h)
 
     def _drawn(self) -> dict:
+        """The last search window and, after the first ``update``, the best scale's response
+        (``Tracker.state()``): cells of ``cell`` × that scale frame px around the centre the
+        search started from."""
         sw = getattr(self, "search_window", None)
-        return {**super()._drawn(),
-                "search_window": None if sw is None else tuple(float(v) for v in sw)}
+        out = {**super()._drawn(),
+               "search_window": None if sw is None else tuple(float(v) for v in sw)}
+        if sw is not None and self.frame_index > 0:
+            step = getattr(self, "_response_step", None) or self._cell * self._scale
+            out.update(centred_response(self.response, (sw[0] + sw[2] / 2, sw[1] + sw[3] / 2),
+                                        (step, step)))
+        return out
 
 
 register(redetecting(BacfTracker))

@@ -39,6 +39,38 @@ def readonly(a) -> np.ndarray:
     return v
 
 
+def centred_response(response, centre, step, cyclic: bool = True) -> dict:
+    """The ``response`` and ``response_box`` fields of :class:`TrackerState` from a score map
+    over shifts of the target.
+
+    Parameters
+    ----------
+    response : (R, C) array
+        The map; ``cyclic``: index (0, 0) is "no move" and the last rows and columns are the
+        negative shifts (a correlation filter's FFT layout), else the middle cell
+        (R // 2, C // 2) is "no move" already.
+    centre : (x, y)
+        The target's centre the search started from, in frame pixels.
+    step : (sx, sy)
+        Frame pixels per cell across and down.
+
+    Returns
+    -------
+    dict
+        ``{"response": the map with "no move" in its middle cell, "response_box": (x, y, w,
+        h)}``, the box's cell (i, j) centred on ``centre + ((j - C // 2) sx, (i - R // 2)
+        sy)``.
+    """
+    r = np.asarray(response, dtype=float)
+    R, C = r.shape
+    if cyclic:     # shift (0, 0) to the middle cell, as np.fft.fftshift does for any size
+        r = np.roll(r, (R // 2, C // 2), axis=(0, 1))
+    sx, sy = (float(v) for v in step)
+    x0 = centre[0] - (C // 2 + 0.5) * sx
+    y0 = centre[1] - (R // 2 + 0.5) * sy
+    return {"response": r, "response_box": (x0, y0, C * sx, R * sy)}
+
+
 def _frozen(a, dtype=float):
     """A read-only copy of ``a`` (None stays None): a state outlives the tracker's next frame."""
     return None if a is None else readonly(np.array(a, dtype=dtype, copy=True))
@@ -69,6 +101,13 @@ class TrackerState:
         see each tracker's docstring for its definition. A finite number after every
         ``update`` (lost and constant frames included), None before the first one. It is the
         number the tracker computed during that ``update``: reading it changes nothing.
+    response : (R, C) the last score map of a tracker that scores every shift of the target
+        in a window (a correlation filter's response), laid out as the frame: cell (i, j)
+        scores the target's centre at the centre of that cell of ``response_box``, so the
+        middle cell (R // 2, C // 2) is "no move" and the brightest cell is where the search
+        put the target. None before the first ``update``.
+    response_box : (x, y, w, h) of the frame area ``response`` covers, in frame pixels
+        (C cells of w / C px across, R cells of h / R px down).
     """
 
     box: tuple | None = None
@@ -80,11 +119,13 @@ class TrackerState:
     candidates: np.ndarray | None = None
     rays: np.ndarray | None = None
     confidence: float | None = None
+    response: np.ndarray | None = None
+    response_box: tuple | None = None
 
     def __post_init__(self):
-        for name in ("particles", "weights", "candidates", "rays"):
+        for name in ("particles", "weights", "candidates", "rays", "response"):
             object.__setattr__(self, name, _frozen(getattr(self, name)))
-        for name in ("box", "search_window", "ellipse"):
+        for name in ("box", "search_window", "ellipse", "response_box"):
             v = getattr(self, name)
             if v is not None:
                 object.__setattr__(self, name, tuple(float(x) for x in np.ravel(v)))
@@ -138,7 +179,7 @@ class Tracker:
     _drawn() -> dict
         Optional. The :class:`TrackerState` fields this tracker can draw once started
         (``particles``, ``weights``, ``search_window``, ``ellipse``, ``candidates``,
-        ``rays``), by name; return ``{**super()._drawn(), ...}``. ``state()`` adds them to
+        ``rays``, ``response`` with ``response_box``), by name; return ``{**super()._drawn(), ...}``. ``state()`` adds them to
         the box and ``ok``; the book's figures, the playground and ``trackbook track``'s
         video draw whatever is there.
     flat_range : int (class attribute, default 2)

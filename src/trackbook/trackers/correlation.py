@@ -44,7 +44,7 @@ from ..features.gradient_cells import orientation_cells
 from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..params import NOT_PRINTED, param
-from .base import Tracker, readonly, redetecting
+from .base import Tracker, centred_response, readonly, redetecting
 from .registry import register
 
 #: Random affine perturbations of the first patch: rotation up to ±this/2 rad and each
@@ -139,10 +139,16 @@ class _CorrelationTracker(Tracker):
         return sample_patches(gray, boxes, self._patch_size)
 
     def _drawn(self) -> dict:
-        """The last search window (``Tracker.state()``)."""
+        """The last search window and, after the first ``update``, the response over it
+        (``Tracker.state()``): its cells tile the window (``step`` frame px each)."""
         sw = getattr(self, "search_window", None)
-        return {**super()._drawn(),
-                "search_window": None if sw is None else tuple(float(v) for v in sw)}
+        out = {**super()._drawn(),
+               "search_window": None if sw is None else tuple(float(v) for v in sw)}
+        if sw is not None and self.frame_index > 0:
+            R, C = np.shape(self.response)
+            out.update(centred_response(self.response, (sw[0] + sw[2] / 2, sw[1] + sw[3] / 2),
+                                        (sw[2] / C, sw[3] / R)))
+        return out
 
     def _box(self):
         return self._box_at(self._centre)

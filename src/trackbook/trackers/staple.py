@@ -54,7 +54,7 @@ from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..filters import staple as st
 from ..params import param
-from .base import Tracker, readonly, redetecting
+from .base import Tracker, centred_response, readonly, redetecting
 from .registry import register
 
 _REF_CODE = "the authors' reference code (github bertinetto/staple, params.txt)"
@@ -276,6 +276,7 @@ class StapleTracker(Tracker):
         self._train(frame, first=True)
         side = self._side
         self.response = np.zeros((side, side))
+        self._response_step = None
         self.response_template = np.zeros((side, side))
         self.response_histogram = np.zeros((side, side))
         self.likelihood = np.zeros((int(self._norm_pwp[1]), int(self._norm_pwp[0])))
@@ -293,6 +294,7 @@ class StapleTracker(Tracker):
         self.search_window = self._window_box(self._centre)
         if self._is_flat(frame):
             self.response = np.zeros_like(self.response)
+            self._response_step = tuple(self._k())
             self.confidence = 0.0
             return self._box_at(self._centre, self.scale), 0.0, False
         merged, tmpl, hist, beta = self._responses(frame, [self._centre])
@@ -303,6 +305,7 @@ class StapleTracker(Tracker):
         row, col = np.unravel_index(int(np.argmax(merged[0])), merged[0].shape)
         r = self._side // 2
         kx, ky = self._k()
+        self._response_step = (kx, ky)
         centre = (self._centre[0] + (col - r) * kx, self._centre[1] + (row - r) * ky)
         zs = self._scale_features(frame, centre, self.scale)
         self.scale_response = st.scale_response(self._snum, self._sden, zs, self.params.lam)
@@ -377,10 +380,17 @@ class StapleTracker(Tracker):
         self._centre = (box[0] + box[2] / 2.0, box[1] + box[3] / 2.0)
 
     def _drawn(self) -> dict:
-        """The last search window (``Tracker.state()``)."""
+        """The last search window and, after the first ``update``, the merged response over
+        the search square (``Tracker.state()``): the shifts of ±side // 2 normalised px around
+        the centre the search started from, ``_k()`` frame px each."""
         sw = getattr(self, "search_window", None)
-        return {**super()._drawn(),
-                "search_window": None if sw is None else tuple(float(v) for v in sw)}
+        out = {**super()._drawn(),
+               "search_window": None if sw is None else tuple(float(v) for v in sw)}
+        if sw is not None and self.frame_index > 0:
+            step = getattr(self, "_response_step", None) or tuple(self._k())
+            out.update(centred_response(self.response, (sw[0] + sw[2] / 2, sw[1] + sw[3] / 2),
+                                        step, cyclic=False))
+        return out
 
     @property
     def template(self):
