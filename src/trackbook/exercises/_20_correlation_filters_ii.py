@@ -9,12 +9,12 @@ TEXT = r"""
 === 20.1 ★ pen and paper | The scale filter from its ridge regression
 The scale filter sees one training sample: $C$ feature channels $f^c$, each a signal of $S$
 values over the scales, and the desired output $g$ over the scales. Its filter $h$ minimises
-$\varepsilon = \lVert \sum_c h^c \star f^c - g \rVert^2 + \lambda \sum_c \lVert h^c \rVert^2$
+$E(h) = \lVert \sum_c h^c \star f^c - g \rVert^2 + \lambda \sum_c \lVert h^c \rVert^2$
 over all cyclic shifts along the scale axis. Show that, frequency by frequency,
 $H^c = \bar G F^c / (\sum_k \bar F^k F^k + \lambda)$. Then: with DSST's $S = 33$ and
 $a = 1.02$, what are the smallest and largest relative sizes one frame can test?
 --- hint
-By Parseval, $\varepsilon$ splits into one small problem per frequency. In each, the data are
+By Parseval, $E(h)$ splits into one small problem per frequency. In each, the data are
 the single row $\mathbf f = (F^1, \dots, F^C)$; invert $\mathbf f^H \mathbf f + \lambda I$ with
 Sherman–Morrison.
 --- solution
