@@ -26,7 +26,7 @@ def _within_quantisation(decoded, expected, rng):
 
 def test_a_response_decodes_to_its_block_means():
     m = _gaussian(64, 48, 20, 30, 5.0)
-    enc = D.encode_responses([None, m], budget=10 ** 9)
+    enc = D.encode_responses([None, m], max_bytes=10 ** 9)
     assert enc["rshape"] == [None, [32, 24]]
     dec = D.decode_responses(enc)
     assert dec[0] is None
@@ -43,9 +43,9 @@ def test_a_small_response_is_sent_as_it_is():
     assert _within_quantisation(D.decode_responses(enc)[0], m, enc["rrange"][0])
 
 
-def test_many_frames_shrink_the_maps_to_the_budget():
+def test_many_frames_shrink_the_maps_to_fit_max_bytes():
     maps = [_gaussian(64, 64, 10 + k % 40, 30, 4.0) for k in range(100)]
-    enc = D.encode_responses(maps, budget=100 * 16 * 16)
+    enc = D.encode_responses(maps, max_bytes=100 * 16 * 16)
     assert all(s == [16, 16] for s in enc["rshape"])
     assert len(base64.b64decode(enc["response"])) == 100 * 16 * 16
     for m, d, rng in zip(maps, D.decode_responses(enc), enc["rrange"]):

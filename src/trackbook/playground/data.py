@@ -128,17 +128,17 @@ def _sig(x: float, digits: int = 4):
     return None if not math.isfinite(x) else float(f"{x:.{digits}g}")
 
 
-def encode_responses(maps: list, budget: int = RESPONSE_BYTES) -> dict:
+def encode_responses(maps: list, max_bytes: int = RESPONSE_BYTES) -> dict:
     """Per-frame response maps (None where a frame has none) as the run payload's entries:
     ``rshape`` ([rows, cols] per frame), ``rrange`` ([lo, hi] per frame, 6 significant
     digits) and ``response``, base64 of every map's cells as uint8, row by row, frame after
     frame: cell = lo + q / 255 (hi - lo). Maps are shrunk (:func:`downsample_response`) until
-    all of them fit ``budget`` bytes, but never below ``MIN_RESPONSE_SIDE`` cells a side."""
+    all of them fit ``max_bytes`` bytes, but never below ``MIN_RESPONSE_SIDE`` cells a side."""
     have = [m for m in maps if m is not None]
     side = MAX_RESPONSE_SIDE
     if have:
         cells = max(np.shape(m)[0] * np.shape(m)[1] for m in have)
-        while side > MIN_RESPONSE_SIDE and min(cells, side * side) * len(have) > budget:
+        while side > MIN_RESPONSE_SIDE and min(cells, side * side) * len(have) > max_bytes:
             side -= 1
     shapes, ranges, flat = [], [], []
     for m in maps:
