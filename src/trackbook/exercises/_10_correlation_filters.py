@@ -15,9 +15,11 @@ $\sqrt{1/104 - 1/104^2} \approx 0.0976$, so the PSR is $(6 - 1/104)/0.0976 \appr
 Run `kcf` on `red-cube` with the learning rate `eta` at 0, 0.02 (the paper's) and 0.2.
 Which scores best, and what does $\eta = 0$ mean for the model?
 --- solution
-$\eta = 0$ keeps the first frame's model: it never learns the background, and the red cube
-changes little, so here it scores best; $\eta = 0.2$ forgets the first frames within a few
-frames and drifts. On targets that change appearance a fixed model fails instead.
+$\eta = 0$ keeps the first frame's model and learns nothing after it; the red cube changes
+little, so here it scores best, ahead of 0.02. With $\eta = 0.2$ a frame's weight falls to
+$0.8^{10} \approx 0.1$ ten frames later, so the model soon holds mostly the latest windows,
+background included, and scores lowest. On a target that changes its appearance a fixed model
+fails instead.
 
 === 10.3 ★★★ implement | Kernel ridge regression in the Fourier domain
 Implement the 1-D kernel ridge regression over all cyclic shifts in the Fourier domain:
