@@ -119,11 +119,11 @@ QUOTES = [
           "where n is the candidate (sample) index, I the number of pixels inside the ellipse, "
           "δ the Kronecker delta function, a is √(H_x² + H_y²), and f a normalisation factor."),
     Quote("cho2005.mean_shift_eq12", "§4.2, eq. 12",
-          r"g \left(\frac{\|\mathbf{y}_0^n - \mathbf{x}_i^n\|^2}{a} \right)}{\sum_{i=1}^n w_i^n "
-          r"g \left(\frac{\|\mathbf{y}_0^n - \mathbf{x}_i^n\|^2}{a} \right)} - \mathbf{y}_0^n "
-          r"\quad (12)$$",
-          "… g(‖y_0^n − x_i^n‖² / a) / Σ_i w_i^n g(‖y_0^n − x_i^n‖² / a) − y_0^n (12): the "
-          "mean-shift vector of candidate n, with the bandwidth a of eq. 10"),
+          r"$$\mathbf{y}^n = \frac{\sum_{i=1}^n \mathbf{x}_i^n w_i^n g \left(\frac{\|\mathbf{y}_0^n "
+          r"- \mathbf{x}_i^n\|^2}{a} \right)}{\sum_{i=1}^n w_i^n g \left(\frac{\|\mathbf{y}_0^n - "
+          r"\mathbf{x}_i^n\|^2}{a} \right)} - \mathbf{y}_0^n \quad (12)$$",
+          "y^n = Σ_i x_i^n w_i^n g(‖y_0^n − x_i^n‖² / a) / Σ_i w_i^n g(‖y_0^n − x_i^n‖² / a) "
+          "− y_0^n (12): the mean-shift vector of candidate n, with the bandwidth a of eq. 10"),
     Quote("cho2005.likelihood_rises_eq13", "§4.2, eq. 13",
           r"$$\rho[\mathbf{p}(\mathbf{y}_0^n), \mathbf{q}] \leq \rho[\mathbf{p}(\mathbf{y}_1^n), "
           r"\mathbf{q}] \quad \text{where } \mathbf{y}_1^n = \mathbf{y}_0^n + \mathbf{y}^n "
