@@ -172,3 +172,13 @@ def test_cli_marks_readings_in_the_paper_column(capsys):
     assert "40 (a reading)" in lines["window"]
     assert "'D'" in lines["exponent"] and "(a reading)" not in lines["exponent"]
     assert "not printed" in lines["forgetting"]
+
+
+def test_departures_table_keeps_only_the_asked_rows():
+    from trackbook import viz
+    rows = viz.departures_table("condensation-mean-shift",
+                                params={"max_iter", "eps"}).splitlines()[2:]
+    cells = {line.split("|")[1].strip(): line.split("|")[2].strip() for line in rows}
+    # eq. 12-13's one shift is a reading; epsilon is named without a value
+    assert cells == {"max_iter": "1 (a reading)", "eps": "not printed"}
+    assert not any("[quote:" in line for line in rows)

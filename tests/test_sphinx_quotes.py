@@ -28,14 +28,15 @@ Lee et al. keep forty frames {quote}`lee2012.window40` and remove old ones
 """
 
 
-def build(tmp_path, page, builder="html", **config):
+def build(tmp_path, page, builder="html", extensions=("myst_parser", "trackbook.sphinx_quotes"),
+          **config):
     src, out = tmp_path / "src", tmp_path / "out"
     src.mkdir(parents=True, exist_ok=True)
     (src / "conf.py").write_text("", encoding="utf-8")
     (src / "index.md").write_text(page, encoding="utf-8")
     warnings = io.StringIO()
     app = Sphinx(str(src), str(src), str(out / builder), str(out / ".doctrees"), builder,
-                 confoverrides={"extensions": ["myst_parser", "trackbook.sphinx_quotes"],
+                 confoverrides={"extensions": list(extensions),
                                 **config},
                  status=None, warning=warnings, freshenv=True)
     app.build(force_all=True)
@@ -136,3 +137,71 @@ def test_popover_opens_inside_the_screen_without_network(page, width):
         finally:
             browser.close()
     assert not remote, remote
+
+
+#: A page whose only maths is in its popovers: a whole display equation (eq. 12 of Cho and
+#: Kang), a passage with TeX the seed prints outside any ``$`` and one with inline ``$ $``.
+MATH_PAGE = """# Evidence with maths
+
+The mean-shift vector of a candidate {quote}`cho2005.mean_shift_eq12`, the motion in the
+state {quote}`cho2005.state_meaning` and the bandwidth {quote}`cho2005.bandwidth_eq3`.
+"""
+
+
+@pytest.fixture(scope="module")
+def math_page(tmp_path_factory):
+    pytest.importorskip("jupyter_server_mathjax")
+    out, _ = build(tmp_path_factory.mktemp("quotes_tex"), MATH_PAGE,
+                   extensions=["myst_parser", "trackbook.sphinx_offline_mathjax",
+                               "trackbook.sphinx_quotes"])
+    return out
+
+
+def test_page_with_tex_only_in_popovers_loads_mathjax(math_page):
+    text = (math_page / "index.html").read_text(encoding="utf-8")
+    assert "_static/mathjax/MathJax.js" in text          # local, and loaded for the popovers
+    assert "<code>" not in text                           # no passage shown as TeX source
+
+
+@pytest.mark.browser
+@pytest.mark.parametrize("width", [390, 1280])
+def test_popover_typesets_its_tex(math_page, width):
+    """Headless Chromium, the book's offline MathJax: every popover's passage is typeset (a
+    MathJax element for each equation), no TeX command is left in the text the reader sees,
+    and the open popover stays inside the screen."""
+    import shutil
+    chromium = next((shutil.which(c) for c in ("chromium", "chromium-browser", "google-chrome")
+                     if shutil.which(c)), None)
+    sync = pytest.importorskip("playwright.sync_api")
+    if chromium is None:
+        pytest.skip("no Chromium (apt-get install chromium)")
+    with sync.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
+        try:
+            tab = browser.new_page(viewport={"width": width, "height": 800})
+            tab.goto((math_page / "index.html").as_uri())
+            state = tab.evaluate("""() => new Promise(resolve => {
+                if (!(window.MathJax && MathJax.Hub)) return resolve('no MathJax');
+                setTimeout(() => resolve('timed out'), 60000);
+                MathJax.Hub.Register.StartupHook('End', () => resolve('done'));
+            })""")
+            assert state == "done"
+            pops = tab.locator(".tb-quote-pop")
+            assert pops.count() == 3
+            for i in range(3):
+                quote = tab.locator(".tb-quote").nth(i)
+                quote.focus()
+                pop = pops.nth(i)
+                assert pop.is_visible()
+                orig = pop.locator(".tb-quote-orig")
+                assert orig.locator(".MathJax, .MathJax_Display").count() >= 1, \
+                    quote.get_attribute("data-quote")
+                assert orig.locator("code, .MathJax_Error, .merror").count() == 0
+                # what the reader sees: MathJax's output, never a TeX command or a $
+                seen = orig.inner_text()
+                assert not re.search(r"\\[A-Za-z]|\$", seen), seen
+                box = pop.bounding_box()
+                assert box["x"] >= 0 and box["x"] + box["width"] <= width
+            assert tab.evaluate("document.documentElement.scrollWidth") <= width
+        finally:
+            browser.close()

@@ -107,20 +107,44 @@ def _balanced(tex: str) -> bool:
     return depth == 0
 
 
-def _typeset(text: str):
-    """The passage ready for MathJax (``$ $``/``$$ $$``, typeset on the page), or None.
+#: TeX left outside ``$`` in a passage as the seeds print it (``\dot{x}``, ``H_x``,
+#: ``\mathbf{w}_{t-1}``, ``S'_{t-1}``): a command with its braced arguments or a letter, then
+#: primes and sub- or superscripts; a command needs none of those, a letter at least one.
+_BARE_TEX = re.compile(
+    r"(?<![\w\\])(?:\\[A-Za-z]+(?:\{[^{}$]*\})*|[A-Za-z])'*"
+    r"(?:[_^](?:\{[^{}$]*\}|[A-Za-z0-9]))*")
 
-    A passage cut inside a display equation lacks one ``$$``: it is added on the cut side. A
-    passage whose TeX MathJax cannot typeset as it stands (a fragment with unbalanced braces,
-    commands outside any ``$``) gives None and is shown as source code instead of raw TeX.
+
+def _wrap_bare(piece: str) -> str:
+    """Each run of TeX in ``piece`` (text outside ``$``) inside ``\\( \\)``."""
+    def wrap(m):
+        tex = m.group(0)
+        if tex.startswith("\\") or re.search(r"[_^]", tex):
+            return f"\\({tex}\\)"
+        return tex
+    return _BARE_TEX.sub(wrap, piece)
+
+
+def _typeset(text: str):
+    """The passage ready for MathJax (``$ $``/``$$ $$``/``\\( \\)``, typeset on the page), or
+    None.
+
+    A passage cut inside a display equation lacks one ``$$``: it is added on the cut side. TeX
+    the seeds print outside any ``$`` (``\\dot{x}``, ``H_x``) is put inside ``\\( \\)``, so
+    the reader sees it typeset, never as source. A passage whose TeX MathJax cannot typeset as
+    it stands (a fragment with unbalanced braces, a lone ``$``) gives None; the register holds
+    none (``tests/test_quote_typeset.py``).
     """
     if text.count("$$") % 2:
         text = text + "$$" if text.lstrip().startswith("$$") else "$$" + text
     pieces = re.split(r"(\$\$.*?\$\$|\$[^$]*\$)", text, flags=re.S)
-    if (all(_balanced(m) for m in pieces[1::2])
-            and not any("$" in t or re.search(r"\\[A-Za-z]", t) for t in pieces[0::2])):
-        return text
-    return None
+    if not all(_balanced(m) for m in pieces[1::2]) or any("$" in t for t in pieces[0::2]):
+        return None
+    pieces[0::2] = [_wrap_bare(t) for t in pieces[0::2]]
+    if any(re.search(r"\\[A-Za-z]", re.sub(r"\\\(.*?\\\)", "", t)) or not _balanced(t)
+           for t in pieces[0::2]):
+        return None
+    return "".join(pieces)
 
 
 def _body(q: quotes.Quote, esc=html.escape) -> str:
@@ -173,6 +197,30 @@ def _resolve(app, doctree, docname):
         doctree.append(quote_list(keys=[node["key"] for node in refs]))
 
 
+def _has_tex(q: quotes.Quote) -> bool:
+    tex = _typeset(q.original)
+    return tex is not None and ("$" in tex or "\\(" in tex)
+
+
+def _load_mathjax(app, doctree):
+    """A page whose popovers hold TeX loads MathJax even when its own text has no maths.
+
+    Sphinx adds MathJax only to pages with equations (its math domain's ``has_equations``);
+    the popovers' passages are raw HTML, not maths nodes, so their page is marked here. Only
+    a MathJax served with the book (``trackbook.sphinx_offline_mathjax``) is added this way:
+    a page never asks a CDN for its popovers.
+    """
+    path = str(getattr(app.config, "mathjax_path", "") or "")
+    if not path or re.match(r"^(https?:)?//", path):
+        return
+    if any(_has_tex(quotes.quote(n["key"])) for n in doctree.findall(quote_ref)):
+        try:
+            domain = app.env.get_domain("math")
+        except Exception:  # noqa: BLE001  no math domain: nothing typesets anyway
+            return
+        domain.data["has_equations"][app.env.docname] = True
+
+
 def _check_source(app, docname, source):
     """``quotes_check_attributions``: flag unquoted attribution sentences of a page."""
     mode = app.config.quotes_check_attributions
@@ -211,6 +259,7 @@ def setup(app):
     app.add_css_file(CSS_NAME)
     app.connect("config-inited", _check_mode)
     app.connect("source-read", _check_source)
+    app.connect("doctree-read", _load_mathjax)
     app.connect("doctree-resolved", _resolve)
     app.connect("build-finished", _write_css)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

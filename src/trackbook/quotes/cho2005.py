@@ -62,6 +62,17 @@ QUOTES = [
           "Because the Condensation algorithm uses several candidates, it tracks easily in a "
           "cluttered background and can recover even when a temporary error occurs, but its "
           "computational complexity is high."),
+    Quote("cho2005.condensation_measurement", "§3.2, step ③",
+          r"③ 측정(Measurement) 모든 후보에 대해서 다음을 계산한다. "
+          r"$$\pi_t^i = p(\mathbf{z}_t | \mathbf{x}_t = \mathbf{s}_t^i)$$",
+          "③ Measurement: for every candidate, compute π_t^i = p(z_t | x_t = s_t^i) (no "
+          "likelihood function is printed)"),
+    Quote("cho2005.fig1_estimate", "§4.1, caption of Fig. 1",
+          r"(그림 1) 객체 후보들의 유사도, 회색 점들은 각 후보들의 위치와 그 유사도를 나타내고, "
+          r"검은색 점은 후보들에 의해 추정된 위치와 유사도를 나타낸다.",
+          "Fig. 1: the likelihood of the object candidates; the grey dots show each candidate's "
+          "position and likelihood, and the black dot the position estimated from the "
+          "candidates and its likelihood (how it is estimated is not printed)."),
     Quote("cho2005.mean_shift_weights", "§3.3, step ②",
           r"② $w_i = \sum_{u=1}^m \sqrt{\frac{\hat{q}_u}{\hat{p}_u(\hat{\mathbf{y}}_0)}} "
           r"\delta[h(\mathbf{x}_i) - u]$ 을 계산한다.",
@@ -97,6 +108,13 @@ QUOTES = [
           r"방향을 가지는 Mean-shift 벡터 방향으로 후보의 위치를 바꿔주는 방법을 이용한다.",
           "To this end, this paper raises the candidates' likelihood by moving each candidate's "
           "position along the mean-shift vector, which points in the gradient direction."),
+    Quote("cho2005.low_likelihood_waste", "§4.1, after Fig. 1",
+          r"이러한 낮은 유사도를 가지는 후보들은 추정단계(estimation step)에서 객체 위치를 "
+          r"추정하는데 기여도가 낮기 때문에, 이러한 후보들이 많이 생성될수록 시스템의 효율성은 "
+          r"떨어지게 된다.",
+          "Because such low-likelihood candidates contribute little to estimating the object's "
+          "position in the estimation step, the more of them are generated, the less efficient "
+          "the system becomes."),
     Quote("cho2005.motion_vector", "§4.2, before eq. 5",
           r"이러한 후보의 생성 문제를 해결하기 위해 본 논문에서는 객체의 모션 벡터(Motion "
           r"vector)를 이용한다.",
@@ -119,11 +137,11 @@ QUOTES = [
           "where n is the candidate (sample) index, I the number of pixels inside the ellipse, "
           "δ the Kronecker delta function, a is √(H_x² + H_y²), and f a normalisation factor."),
     Quote("cho2005.mean_shift_eq12", "§4.2, eq. 12",
-          r"g \left(\frac{\|\mathbf{y}_0^n - \mathbf{x}_i^n\|^2}{a} \right)}{\sum_{i=1}^n w_i^n "
-          r"g \left(\frac{\|\mathbf{y}_0^n - \mathbf{x}_i^n\|^2}{a} \right)} - \mathbf{y}_0^n "
-          r"\quad (12)$$",
-          "… g(‖y_0^n − x_i^n‖² / a) / Σ_i w_i^n g(‖y_0^n − x_i^n‖² / a) − y_0^n (12): the "
-          "mean-shift vector of candidate n, with the bandwidth a of eq. 10"),
+          r"$$\mathbf{y}^n = \frac{\sum_{i=1}^n \mathbf{x}_i^n w_i^n g \left(\frac{\|\mathbf{y}_0^n "
+          r"- \mathbf{x}_i^n\|^2}{a} \right)}{\sum_{i=1}^n w_i^n g \left(\frac{\|\mathbf{y}_0^n - "
+          r"\mathbf{x}_i^n\|^2}{a} \right)} - \mathbf{y}_0^n \quad (12)$$",
+          "y^n = Σ_i x_i^n w_i^n g(‖y_0^n − x_i^n‖² / a) / Σ_i w_i^n g(‖y_0^n − x_i^n‖² / a) "
+          "− y_0^n (12): the mean-shift vector of candidate n, with the bandwidth a of eq. 10"),
     Quote("cho2005.likelihood_rises_eq13", "§4.2, eq. 13",
           r"$$\rho[\mathbf{p}(\mathbf{y}_0^n), \mathbf{q}] \leq \rho[\mathbf{p}(\mathbf{y}_1^n), "
           r"\mathbf{q}] \quad \text{where } \mathbf{y}_1^n = \mathbf{y}_0^n + \mathbf{y}^n "

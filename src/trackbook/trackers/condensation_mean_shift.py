@@ -128,11 +128,11 @@ class CondensationParams(EllipseColourParams):
     noise_scale: float = param(0.0, 0.0, 0.3, 0.005,
                                "std of w_a: the size changes by a = 1 + w_a (book default 0, "
                                "fixed size, for all three trackers: the colour likelihood alone "
-                               "lets the size drift, mostly smaller; 08_mean_shift)",
+                               "lets the size drift, mostly smaller; the mean-shift chapter)",
                                paper=NOT_PRINTED,
                                why="eq. 1 has a size change a but no spread; the book fixes the "
                                    "size (0) because the colour likelihood lets it shrink "
-                                   "(08_mean_shift)")
+                                   "(the mean-shift chapter)")
     # §3.2 step ①: sample from the weighted set
     resampler: str = resampler_param("factored sampling (step ①)",
                                      reading="cho2005.condensation_sampling", paper="multinomial")
@@ -153,8 +153,8 @@ class CondensationMeanShiftParams(CondensationParams):
                               "(the paper preset) [quote: cho2005.likelihood_rises_eq13]; the "
                               "book repeats "
                               "steps ②-⑥ of §3.3 (halving, stop below eps) up to 10 times so "
-                              "each candidate reaches its hill top (08_mean_shift; "
-                              "preset='paper' runs one shift)")
+                              "each candidate reaches its hill top (preset='paper' runs "
+                              "one shift)")
     eps: float = param(0.5, 0.01, 10.0, 0.05, "mean-shift stops when the step is below eps "
                        "pixels", paper=NOT_PRINTED,
                        why="step ⑥ of §3.3 names epsilon without a value; half a pixel")

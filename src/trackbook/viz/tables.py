@@ -7,14 +7,16 @@ import re
 from .._markdown import table
 
 
-def departures_table(name) -> str:
+def departures_table(name, params=None) -> str:
     """The book's departures from the paper for tracker ``name``, as a Markdown table.
 
     Columns param | paper | book | why, one row per field whose default is the book's choice
     (``trackers.departures(name)``): the printed value (or "not printed"), the book's default
     and one line on why (without the quote references it carries in the source). A printed value that is the
     book's reading of an ambiguous passage (``trackbook.quotes.fields``) is marked "(a
-    reading)", so that a reading never passes for a printed value. A chapter shows it with ``display(Markdown(viz.departures_table("color-pf")))``.
+    reading)", so that a reading never passes for a printed value. A chapter shows it with
+    ``display(Markdown(viz.departures_table("color-pf")))``; ``params`` (a set of field
+    names) keeps only those rows.
     """
     from .. import trackers
     from ..quotes import TEXT_REFERENCE
@@ -22,7 +24,7 @@ def departures_table(name) -> str:
 
     rows = [{**r, "paper": f"{r['paper']} (a reading)"}
             if state(name, r["param"])[0] == "reading" else r
-            for r in trackers.departures(name)]
+            for r in trackers.departures(name) if params is None or r["param"] in params]
     # the quote references of a why are for the source's reader; the chapter beside the table
     # shows the passages themselves
     drop = re.compile(r"\s*" + TEXT_REFERENCE.pattern)
