@@ -101,8 +101,9 @@ def restate(cls, name: str, *, paper: Any = _UNSET, why: str = "",
     Default, range, slider, step, doc and choices stay those of ``cls``; ``paper``, ``why``,
     ``paper_value``, ``printed`` and ``reading`` are given anew (as for :func:`param`). A
     subclass uses it when a value its base class can only read is printed for the subclass's
-    tracker: Lee et al. (2012) print N = 100 for their proposed tracker, which extends the
-    class of a baseline whose settings they do not print.
+    tracker: Lee et al. (2012) print N = 100 for their proposed tracker [quote: lee2012.n100],
+    which extends the class of a baseline whose settings they do not print
+    [quote: lee2012.baselines].
 
     Examples
     --------

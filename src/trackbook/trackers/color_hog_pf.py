@@ -31,8 +31,8 @@ class ColorHogPFParams(ColorPFParams):
     et al. 2010).
 
     ``03_hog`` builds it. Like ``color-pf`` it is a baseline whose settings the paper does
-    not print: each value of section V is a reading here (``reading=``), printed for the
-    proposed ``color-hog-ipca`` only; ``trackers.departures("color-hog-pf")`` lists the
+    not print [quote: lee2012.baselines]: each value of section V is a reading here
+    (``reading=``), printed for the proposed ``color-hog-ipca`` only; ``trackers.departures("color-hog-pf")`` lists the
     book's choices.
     """
 

@@ -51,7 +51,8 @@ N_COLOR = int(np.prod(HSV_BINS))
 
 
 #: Why a value of section V is a reading for the baselines: Lee et al. print it for their
-#: proposed tracker and compare with [14, 20] without printing their settings.
+#: proposed tracker and compare with [14, 20] without printing their settings
+#: [quote: lee2012.baselines].
 BASELINE_READING = ("printed in section V for the proposed tracker only "
                     "[quote: lee2012.baselines]; the book reads the baselines as run with the "
                     "same value")
@@ -73,7 +74,8 @@ class ColorPFParams:
 
     ``02_particle_filters`` builds it. Section V prints its values for the proposed tracker
     (``color-hog-ipca``, whose params restate them as printed); section VI compares it with
-    the colour-only and colour + HOG filters of [14, 20] without printing their settings, so
+    the colour-only and colour + HOG filters of [14, 20] without printing their settings
+    [quote: lee2012.baselines], so
     for this baseline each value of section V is a reading (``reading=``, marked "(a
     reading)" in the tables); ``trackers.departures("color-pf")`` lists the fields whose
     default is the book's choice, with ``why``.
