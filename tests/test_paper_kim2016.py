@@ -12,10 +12,13 @@ from trackbook.features import edge_rays as er
 from ._paper import assert_fields_are
 
 PRINTED = {
-    "n_particles": 999,   # section 3, before eq. 2: "at most 999 particles were used"
+    # section 3, before eq. 2: "at most 999 particles were used" (최대 999개), a maximum the
+    # paper preset reads as the setting: a reading, not a printed setting
+    "n_particles": 999,
     "ratio_low": 0.8,     # section 3.2, after eq. 5: "the range of Ratio is 0.8-1.2"
     "ratio_high": 1.2,    # same sentence
 }
+READINGS = {"n_particles"}
 NOT_IN_PAPER = {"sigma", "velocity_gain", "resampler", "canny_low",
                 "canny_high", "blur", "max_ray", "adapt_scale", "model_rate"}
 
@@ -32,8 +35,13 @@ def test_ratio_window_constant_is_the_printed_one():
 
 def test_fields_are_the_printed_and_the_not_printed():
     assert_fields_are("edge-ray-pf", PRINTED, NOT_IN_PAPER)
+    from trackbook.quotes import fields
+    for name in PRINTED:
+        assert fields.state("edge-ray-pf", name)[0] == (
+            "reading" if name in READINGS else "printed"), name
     # the two filters it compares with: the paper names them and prints none of their settings
-    # (its 999 particles are the proposed filter's: the paper preset gives them 999 as a reading)
+    # (its at most 999 particles are the proposed filter's: the paper preset gives them 999 as a
+    # reading)
     shared = {"sigma", "velocity_gain", "resampler"}
     for name in ("hsi-color-pf", "hog-pf"):
         assert_fields_are(name, {}, shared | {"n_particles", "obs_sigma"})

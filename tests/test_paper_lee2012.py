@@ -36,6 +36,15 @@ def test_printed_values_are_pinned(name):
         assert f[key].metadata["paper"] == value, key
 
 
+def test_section_v_is_printed_for_the_proposed_tracker_only():
+    # section V describes "the proposed algorithm"; section VI compares it with [14, 20]
+    # without their settings: a reading for color-hog-pf, printed for color-hog-ipca
+    from trackbook.quotes import fields
+    for key in PRINTED["color-hog-pf"]:
+        assert fields.state("color-hog-pf", key)[0] == "reading", key
+        assert fields.state("color-hog-ipca", key)[0] == "printed", key
+
+
 def test_no_K_is_credited_to_the_paper():
     f = fields("color-hog-ipca")
     for key in NOT_PRINTED_IPCA:

@@ -1,7 +1,9 @@
-"""``color-pf`` against the values Lee et al. (2012) print (section V of the paper).
+"""``color-pf`` against the values Lee et al. (2012) print in section V.
 
-The expected numbers are copied from the paper, not from the code: a changed default fails
-here unless the field says why the book departs from the paper.
+Section V prints them for the proposed tracker; section VI compares it with this colour-only
+filter [14, 20] without printing its settings, so for ``color-pf`` each is the book's reading
+(the paper preset runs them). The expected numbers are copied from the paper, not from the
+code: a changed default fails here unless the field says why the book departs from the paper.
 """
 import numpy as np
 
@@ -25,6 +27,14 @@ NOT_IN_PAPER = {"min_size"}     # eq. 9 has no floor on w and h
 
 def test_fields_are_the_printed_and_the_not_printed():
     assert_fields_are("color-pf", PRINTED, NOT_IN_PAPER)
+
+
+def test_section_v_values_are_readings_for_the_baseline():
+    from trackbook.quotes import fields
+    assert {fields.state("color-pf", k)[0] for k in PRINTED} == {"reading"}
+    rows = {line.split("|")[1].strip(): line.split("|")[2].strip()
+            for line in viz.departures_table("color-pf").splitlines()[2:]}
+    assert rows["sigma_color"] == "0.4 (a reading)" and rows["init"] == "frame (a reading)"
 
 
 def test_paper_preset_builds_the_printed_method():

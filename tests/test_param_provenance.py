@@ -1,8 +1,13 @@
 """The passage behind each printed value is declared on the param itself (``printed=`` /
 ``reading=``), and :func:`trackbook.quotes.fields.state` reads it from there.
 
-The oracle is the table the declarations replaced, kept here as it was: for every registered
-tracker and every one of its params the state read from the declarations equals the table's.
+The oracle is the table the declarations replaced, corrected where it called a value
+printed that its passage gives only for another tracker or only as a maximum: Lee et al.
+(2012) print section V's values for their proposed tracker and none of the settings of the
+two filters they compare with, so for ``color-pf`` and ``color-hog-pf`` those values are
+readings; Kim et al. (2016) use "at most 999" particles, a maximum that the paper preset reads
+as the setting. For every registered tracker and every one of its params the state read from
+the declarations equals the table's.
 """
 
 from __future__ import annotations
@@ -16,22 +21,26 @@ from trackbook.params import param
 from trackbook.quotes import fields
 
 # -- the former second table (trackbook.quotes.fields.FIELDS), as it was ---------------------
-_LEE2012_COLOR = {
-    "n_particles": ("lee2012.n100", "printed"),
-    "sigma_color": ("lee2012.sigma04", "printed"),
-    "size_noise": ("lee2012.motion_noise", "printed"),
-    "vx_noise": ("lee2012.motion_noise", "printed"),
-    "vy_noise": ("lee2012.motion_noise", "printed"),
-    "resampler": ("lee2012.resample_cumulative", "printed"),
-    "init": ("lee2012.init_whole_frame", "printed"),
+# section V's values, printed for the proposed tracker (color-hog-ipca) ...
+_LEE2012_SECTION_V = {
+    "n_particles": "lee2012.n100",
+    "sigma_color": "lee2012.sigma04",
+    "size_noise": "lee2012.motion_noise",
+    "vx_noise": "lee2012.motion_noise",
+    "vy_noise": "lee2012.motion_noise",
+    "resampler": "lee2012.resample_cumulative",
+    "init": "lee2012.init_whole_frame",
+    "alpha": "lee2012.alpha01",
+    "sigma_hog": "lee2012.sigma04",
 }
-_LEE2012_HOG = {
-    **_LEE2012_COLOR,
-    "alpha": ("lee2012.alpha01", "printed"),
-    "sigma_hog": ("lee2012.sigma04", "printed"),
-}
+_COLOR_FIELDS = ("n_particles", "sigma_color", "size_noise", "vx_noise", "vy_noise",
+                 "resampler", "init")
+# ... and read as the settings of the two baselines, which section VI compares with [14, 20]
+# without printing theirs
+_LEE2012_COLOR = {k: (_LEE2012_SECTION_V[k], "reading") for k in _COLOR_FIELDS}
+_LEE2012_HOG = {k: (v, "reading") for k, v in _LEE2012_SECTION_V.items()}
 _LEE2012_IPCA = {
-    **_LEE2012_HOG,
+    **{k: (v, "printed") for k, v in _LEE2012_SECTION_V.items()},
     "T": ("lee2012.t40", "printed"),
     "learn_threshold": ("lee2012.unfiltered_accumulation", "printed"),
     "gate_k": ("lee2012.unfiltered_accumulation", "printed"),
@@ -57,7 +66,8 @@ FIELDS: dict[str, dict[str, tuple[str, str]]] = {
     "color-hog-pf": _LEE2012_HOG,
     "color-hog-ipca": _LEE2012_IPCA,
     "edge-ray-pf": {
-        "n_particles": ("kim2016.max999", "printed"),
+        # "at most 999" (최대 999개): a maximum, read as the setting
+        "n_particles": ("kim2016.max999", "reading"),
         "ratio_low": ("kim2016.ratio_window", "printed"),
         "ratio_high": ("kim2016.ratio_window", "printed"),
     },

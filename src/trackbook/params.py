@@ -93,6 +93,38 @@ def param(default: Any, lo: float | None = None, hi: float | None = None,
     return dataclasses.field(default=default, metadata=meta)
 
 
+def restate(cls, name: str, *, paper: Any = _UNSET, why: str = "",
+            paper_value: Any = _UNSET, printed: str | None = None,
+            reading: str | None = None):
+    """The field ``name`` of the params dataclass ``cls`` again, with a new provenance.
+
+    Default, range, slider, step, doc and choices stay those of ``cls``; ``paper``, ``why``,
+    ``paper_value``, ``printed`` and ``reading`` are given anew (as for :func:`param`). A
+    subclass uses it when a value its base class can only read is printed for the subclass's
+    tracker: Lee et al. (2012) print N = 100 for their proposed tracker [quote: lee2012.n100],
+    which extends the class of a baseline whose settings they do not print
+    [quote: lee2012.baselines].
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Base:
+    ...     n: int = param(100, 1, 1000, 1, "N", reading="lee2012.n100", paper=100)
+    >>> @dataclasses.dataclass(frozen=True)
+    ... class Proposed(Base):
+    ...     n: int = restate(Base, "n", printed="lee2012.n100", paper=100)
+    >>> [provenance(f) for f in dataclasses.fields(Proposed)]
+    [('printed', 'lee2012.n100')]
+    """
+    f = _field(cls, name)
+    m = f.metadata
+    slider = m["slider"] if tuple(m["slider"]) != (m["lo"], m["hi"]) else None
+    return param(f.default, m["lo"], m["hi"], m["step"], m["doc"], m["choices"],
+                 paper=paper, why=why, paper_value=paper_value, slider=slider,
+                 printed=printed, reading=reading)
+
+
 def provenance(field: dataclasses.Field) -> tuple[str, str | None]:
     """``(state, quote key)`` of the field's printed value: ``("printed", key)`` (its passage
     states it), ``("reading", key)`` (the book's reading of its passage) or

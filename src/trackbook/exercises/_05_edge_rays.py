@@ -41,8 +41,12 @@ Eq. 6 compares rays direction by direction. Write the *sorted* reading (sort bot
 sets before differencing): which reading gives the higher weight to the model's own rays
 turned by 180° (`np.roll(M, 4)`), and why?
 --- solution
-The turned rays have the same sorted values (Ratio 1, sorted weight 1) but differ direction by
-direction, so eq. 6 as the book reads it scores them lower.
+The sorted reading: the turned rays have the same sorted values, so the Ratio is 1 and the
+sorted weight 1, the highest possible. Direction by direction they differ, so eq. 6 as the
+book reads it scores them lower. With exercise 5.1's $M$ the turned rays are
+$(6, 3, 8, 4, 5, 9, 2, 7)$, $\sum_j |p_j - m_j| = 1 + 6 + 6 + 3 + 1 + 6 + 6 + 3 = 32$ and
+$w = 1 - 32/44 = 3/11 \approx 0.27$: a particle on the far side of the target looks perfect
+to the sorted reading.
 
 === 5.5 ★★★ implement | The Ratio of eq. 5
 Implement eq. 5 yourself (`my_ratio(p, m)`: sort, mean of the 4th and 5th, divide) without
@@ -61,12 +65,12 @@ the same on the seven sequences.
 
 === 5.7 ★ pen and paper | Condensation's contour likelihood
 Condensation's likelihood with $\sigma = 3$ and the cap $\mu = 10$: hypothesis A has four
-normals with the nearest edge at 1, 2 and 4 px and one normal with no edge within $\mu$;
+normals, three with the nearest edge at 1, 2 and 4 px and one with no edge within $\mu$;
 hypothesis B has all four at 3 px. Compute both log-likelihoods (up to the common constant).
 Which is more likely, and what would A's missing edge do without the cap $\mu$?
 --- solution
 A: $-(1 + 4 + 16 + 100)/18 = -121/18 \approx -6.72$; B: $-(4 \cdot 9)/18 = -2$. B is
-$e^{4.7}$, about 100 times more likely: one missing edge costs A more than its three close
+$e^{85/18} \approx e^{4.7}$, about 110 times more likely: one missing edge costs A more than its three close
 edges earn. Without the cap the missing edge has no finite distance, so A's likelihood would
 be 0: one normal without an edge would veto the hypothesis.
 

@@ -22,13 +22,14 @@ from ..params import NOT_PRINTED, param
 class CentrePFParams:
     """The knobs every kim2016 tracker shares: the filter, not the observation model."""
 
-    # Kim et al. (2016), section 3 before eq. 2: "at most 999 particles" (the seed text has no
-    # page numbers; the comments name the passage).
+    # Kim et al. (2016), section 3 before eq. 2: "at most 999 particles" (최대 999개): a
+    # maximum, not a setting, so 999 in the paper preset is the book's reading of it.
     n_particles: int = param(
-        300, 1, 999, 1, "N, number of particles (Kim et al. 2016: up to 999)",
-        printed="kim2016.max999", paper=999,
-        why="300 keeps a chapter's clips within seconds; 999 is the most the paper gives its "
-        "proposed filter [quote: kim2016.max999]")
+        300, 1, 999, 1, "N, number of particles (Kim et al. 2016: at most 999)",
+        reading="kim2016.max999", paper=999,
+        why="the paper gives only a maximum, at most 999 particles [quote: kim2016.max999]; "
+        "the paper preset reads it as the setting, and 300 keeps a chapter's clips within "
+        "seconds")
     sigma: float = param(
         4.0, 0.5, 40.0, 0.5, "random-walk sigma of the prediction (and of the Gaussian start "
         "spread around the box centre), pixels", paper=NOT_PRINTED,

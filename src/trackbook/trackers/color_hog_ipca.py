@@ -52,9 +52,10 @@ import numpy as np
 from ..features.color import bhattacharyya_coefficient
 from ..filters.lee2012_models import similarity
 from ..learning.incremental_svd import IncrementalSVD
-from ..params import NOT_PRINTED, param
+from ..params import NOT_PRINTED, param, restate
 from .base import redetecting
-from .color_hog_pf import ColorHogPF, ColorHogPFParams
+from .color_hog_pf import SIGMA_HOG_WHY, ColorHogPF, ColorHogPFParams
+from .color_pf import INIT_WHY, SIGMA_COLOR_WHY, ColorPFParams
 from .registry import register
 
 
@@ -98,6 +99,26 @@ class ColorHogIPCAParams(ColorHogPFParams):
     features) in the paper preset.
     """
 
+    # Section V prints these for the proposed tracker, this one (the pseudocode is "the
+    # proposed algorithm's"): printed here, a reading for the baselines whose class this
+    # extends (color_pf.BASELINE_READING).
+    n_particles: int = restate(ColorPFParams, "n_particles", printed="lee2012.n100",
+                               paper=100)
+    sigma_color: float = restate(ColorPFParams, "sigma_color", printed="lee2012.sigma04",
+                                 paper=0.4, why=SIGMA_COLOR_WHY)
+    size_noise: float = restate(ColorPFParams, "size_noise", printed="lee2012.motion_noise",
+                                paper=2.5)
+    vx_noise: float = restate(ColorPFParams, "vx_noise", printed="lee2012.motion_noise",
+                              paper=6.5)
+    vy_noise: float = restate(ColorPFParams, "vy_noise", printed="lee2012.motion_noise",
+                              paper=2.5)
+    resampler: str = restate(ColorPFParams, "resampler", printed="lee2012.resample_cumulative",
+                             paper="multinomial")
+    init: str = restate(ColorPFParams, "init", printed="lee2012.init_whole_frame",
+                        paper="frame", why=INIT_WHY)
+    alpha: float = restate(ColorHogPFParams, "alpha", printed="lee2012.alpha01", paper=0.1)
+    sigma_hog: float = restate(ColorHogPFParams, "sigma_hog", printed="lee2012.sigma04",
+                               paper=0.4, why=SIGMA_HOG_WHY)
     # T = 40: end of section II ("T = 40"), n = 40 in section IV.
     T: int = param(40, 2, 200, 1, "frames collected before the first SVD (section II, V)",
                    printed="lee2012.t40", paper=40)

@@ -58,19 +58,47 @@ def plot_sorted_rays(m_dis, p_dis, ax=None, labels=("model M", "particle p")):
     return ax
 
 
-def plot_weight_map(frame, wmap, box=None, ax=None, title=None):
-    """The eq. 6 weight of every pixel (0 outside the Ratio window) over the dimmed frame."""
+def plot_weight_map(frame, wmap, box=None, ax=None, title=None, *, grow=0, view=None,
+                    marks=(), colorbar=True):
+    """The eq. 6 weight of every pixel (0 outside the Ratio window) over the darkened frame.
+
+    Parameters
+    ----------
+    frame : (H, W, 3) BGR frame, drawn in dark grey so that high weights (bright in the
+        ``inferno`` map, fixed to 0..1) stand out.
+    wmap : (H, W) weights, e.g. :func:`trackbook.features.edge_rays.weight_map`.
+    box : a box to outline (x, y, w, h), or None.
+    grow : draw each pixel with the largest weight within ``grow`` pixels (a square of side
+        2 grow + 1): isolated one-pixel peaks stay visible on a whole frame. 0 draws the
+        weights as they are (for a zoomed ``view``).
+    view : ``(x0, x1, y0, y1)``, the part of the frame to show, or None for all of it.
+    marks : points ``(x, y)`` (pixel centres) to circle, e.g. the highest weight.
+    colorbar : add a colour bar labelled w (eq. 6).
+    """
+    import cv2
+
     if ax is None:
         _, ax = plt.subplots(figsize=(4.8, 3.6))
-    ax.imshow(bgr2rgb(frame), alpha=0.5)
-    m = np.ma.masked_where(wmap <= 0, wmap)
-    im = ax.imshow(m, cmap="inferno", vmin=0, vmax=1, alpha=0.85)
+    grey = bgr2rgb(frame).astype(float).mean(axis=2) / 255
+    ax.imshow(grey * 0.35, cmap="gray", vmin=0, vmax=1, interpolation="nearest")
+    shown = np.asarray(wmap, np.float32)
+    if grow:
+        shown = cv2.dilate(shown, np.ones((2 * grow + 1, 2 * grow + 1), np.uint8))
+    m = np.ma.masked_where(shown <= 0, shown)
+    im = ax.imshow(m, cmap="inferno", vmin=0, vmax=1, interpolation="nearest")
     if box is not None:
         draw_box(ax, box, GT_COLOR)
+    for x, y in marks:
+        ax.plot(x, y, "o", ms=12, mfc="none", mec="white", mew=1.5)
+    if view is not None:
+        x0, x1, y0, y1 = view
+        ax.set_xlim(x0 - 0.5, x1 + 0.5)
+        ax.set_ylim(y1 + 0.5, y0 - 0.5)
     ax.set_axis_off()
     if title:
         ax.set_title(title, fontsize=9)
-    plt.colorbar(im, ax=ax, fraction=0.035, label="w (eq. 6)")
+    if colorbar:
+        plt.colorbar(im, ax=ax, fraction=0.035, label="w (eq. 6)")
     return ax
 
 
