@@ -39,7 +39,7 @@ class ColorHogPFParams(ColorPFParams):
                              printed="lee2012.sigma04", paper=0.4,
                              why="same reason as sigma_color: at 0.4 the HOG weights are nearly "
                              "flat; 0.2 scored higher on the seven public sequences we tuned on "
-                             "(03_hog)")
+                             "(the HOG chapter)")
 
 
 
