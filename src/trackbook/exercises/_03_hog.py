@@ -16,7 +16,8 @@ that is left). The V channel of HSV halves too, so pixels move to other value bi
 colour ρ drops.
 
 === 3.2 ★ use | Which bin is "up"?
-The 8 orientation bins are $[u\,\pi/4, (u+1)\,\pi/4)$ of the angle
+The 8 orientation bins are $[u\,\pi/4, (u+1)\,\pi/4)$, $u = 0, \dots, 7$ (the library counts
+from 0, eq. 5 from 1), of the angle
 $\tilde\theta = \operatorname{atan2}(g_y, g_x) \in [0, 2\pi)$ (eq. 3–4). Which bin `u` does a
 gradient pointing straight *up* the image fall into? Why is it not bin 2?
 --- solution
@@ -37,7 +38,11 @@ Run `color-hog-pf` on the night clip with $\alpha$ = 0, 0.02, 0.1 and 0.5
 (seeds 0–2). How does the mean AUC move, and how does that fit the chapter's measurement of
 the two features at night?
 --- solution
-The colour term decides as soon as it has any weight, because the HOG term is flat at night.
+The mean AUC falls as $\alpha$ grows, and most of the fall comes with the first, small weights
+on colour, below $\alpha = 0.1$; beyond it little more is lost. That fits the measurement: at night
+HOG's likelihood varies less across the candidates than colour's, so even a small weight on
+colour lets colour, the feature more often off target at night, carry most of the spread of
+the fused weights and decide.
 
 === 3.5 ★★★ implement | Fusing the two likelihoods
 Write `my_fuse(rho_c, rho_h, alpha, sigma)`: the normalised particle weights of eq. 14 from
@@ -48,7 +53,10 @@ get $1$ and $\tfrac12(e^{-1} + 1)$ before normalising. The check uses that case 
 $\alpha = 1$ (colour alone).
 --- solution
 $(1 - 0.9) / (2 \cdot 0.05) = 1$, so the second particle's colour term is $e^{-1}$; its HOG
-term is $e^0 = 1$. The constant $1/\sqrt{2\pi\sigma^2}$ cancels in the normalisation.
+term is $e^0 = 1$. The constant $1/\sqrt{2\pi\sigma^2}$ cancels in the normalisation. The
+HOG term here is flat: with colour alone ($\alpha = 1$) the first particle gets
+$1/(1 + e^{-1}) \approx 0.73$ of the weight, with the flat HOG term at $\alpha = 1/2$ only
+$1/(1 + \tfrac12(e^{-1} + 1)) \approx 0.59$. Same order, pulled towards uniform.
 
 === 3.6 ★★★ implement | The gradient as a loop
 Write `gx_loop(P)`: the horizontal gradient of eq. 2 (central differences
@@ -70,5 +78,7 @@ a cell's histogram is a sum of magnitudes, so the whole histogram is multiplied 
 dividing by its norm removes $c$. For $c < 0$ the angle turns by $\pi$: bin $u$ becomes bin
 $u + 4 \pmod 8$, which is why a signed descriptor tells inverted contrast apart (exercise 3.3).
 Clipping breaks the linear relation where pixels saturate, so there the gradients no longer
-scale; that and the rounding of integer images is what is left in exercise 3.1.
+scale. Exercise 3.1 halves the frame ($c = 1/2$, $b = 0$), which cannot saturate a pixel:
+what is left there is the rounding of the integer halving alone (on a float copy of the frame
+the two descriptors are identical).
 """

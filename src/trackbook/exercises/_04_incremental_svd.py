@@ -28,10 +28,11 @@ mean effective sample size after frame $T$ (`result.extras["ess"][41:]`, the eff
 size of the {doc}`particle-filter chapter <02_particle_filters>`; 100 particles). Which feature
 map leaves the weights nearly uniform? Answer `"sqrt"` or `"raw"`, and say why.
 --- solution
-Raw histograms sum to 1 over hundreds of bins: their norm is about 0.1, so every particle's
-reconstruction error is tiny too, $\exp(-D^2 / 2\sigma^2)$ is about 1 for all of them and the
-weights are nearly uniform (ESS close to $N$): the likelihood no longer tells the particles
-apart.
+`"raw"`. Raw histograms sum to 1 over hundreds of bins, so their Euclidean norm is far below
+1 (0.1–0.4 on the sample clips' targets) and every particle's reconstruction error is at most
+that norm: $\exp(-D^2 / 2\sigma^2)$ differs little between the particles and the weights are
+nearly uniform (ESS close to $N$): the likelihood no longer tells the particles apart. The
+square root has norm 1, and its errors spread over a range that σ can resolve.
 
 === 4.4 ★★ pen and paper | Twice the distance
 With a single learned appearance $u = \sqrt{h_{ref}}$, show that

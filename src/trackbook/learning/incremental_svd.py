@@ -15,7 +15,9 @@ middle matrix R and taking its SVD R = U~ Sigma~ V~^T gives (eq. 7)
 so V never has to be stored. Ross et al. 2008 (the paper's [15]) add two things used here:
 
 - **forgetting**: Sigma is multiplied by f <= 1 before each update, so a frame seen j updates
-  ago weighs f^j; the paper's "remove old features" (section II);
+  ago is scaled by f^j and weighs f^(2j) in A A^T, whose eigenvectors are U (a basis
+  remembers about 1 / (1 - f^2) frames); the book's alternative to the paper's "remove old
+  features" (section II), which ``color-hog-ipca`` reads as a window;
 - **mean tracking** (``centre=True``): the subspace is fitted to mean-centred data, with the
   correction column sqrt(n m / (n + m)) (mu_B - mu_A) that makes the update exact, and the
   effective count n <- f n + m.

@@ -126,7 +126,8 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
     t.init(clip.frames[0], clip.groundtruth[0])
     w, h = clip.groundtruth[0][2:]
     images, index, boxes, meas, windows, captions, gts, err = [], [], [], [], [], [], [], []
-    for k in range(1, min(n_frames, len(clip))):
+    n = len(clip) if n_frames is None else min(n_frames, len(clip))
+    for k in range(1, n):
         f = clip.frames[k]
         ok, box = t.update(f)
         x_pred = t.prediction[0] if not ok else None
@@ -251,11 +252,15 @@ def mean_shift_climb(clip="occluder", frame=8, start_offset=(-25, 10), max_iter=
                      note="One climb: each step is one mean-shift iteration.")
 
 
-def subspace_drift(clip="robot-corridor-day", n_frames=60, seed=0, every=2, **params) -> Animation:
-    """The learned colour subspace of ``color-hog-ipca`` over time (Lee et al. 2012, eq.
-    13-16 and the incremental SVD of Ross et al. 2008): beside each frame, the reference
-    histogram (grey), its reconstruction from the current basis (orange) and the first basis
-    vector (blue); the curve is the fraction of the reference the basis fails to explain."""
+def subspace_drift(clip="robot-corridor-day", n_frames=None, seed=0, every=3,
+                   **params) -> Animation:
+    """The learned colour subspace of ``color-hog-ipca`` over time (Lee et al. 2012, eq. 6-7
+    and 12-13; the incremental SVD of Ross et al. 2008): beside each frame, the first frame's
+    histogram (grey; its square root when the tracker learns sqrt(h)), its reconstruction
+    from the current basis (orange) and the first basis vector (blue); the curve is the
+    fraction of that first-frame feature the basis fails to explain, ||x - U U^T x|| / ||x||
+    (empty before the basis exists, at frame T). ``n_frames=None`` plays the whole clip:
+    the basis needs T frames before it exists, and more to move."""
     import cv2
 
     from .. import trackers as _trackers
@@ -264,24 +269,26 @@ def subspace_drift(clip="robot-corridor-day", n_frames=60, seed=0, every=2, **pa
     t = _trackers.create("color-hog-ipca", seed=seed, **params)
     t.init(clip.frames[0], clip.groundtruth[0])
     images, boxes, resid, captions, gts = [], [], [], [], []
-    for k in range(1, min(n_frames, len(clip))):
+    n = len(clip) if n_frames is None else min(n_frames, len(clip))
+    for k in range(1, n):
         f = clip.frames[k]
         ok, box = t.update(f)
         if k % every:
             continue
         ref = t.reference.get("color")
         basis = (t.basis or {}).get("color")
-        panel = np.full((f.shape[0], 200, 3), 255, np.uint8)
+        # one pixel column per bin, so all 256 colour bins are drawn
+        panel = np.full((f.shape[0], 256, 3), 255, np.uint8)
         r = np.nan
         if ref is not None:
             x = np.sqrt(ref) if t._learn_root else ref
             rec = basis @ (basis.T @ x) if basis is not None else None
-            r = float(np.linalg.norm(x - rec) / np.linalg.norm(x)) if rec is not None else 1.0
+            r = float(np.linalg.norm(x - rec) / np.linalg.norm(x)) if rec is not None else np.nan
             _bars(panel, x, (150, 150, 150), 0)
             if rec is not None:
                 _bars(panel, rec, (0, 159, 230), 1)
                 _bars(panel, np.abs(basis[:, 0]), (178, 114, 0), 2)
-        cv2.putText(panel, "ref / recon / u1", (4, 14), cv2.FONT_HERSHEY_SIMPLEX, 0.4,
+        cv2.putText(panel, "frame 0 / recon / u1", (4, 14), cv2.FONT_HERSHEY_SIMPLEX, 0.4,
                     (0, 0, 0), 1, cv2.LINE_AA)
         images.append(np.hstack([f, panel]))
         boxes.append(box)
@@ -290,11 +297,13 @@ def subspace_drift(clip="robot-corridor-day", n_frames=60, seed=0, every=2, **pa
         captions.append(f"frame {k} \u00b7 {t.n_learned} frames learned"
                         + ("" if basis is not None else " \u00b7 no basis yet"))
     run = run_entry("color-hog-ipca", boxes, captions=captions, curve=resid,
-                    curve_label="unexplained fraction", curve_x="frame",
+                    curve_label="frame 0's colour left unexplained",
+                    curve_x="frame",
                     scores=f"color-hog-ipca on {clip.name}: the colour subspace learned online")
     return Animation(clip.name, images, {"subspace": run}, gt=gts,
-                     note="Right panel: reference histogram, its reconstruction from the "
-                          "learned basis, and the first basis vector.")
+                     note="Right panel: the first frame's colour feature, its "
+                          "reconstruction from the learned basis, and the first basis "
+                          "vector.")
 
 
 def _bars(panel, v, color, row):

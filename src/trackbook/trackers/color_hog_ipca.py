@@ -12,7 +12,10 @@ Decisions where the paper is silent or wrong:
   missing); we read D as the residual norm D = ||z - U U^T z||_2. They print exp(-D / 2 sigma^2),
   D and not D^2 as in eq. 10-11 [quote: lee2012.likelihood_eq12]: ``exponent="D"`` runs that
   (the paper preset), ``exponent="D2"`` (the book's default) puts D^2 in the exponent as eq.
-  10-11 do, so that the two halves of the likelihood have one scale.
+  10-11 do, so that both halves of the likelihood are Gaussian in a distance. Their scales
+  still differ: one sigma serves before and after T (as in the paper, every sigma = 0.4
+  [quote: lee2012.sigma04]), and on z = sqrt(h) the squared reconstruction error is about
+  twice eq. 10-11's D^2 (next item).
 - Section IV keeps A = {I_1 ... I_n} with n = 40, adds m = 1 column per frame and removes old
   features [quote: lee2012.window40] [quote: lee2012.remove_old]: ``window=40`` (the paper
   preset) keeps exactly the last 40 feature vectors, a reading of those two passages (which
@@ -22,9 +25,11 @@ Decisions where the paper is silent or wrong:
   ||sqrt(h) - sqrt(h_ref)||^2 = 2 (1 - rho). The reconstruction error ||z - U U^T z||^2 is
   therefore about 2 (1 - rho), twice the D^2 = 1 - rho of eq. 10-11 (``04_incremental_svd``
   measures the ratio): the same sigma is effectively sqrt(2) narrower after frame T, and
-  beta = 0.7 weighs the reference and subspace terms about 0.7 : 0.6, not 0.7 : 0.3. On raw
-  histograms (sum 1, norm ~0.1) every reconstruction error is ~0.01 and exp(-D^2 / 0.32) ~ 1
-  for every particle: the weights would carry no information. ``feature_map="raw"`` keeps the
+  beta = 0.7 weighs the reference and subspace terms about 0.7 : 0.6, not 0.7 : 0.3. Raw
+  histograms sum to 1 and have norms of 0.1-0.4 on the sample clips, so every squared
+  reconstruction error is at most ~0.15, exp(-D^2 / 2 sigma^2) differs little between the
+  particles and the weights are nearly uniform (exercise 4.3 measures the effective sample
+  size). ``feature_map="raw"`` keeps the
   raw histograms for comparison.
 - Checked learning (beyond the paper, whose conclusion blames unchecked accumulation):
 
@@ -155,9 +160,11 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           "e = 'D' as eq. 12-13 print it, or 'D2' = D^2 as eq. 10-11, with "
                           "D = ||z - U U^T z||", choices=("D2", "D"),
                           printed="lee2012.likelihood_eq12", paper="D",
-                          why="with D^2 the subspace term has the scale of eq. 10-11's "
-                          "D^2 = 1 - rho, so sigma means the same before and after T "
-                          "(04_incremental_svd)")
+                          why="with D^2 the likelihood is Gaussian in the reconstruction "
+                          "error, as eq. 10-11 are in D; the same sigma is used before and "
+                          "after T (as in the paper), but D^2 on sqrt(h) is about twice eq. "
+                          "10-11's 1 - rho, so sigma is effectively sqrt(2) narrower after T "
+                          "(the incremental-SVD chapter)")
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
                                    "(0 = every frame, the paper preset)",
@@ -168,7 +175,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           reading="lee2012.likelihood_eq12", paper=0.0,
                           why="the book's addition: the first frame keeps pulling drifted "
                           "subspaces back; 0.7 chosen on the seven public sequences we tuned "
-                          "on (04_incremental_svd, lab notes)")
+                          "on (the incremental-SVD chapter, lab notes)")
     gate_k: float = param(0.0, 0.0, 10.0, 0.5,
                           "relative gate: learn a frame only if its energy -log(similarity) is "
                           "<= median + k * MAD of the last accepted frames (0 = off, the paper "
@@ -194,9 +201,10 @@ class ColorHogIPCAParams(ColorHogPFParams):
     feature_map: str = param("sqrt", doc="learned feature z: 'sqrt' = sqrt(histogram) "
                              "(unit norm), 'raw' = the histogram itself", choices=("sqrt", "raw"),
                              reading="lee2012.likelihood_eq12", paper="raw",
-                             why="on raw histograms (norm ~0.1) every reconstruction error is "
-                             "~0.01 and every particle weighs the same; sqrt(h) has unit norm "
-                             "(04_incremental_svd)")
+                             why="on raw histograms (norm 0.1-0.4) every squared "
+                             "reconstruction error is at most ~0.15 and the particles weigh "
+                             "nearly the same; sqrt(h) has unit norm "
+                             "(the incremental-SVD chapter)")
 
 
 
