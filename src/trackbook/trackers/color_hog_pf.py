@@ -30,7 +30,7 @@ class ColorHogPFParams(ColorPFParams):
     references (Lee et al. 2012 compare it as a baseline [quote: lee2012.baselines], after Jin
     et al. 2010).
 
-    ``03_hog`` builds it. Like ``color-pf`` it is a baseline whose settings the paper does
+    The HOG chapter builds it. Like ``color-pf`` it is a baseline whose settings the paper does
     not print [quote: lee2012.baselines]: each value of section V is a reading here
     (``reading=``), printed for the proposed ``color-hog-ipca`` only; ``trackers.departures("color-hog-pf")`` lists the
     book's choices.
@@ -44,7 +44,6 @@ class ColorHogPFParams(ColorPFParams):
     sigma_hog: float = param(0.2, 0.02, 1.0, 0.02, "sigma_hog of eq. 11 and 13",
                              reading="lee2012.sigma04", paper=0.4,
                              why=SIGMA_HOG_WHY + "; 0.4 is " + BASELINE_READING)
-
 
 
 @register
