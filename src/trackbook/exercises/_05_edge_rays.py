@@ -45,8 +45,9 @@ The sorted reading: the turned rays have the same sorted values, so the Ratio is
 sorted weight 1, the highest possible. Direction by direction they differ, so eq. 6 as the
 book reads it scores them lower. With exercise 5.1's $M$ the turned rays are
 $(6, 3, 8, 4, 5, 9, 2, 7)$, $\sum_j |p_j - m_j| = 1 + 6 + 6 + 3 + 1 + 6 + 6 + 3 = 32$ and
-$w = 1 - 32/44 = 3/11 \approx 0.27$: a particle on the far side of the target looks perfect
-to the sorted reading.
+$w = 1 - 32/44 = 3/11 \approx 0.27$: a pattern of edges turned upside down about the
+particle (each ray's length moved to the opposite direction) looks perfect to the sorted
+reading.
 
 === 5.5 ★★★ implement | The Ratio of eq. 5
 Implement eq. 5 yourself (`my_ratio(p, m)`: sort, mean of the 4th and 5th, divide) without

@@ -71,7 +71,7 @@ which of the five sequences is the gap largest, and name two things that differ 
 two runs besides the code (settings, initialisation, the run itself)?
 --- solution
 The gap is largest on Crossing, where the published MIL succeeds on almost every frame and
-the book's run of OpenCV's MIL on few. Besides the code: the parameters (search radius, number of features, learning rate), the
+the book's run of OpenCV's MIL on fewer than a third of them. Besides the code: the parameters (search radius, number of features, learning rate), the
 initial box the toolkit hands over, and the run itself (MIL samples its features at random).
 
 === 9.7 ★★★ implement | From the toolkit's count to the book's frames
