@@ -30,7 +30,7 @@ preset, then the paper preset with only `sigma_color=0.2`, then with only `init=
 far more than starting the particles around the given box does (the cell prints the three
 AUCs): at σ = 0.4 the weights hardly separate good particles from poor ones. One clip and
 one seed are a hint, not a measurement; the case study's mean over seven sequences and three
-seeds puts the book's defaults ahead of each printed value.
+seeds puts the book's defaults ahead of each section V value.
 
 === 2.4 ★★ modify | A look-alike close by
 In the 1-D corridor example, move the look-alike to 45 m (as strong as
