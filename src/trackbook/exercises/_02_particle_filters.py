@@ -62,13 +62,14 @@ $(c_{i-1}, c_i]$ of length $w_i$. Every stratum lying wholly inside that interva
 exactly one copy; the at most two strata its ends cut into give it one copy each or none, by
 chance, independently. An interval of length $w_i$ holds at least $\lfloor N w_i \rfloor - 1$
 whole strata and touches at most $\lceil N w_i \rceil + 1$, so the particle gets between
-$\max(0, \lfloor N w_i \rfloor - 1)$ and $\lceil N w_i \rceil + 1$ copies: always fewer than
-2 away from $N w_i$, and both ends occur for some positions of the interval. For $N w_i = 1.5$ that is 0 to 3 copies: with
-the interval at $(0.3/N, 1.8/N]$ no pointer lands in it with probability $0.3 \cdot 0.2 =
-0.06$, and with it at $(0.9/N, 2.4/N]$ three do with probability $0.1 \cdot 0.4 = 0.04$.
-The count's variance is that of at most two coin flips, at most $1/2$: far below
-multinomial resampling's $N w_i (1 - w_i)$, though not the $\lfloor N w_i \rfloor$ or
-$\lceil N w_i \rceil$ of systematic resampling, whose pointers move together. With
+$\max(0, \lfloor N w_i \rfloor - 1)$ and $\lceil N w_i \rceil + 1$ copies: always less than
+2 away from $N w_i$, and both ends occur for some positions of the interval. For
+$N w_i = 1.5$ that is 0 to 3 copies: with the interval at $(0.3/N, 1.8/N]$ no pointer lands
+in it with probability $0.3 \cdot 0.2 = 0.06$, and with it at $(0.9/N, 2.4/N]$ three do with
+probability $0.1 \cdot 0.4 = 0.04$. The count's variance is that of at most two coin flips,
+at most $1/2$ whatever $N w_i$, where multinomial resampling's $N w_i (1 - w_i)$ grows with
+$N w_i$; but it is not held to $\lfloor N w_i \rfloor$ or $\lceil N w_i \rceil$ as systematic
+resampling's is, whose pointers move together. With
 $u = (0.2, 0.9, 0.1, 0)$ the pointers are 0.05, 0.475, 0.525 and 0.75: indices
 $(0, 2, 2, 3)$.
 
