@@ -7,6 +7,7 @@ after display, and in the HTML book it is embedded in the page like a playground
 
 from __future__ import annotations
 
+import base64
 
 import anywidget
 import cv2
@@ -21,6 +22,19 @@ from .export import book_build, page_html
 
 GT_BGR = bgr(GT_COLOR)
 EST_BGR = bgr(EST_COLOR)
+PARTICLE_BGR = bgr(VIEWER_COLORS["particle"])
+
+
+def _particles_of_step(state: dict, i: int) -> np.ndarray:
+    """Step ``i``'s particles from an encoded state (:func:`trackbook.playground.data.
+    _encode_state`): rows (x, y, weight relative to the step's largest), empty if none."""
+    counts = state.get("pcount")
+    if not counts or i >= len(counts) or not counts[i]:
+        return np.zeros((0, 3))
+    q = np.frombuffer(base64.b64decode(state["particles"]), dtype="<i2").reshape(-1, 3)
+    start = int(np.sum(counts[:i]))
+    q = q[start:start + counts[i]].astype(float)
+    return np.column_stack([q[:, :2] / 2, q[:, 2] / 1000])
 
 
 def _r(a, nd=1):
@@ -50,15 +64,17 @@ class Animation(anywidget.AnyWidget):
     """A step-by-step view: ``images`` (BGR arrays), ``index`` (step -> image), ``runs``
     (``{label: run_entry(...)}``, a choice when several), ``gt`` per step (optional);
     ``static_page`` displays it as the HTML book's page (default: whether this is a chapter of
-    the book's build, :func:`~trackbook.playground.export.book_build`)."""
+    the book's build, :func:`~trackbook.playground.export.book_build`); ``still`` is the step
+    drawn as the still picture for print and pages without JavaScript (default: the middle)."""
 
     _esm = T.Unicode(VIEWER_JS.read_text(encoding="utf-8")).tag(sync=True)
     _css = T.Unicode(VIEWER_CSS.read_text(encoding="utf-8")).tag(sync=True)
     static_data = T.Dict().tag(sync=True)
 
     def __init__(self, name, images, runs: dict, index=None, gt=None, note="",
-                 static_page: bool | None = None, **kwargs):
+                 static_page: bool | None = None, still: int | None = None, **kwargs):
         super().__init__(**kwargs)
+        self._still = None if still is None else int(still)   # the step of the still picture
         self.static_page = book_build() if static_page is None else bool(static_page)
         h, w = np.asarray(images[0]).shape[:2]
         n = len(next(iter(runs.values()))["boxes"])
@@ -79,10 +95,20 @@ class Animation(anywidget.AnyWidget):
             "initial": {"clip": name, "tracker": labels[0]}, "note": note}
 
     def _png(self) -> bytes:
-        """The middle step as a still picture (print / no JavaScript)."""
+        """The middle step as a still picture (print / no JavaScript), with its particles
+        drawn as the viewer draws them (a dot per particle, larger the heavier)."""
         images, index, gt, run = self._png_src
-        i = len(run["boxes"]) // 2
+        i = len(run["boxes"]) // 2 if self._still is None else self._still
         img = np.array(images[index[i] if index is not None else i])
+        dots = _particles_of_step(run.get("state") or {}, i)
+        if len(dots):
+            layer = img.copy()
+            for x, y, w in dots:
+                # the viewer's radius 1.5 + 4 sqrt(w), w relative to the step's largest weight
+                r = max(1, int(round(1.5 + 4 * np.sqrt(max(w, 0.0)))))
+                cv2.circle(layer, (int(round(x)), int(round(y))), r, PARTICLE_BGR, -1,
+                           cv2.LINE_AA)
+            img = cv2.addWeighted(layer, 0.8, img, 0.2, 0)   # overlapping dots stay apart
         for b, col in ((gt[i] if gt is not None else None, GT_BGR), (run["boxes"][i], EST_BGR)):
             if b is not None and np.isfinite(b).all():
                 x, y, w, h = (int(round(v)) for v in b)

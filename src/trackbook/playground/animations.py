@@ -9,6 +9,7 @@ Each function returns a displayable :class:`~trackbook.playground.animation.Anim
 
 from __future__ import annotations
 
+import cv2
 import numpy as np
 
 from .. import clips as _clips
@@ -42,11 +43,21 @@ def show_run(clip, results: dict, max_frames: int = 80) -> Animation:
 
 
 def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
-              n_particles=60) -> Animation:
-    """The SIR cycle of a particle filter, step by step: predict (the particles move by the
-    motion model, equal weights), weigh (each scored by the likelihood: dot size), resample
-    (drawn in proportion to weight: the cloud gathers on the target). Eq. 1-4 of
-    Arulampalam et al. (2002); the trackers' loop is :class:`ParticleFilterTracker`."""
+              n_particles=60, zoom=4) -> Animation:
+    """The SIR cycle of a particle filter, step by step: resample (drawn in proportion to
+    weight: the cloud gathers on the target), predict (the particles move by the motion
+    model, equal weights), weigh (each scored by the likelihood: dot size). Eq. 1-4 of
+    Arulampalam et al. (2002); the trackers' loop is :class:`ParticleFilterTracker`.
+
+    Parameters
+    ----------
+    zoom : int
+        The frames are cut to the ``1/zoom`` of their width and height centred on the
+        target (its mean ground-truth centre over ``frames``, kept inside the frame) and
+        enlarged ``zoom`` times, the particles, boxes and ground truth with them: on the
+        whole 320 x 240 frame of ``red-cube`` the 24 px cube and its particles are a few
+        dots. ``zoom=1`` shows the whole frame.
+    """
     from .. import trackers as _trackers
     from ..filters.particle import RESAMPLERS
     from ..trackers import TrackerState
@@ -54,6 +65,29 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
     clip = _clips.load(clip)
     t = _trackers.create(tracker, seed=seed, n_particles=n_particles)
     frames = list(frames)
+    zoom = int(zoom)
+    if zoom < 1:
+        raise ValueError(f"sir_cycle: zoom={zoom} must be a whole number >= 1.")
+    fh, fw = np.asarray(clip.frames[0]).shape[:2]
+    cw, ch = fw // zoom, fh // zoom                   # the crop, enlarged back to ~ fw x fh
+    g = np.asarray(clip.groundtruth, dtype=float)[frames]
+    mid = (g[:, :2] + g[:, 2:] / 2).mean(axis=0)
+    x0 = int(np.clip(round(mid[0] - cw / 2), 0, fw - cw))
+    y0 = int(np.clip(round(mid[1] - ch / 2), 0, fh - ch))
+    off = np.array([x0, y0], dtype=float)
+
+    def crop(img):
+        cut = np.asarray(img)[y0:y0 + ch, x0:x0 + cw]
+        return cv2.resize(cut, (cw * zoom, ch * zoom), interpolation=cv2.INTER_LINEAR)
+
+    def box_in_crop(b):
+        b = np.asarray(b, dtype=float)
+        return np.concatenate([(b[:2] - off) * zoom, b[2:4] * zoom])
+
+    def points_in_crop(p):
+        q = np.array(p, dtype=float)                  # a copy: the tracker keeps its own
+        q[:, :2] = (q[:, :2] - off) * zoom
+        return q
     t.init(clip.frames[0], clip.groundtruth[0])
     images, index, states, boxes, captions, ess = [], [], [], [], [], []
     gts = []
@@ -62,7 +96,7 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
         if k not in frames:
             t.update(f)
             continue
-        images.append(f)
+        images.append(crop(f))
         img = len(images) - 1
         # the tracker's own steps, reproduced one by one with its RNG (as _update does)
         idx = RESAMPLERS[t.params.resampler](t._weights, t.rng)
@@ -76,11 +110,11 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
                 (resampled, np.full(n, 1 / n), "resample: drawn in proportion to weight"),
                 (predicted, np.full(n, 1 / n), "predict: moved by the motion model"),
                 (predicted, w, "weigh: scored by the likelihood")):
-            states.append(snapshot(TrackerState(particles=p, weights=ww)))
+            states.append(snapshot(TrackerState(particles=points_in_crop(p), weights=ww)))
             index.append(img)
-            gts.append(clip.groundtruth[k])
+            gts.append(box_in_crop(clip.groundtruth[k]))
             est = t.state_to_box(np.average(p, axis=0, weights=ww))
-            boxes.append(est)
+            boxes.append(box_in_crop(est))
             ess.append(1.0 / np.sum(ww ** 2) / n)
             captions.append(f"frame {k} \u00b7 {cap}")
         del prev
@@ -90,8 +124,12 @@ def sir_cycle(clip="red-cube", tracker="color-pf", frames=range(1, 9), seed=0,
                     curve_label="effective sample size / N",
                     scores=f"{tracker} on {clip.name}, {n_particles} particles: "
                            "resample \u2192 predict \u2192 weigh, frame after frame")
-    return Animation(clip.name, images, {tracker: run}, index=index, gt=gts,
-                     note="Three steps per frame: resample, predict, weigh.")
+    where = (f" The view is enlarged {zoom} times around the target (the part "
+             f"{cw} \u00d7 {ch} px of the {fw} \u00d7 {fh} frame)." if zoom > 1 else "")
+    # the still picture: the middle frame's weigh step, where dot sizes differ
+    still = 3 * (len(frames) // 2) + 2
+    return Animation(clip.name, images, {tracker: run}, index=index, gt=gts, still=still,
+                     note="Three steps per frame: resample, predict, weigh." + where)
 
 
 class _Snap:

@@ -59,11 +59,10 @@ BASELINE_READING = ("printed in section V for the proposed tracker only "
 #: Why the book's sigma_color is not 0.4 (the baselines and the proposed tracker alike).
 SIGMA_COLOR_WHY = ("at 0.4 a perfect match and a poor one (D^2 = 0.3) differ by a factor 0.4 "
                    "only: the weights are nearly flat; 0.2 scored best of 0.1, 0.2, 0.4 on the "
-                   "seven public sequences we tuned on (02_particle_filters)")
+                   "seven public sequences we tuned on (lab notes)")
 #: Why the book starts around the given box, not over the whole frame.
-INIT_WHY = ("the tracker is given the first box; a whole-frame start throws it away and lets "
-            "look-alikes win the first frames; 'box' scored higher on the seven public "
-            "sequences we tuned on (02_particle_filters)")
+INIT_WHY = ("the tracker is given the first box, which a whole-frame start throws away; "
+            "'box' scored higher on the seven public sequences we tuned on (lab notes)")
 
 
 @dataclasses.dataclass(frozen=True)
