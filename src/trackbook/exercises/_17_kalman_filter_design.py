@@ -31,9 +31,12 @@ Expand:
 
 $$\begin{aligned}
 &(I-KH)P^-(I-KH)^T + KRK^T\\
-&\qquad = (I-KH)P^- - (I-KH)P^-H^TK^T + KRK^T,\\
+&\quad = (I-KH)P^- \\
+&\quad\; - (I-KH)P^-H^TK^T + KRK^T,\\[4pt]
 &-(I-KH)P^-H^TK^T + KRK^T\\
-&\qquad = -P^-H^TK^T + K(HP^-H^T + R)K^T = -P^-H^TK^T + KSK^T .
+&\quad = -P^-H^TK^T \\
+&\qquad + K(HP^-H^T + R)K^T \\
+&\quad = -P^-H^TK^T + KSK^T .
 \end{aligned}$$
 
 At the optimal gain $KS = P^-H^T$, so $KSK^T = P^-H^TK^T$ and the two cancel. With $K = 1/2$: the
