@@ -31,9 +31,12 @@ Expand:
 
 $$\begin{aligned}
 &(I-KH)P^-(I-KH)^T + KRK^T\\
-&\qquad = (I-KH)P^- - (I-KH)P^-H^TK^T + KRK^T,\\
+&\quad = (I-KH)P^- \\
+&\quad\; - (I-KH)P^-H^TK^T + KRK^T,\\[4pt]
 &-(I-KH)P^-H^TK^T + KRK^T\\
-&\qquad = -P^-H^TK^T + K(HP^-H^T + R)K^T = -P^-H^TK^T + KSK^T .
+&\quad = -P^-H^TK^T \\
+&\qquad + K(HP^-H^T + R)K^T \\
+&\quad = -P^-H^TK^T + KSK^T .
 \end{aligned}$$
 
 At the optimal gain $KS = P^-H^T$, so $KSK^T = P^-H^TK^T$ and the two cancel. With $K = 1/2$: the
@@ -104,9 +107,10 @@ values with `consistency_test(..., 2)`. Then repeat with $Q = 0.01\,I$ and $Q = 
 $Q$ does the NIS call consistent, and which frames carry most of the NIS?
 --- solution
 The NIS needs no ground truth, so this is the test one could run on a real tracker's
-measurements. With $Q = I$ (the first draw, seed 0) the pooled NIS, about 3.3, is above the
-band $[1.66, 2.37]$ of 119 values: overconfident. About 43 % of its sum comes from each
-bounce frame and the four after it (13 % of the frames); away from them its mean is about 2.
+measurements. With $Q = I$ (the first draw, seed 0) the pooled NIS, about 3.2, is above the
+band $[1.66, 2.37]$ of 119 values: overconfident. The bounces carry far more than their share:
+about 43 % of its sum comes from the bounce frames and the four after each (13 % of the
+frames); away from them its mean is about 2.1.
 $Q = 0.01\,I$ is far worse (an average near 40: it lags on every arc); $Q = 10\,I$ falls
 below the band (underconfident: $S$ too wide on the arcs). No single $Q$ describes both the
 arcs and the bounces: the NIS says the model, not only its noise, is wrong — the case for
@@ -122,7 +126,7 @@ near the bounces and a window of about 1,700 px²): $\pi_{22} = 0.1$ pulls the m
 filter back by mixing at once, so $\mu_2$ rises for a single frame (above one half only after
 the first bounce, on the first draw) and the error near the bounces grows a little (about
 5.5 px) while the window shrinks (about 1,610 px²). $\pi_{22} = 0.9$ keeps $\mu_2$ near one
-for several frames after every bounce: slightly less error near them (about 5.3 px), a larger
+for several frames after every bounce: about the same error near them (5.3 px), a larger
 window (about 1,930 px²). $\pi_{12} = 0.01$ holds $\mu_2$ near zero on the arcs and gives the
 smallest window (about 1,500 px²) but a slower reaction (about 5.7 px near the bounces);
 $\pi_{12} = 0.2$ reacts best near the bounces (about 5.1 px) but keeps $\mu_2$ well above
