@@ -56,6 +56,12 @@ QUOTES = [
     Quote("lee2012.kernel_eq1", "§III.1, eq. 1",
           r"$$k(\|x_i^*\|^2) = 1 - r^2$$",
           "k(‖x_i*‖²) = 1 − r²"),
+    Quote("lee2012.eq1_counts", "§III.1, eq. 1 and the sentence after it",
+          r"$$q_u = \sum_{i=1}^n k(\|x_i^*\|^2) \delta[c(x_i) - u] \quad (1)$$ "
+          r"$$k(\|x_i^*\|^2) = 1 - r^2$$ $q_u$ 는 히스토그램에서 나타내는 각 저장소에 누적된 "
+          r"색상의 개수를 의미하며",
+          "q_u = Σ_{i=1..n} k(‖x_i*‖²) δ[c(x_i) − u] (1), k(‖x_i*‖²) = 1 − r². q_u means the "
+          "number of colours accumulated in each bin of the histogram,"),
     Quote("lee2012.kernel_radius", "§III.1, after eq. 1",
           r"$k(\|x_i^*\|^2)$ 는 물체를 표현한 ROI내 중심 픽셀에서 가장 먼 픽셀까지의 거리를 1로 "
           r"정규화한 값에서 계산하고자 하는 픽셀 $x_i^*$ 와 중심 픽셀간의 정규화된 거리를 뺀 값을 "
