@@ -214,6 +214,28 @@ def _stop(procs, timeout: float = 3.0) -> None:
             p.join(timeout=1.0)
 
 
+@contextlib.contextmanager
+def _ctrl_c_as_flag(flag: list):
+    """While the block runs, Ctrl-C appends to ``flag`` instead of raising (main thread only).
+
+    The bench then raises KeyboardInterrupt itself, between two reads of its queue: raised
+    wherever the signal happened to land, it could interrupt multiprocessing's own code (a
+    queue's put, a lock's finaliser half-way between removing its semaphore and telling the
+    resource tracker), and the tracker then printed warnings about a leaked semaphore after
+    the bench's one line.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.signal(signal.SIGINT, lambda signum, frame: flag.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+    if flag:
+        raise KeyboardInterrupt
+
+
 def _execute_local(gs, out, finished, workers, multi_seed, imports):
     import multiprocessing as mp
 
@@ -223,17 +245,22 @@ def _execute_local(gs, out, finished, workers, multi_seed, imports):
     procs = [ctx.Process(target=_worker, args=(inbox, outbox, os.getpid(), list(imports)),
                          name=f"trackbook-bench-{k}", daemon=True)
              for k in range(min(workers, len(gs)))]
+    interrupted = []
     try:
-        for p in procs:
-            p.start()
-        for i, g in enumerate(gs):
-            inbox.put((i, g, str(out), multi_seed))
-        for _ in procs:
-            inbox.put(None)
+        with _ctrl_c_as_flag(interrupted):
+            for p in procs:
+                p.start()
+            for i, g in enumerate(gs):
+                inbox.put((i, g, str(out), multi_seed))
+            for _ in procs:
+                inbox.put(None)
         left = len(gs)
         while left:
+            if interrupted:
+                raise KeyboardInterrupt
             try:
-                i, ok, payload = outbox.get(timeout=0.5)
+                with _ctrl_c_as_flag(interrupted):
+                    i, ok, payload = outbox.get(timeout=0.5)
             except queue.Empty:
                 dead = [p for p in procs if p.exitcode not in (None, 0)]
                 if dead or all(p.exitcode is not None for p in procs):
