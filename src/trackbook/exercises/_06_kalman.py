@@ -64,9 +64,9 @@ One loop over the measurements, two lines per step:
 def kf1d(zs, mu0, var0, u, var_q, var_r):
     m, v, means, variances = mu0, var0, [], []
     for z in zs:
-        m, v = m + u, v + var_q               # predict: means and variances add
-        K = v / (v + var_r)                   # gain
-        m, v = m + K * (z - m), (1 - K) * v   # update: product of two Gaussians
+        m, v = m + u, v + var_q        # predict: add means, variances
+        K = v / (v + var_r)            # gain
+        m, v = m + K * (z - m), (1 - K) * v    # update: product
         means.append(m)
         variances.append(v)
     return np.array(means), np.array(variances)
