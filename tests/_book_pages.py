@@ -87,8 +87,17 @@ def open_watched(browser, url) -> Opened:
         first = ""
     if not first and url.startswith("file://"):
         first = Path(unquote(urlparse(url).path)).read_text(encoding="utf-8", errors="ignore")
-    if re.search(r"http-equiv=\W?refresh", first, re.I):
-        page.wait_for_url(lambda u: u != url, timeout=60_000)
+    redirects = bool(re.search(r"http-equiv=\W?refresh", first, re.I))
+    if not redirects:
+        # the body can be gone over http too: ask the page itself whether it still is the
+        # redirect (a destroyed context means the redirect is already under way)
+        try:
+            redirects = page.query_selector('meta[http-equiv="refresh" i]') is not None
+        except Exception:  # noqa: BLE001
+            redirects = True
+    if redirects:
+        if page.url == url:
+            page.wait_for_url(lambda u: u != url, timeout=60_000)
         page.wait_for_load_state("load")
     page.wait_for_timeout(300)
     settle(page)
