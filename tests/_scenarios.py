@@ -282,3 +282,22 @@ def evaluated(name, key):
     import trackbook
 
     return trackbook.evaluate(name, scenario(key).clip, seed=0)
+
+
+def growing_target(n: int, grow: float):
+    """A textured target that grows from 40 x 32 px by ``grow`` over ``n`` frames while it
+    drifts right: ``(frames, boxes)``. Rendered with the sample clips' compositing engine, so
+    every box is exact (the scale tests of the correlation filters)."""
+    from trackbook.clips.rendering import Canvas, Sprite, crop, tile
+
+    background = tile(crop("grass", 0, 0, 256, 256, (160, 160)), 320, 240) * np.float32(0.8)
+    face = crop("astronaut", 150, 40, 330, 200, (40, 32))
+    target = Sprite(face, np.ones(face.shape[:2], np.float32))
+    scale = np.geomspace(1.0, grow, n)
+    frames, boxes = [], []
+    for i in range(n):
+        canvas = Canvas(background)
+        p = canvas.paste(target, (130 + 1.0 * i, 115 + 0.3 * i), scale=scale[i])
+        frames.append(np.clip(canvas.img, 0, 255).astype(np.uint8))
+        boxes.append(p.box)
+    return frames, np.array(boxes)

@@ -13,8 +13,9 @@ import pytest
 
 import trackbook
 from trackbook import clips, trackers
-from trackbook.clips.rendering import Canvas, Sprite, crop, tile
 from trackbook.filters import bacf as bf
+
+from . import _scenarios as S
 
 
 @pytest.fixture
@@ -170,20 +171,7 @@ def test_tracks_the_red_cube(red_cube):
 
 
 def _growing_clip(n=30, grow=1.25):
-    """A textured target that grows from 40 x 32 px by ``grow`` while it drifts right.
-
-    Rendered with the sample clips' compositing engine, so every box is exact."""
-    background = tile(crop("grass", 0, 0, 256, 256, (160, 160)), 320, 240) * np.float32(0.8)
-    face = crop("astronaut", 150, 40, 330, 200, (40, 32))
-    target = Sprite(face, np.ones(face.shape[:2], np.float32))
-    scale = np.geomspace(1.0, grow, n)
-    frames, boxes = [], []
-    for i in range(n):
-        canvas = Canvas(background)
-        p = canvas.paste(target, (130 + 1.0 * i, 115 + 0.3 * i), scale=scale[i])
-        frames.append(np.clip(canvas.img, 0, 255).astype(np.uint8))
-        boxes.append(p.box)
-    return frames, np.array(boxes)
+    return S.growing_target(n, grow)
 
 
 def test_scale_follows_a_growing_target():
