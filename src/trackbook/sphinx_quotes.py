@@ -2,8 +2,8 @@
 
 The role ``{quote}`lee2012.window40``` (MyST; ``:quote:`lee2012.window40``` in reST) renders
 a small superscript marker after the sentence. Its ``title`` (a hover tooltip) holds the
-translation; hovering, tapping or tabbing to it opens a popover with the passage as printed
-(Korean as printed, or the English abstract), the English translation, where it comes from
+translation; hovering, tapping or tabbing to it opens a popover with the passage word for word
+(Korean, or the English abstract), the English translation, where it comes from
 and whether it is printed or a reading. The page ends with the list of its evidence, which
 also serves print and readers without hover. Plain CSS, no script, no network: it works from
 ``file://`` and over http, and the popover fits a 390 px screen.

@@ -1,6 +1,6 @@
 """The register of quotes: every passage of the four papers the book and the library rely on.
 
-Each :class:`Quote` holds the passage as printed (Korean as printed, or the English abstract),
+Each :class:`Quote` holds the passage word for word (Korean, or the English abstract),
 a faithful English translation, where it comes from (section, table, equation) and its kind:
 ``printed`` (the passage states it) or ``reading`` (the passage is ambiguous and supports the
 book's reading). The book shows a quote beside the sentence that relies on it with the role

@@ -1,9 +1,14 @@
 """Find sentences that say what a paper says, prints, uses or reports without citing a quote.
 
 A sentence that speaks for a paper ("the paper prints ...", "Kim et al. (2016) use ...",
-"Cho and Kang report ...", "as printed") must carry a quote reference in the same paragraph:
-the book's role ``{quote}`lee2012.t40``` or, in docstrings, comments and param docs, the plain
-form ``[quote: lee2012.t40]``. :func:`unquoted` lists the ones that carry none.
+"Lee et al.'s tracker uses ...", "Cho and Kang report ...", "as printed") must itself carry a
+quote reference -- in that sentence, not elsewhere in its paragraph: the book's role
+``{quote}`lee2012.t40``` or, in docstrings and comments, the plain form
+``[quote: lee2012.t40]``. A sentence that names one of the four (Lee et al. 2012, Kim et al.,
+Lee 2015, Cho and Kang) must cite a quote of *that* paper. :func:`unquoted` lists the
+sentences that break either rule. (In a param's doc -- the string literals of one call such as
+``Param(..., why="...", quote="lee2012.t40")`` -- the ``quote=`` key is the citation of every
+sentence of its ``why``.)
 
 The register holds the four papers only. A sentence that speaks for another work, by name
 ("Bolme et al. build ...", "Henriques et al. 2015 use ...", "Comaniciu et al. (2003) stop
@@ -13,9 +18,11 @@ author (``bolme2010``) or an author-year citation ("Bolme et al. 2010") -- see
 :func:`other_work_cited`. "The paper" and "the papers" always speak for the four (a chapter
 that means another work names it).
 
-Paragraphs are: in Markdown, runs of non-blank lines; in Python, each docstring paragraph and
-each run of comments and string literals on consecutive lines (a param's doc split over
-several literals is one paragraph).
+Sentences end at a full stop, a question or exclamation mark followed by a space (not after
+an abbreviation such as "eq." or "et al."), at a blank line, and at the start of a table row or
+a list item. Paragraphs are: in Markdown, runs of non-blank lines; in Python, each docstring
+paragraph and each run of comments and string literals on consecutive lines (a param's doc
+split over several literals is one paragraph).
 
 Run ``python -m trackbook.quotes.attributions FILE...`` for a ``file:line: sentence`` list.
 """
@@ -29,7 +36,7 @@ import tokenize
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import ROLE, TEXT_REFERENCE
+from . import TEXT_REFERENCE
 
 _VERB = (r"(?:says?|said|prints?|printed|uses?|used|reports?|reported|claims?|claimed|"
          r"measures?|measured|counts?|counted|never|states?|stated|names?|named|keeps?|kept|"
@@ -61,7 +68,8 @@ _NOUN = (r"(?:measure|gain|value|values|setting|settings|criterion|choice|defaul
 #: (also with "which" between them); an "et al." citation with a verb, or with its year
 #: and any verb; a bare surname with its year and a verb; Cho and Kang with a verb; a
 #: possessive of "the paper" with a noun such as measure, gain or timings; the phrases of a
-#: printed value ("as" with "printed" or with "the paper").
+#: printed value ("as" with "printed" or with "the paper"); a possessive of an author of the
+#: four with a noun and a verb; "according to" one of the four.
 PATTERNS = [
     re.compile(r"\bthe\s+papers?(?:'s?)?,?\s+(?:which\s+|that\s+)?(?:own\s+)?(?:text\s+)?"
                r"(?:also\s+|only\s+)?" + _VERB + r"\b", re.I),
@@ -73,6 +81,11 @@ PATTERNS = [
     re.compile(r"\bthe\s+papers?(?:'s?|')\s+(?:own\s+)?(?:printed\s+)?" + _NOUN + r"\b",
                re.I),
     re.compile(r"\bas\s+(?:printed|in\s+the\s+papers?|the\s+papers?)\b", re.I),
+    # a possessive of one of the four with a noun and a verb (their tracker, method, ... does)
+    re.compile(r"\b(?:et\s+al\.?|Lee|Kim|Cho(?:\s+(?:and|&)\s+Kang)?)'s\s+" + _YEAR + r"?"
+               r"(?:own\s+)?(?:[a-z\-]+\s+)?" + _NOUN + r"\s+(?:also\s+|only\s+)?" + _VERB + r"\b"),
+    # "according to" one of the four, or to the paper
+    re.compile(r"\baccording\s+to\s+(?:the\s+papers?\b|(?:Lee|Kim|Cho)\b)", re.I),
 ]
 
 #: In Python, a string literal that is a register key (``quote="lee2012.t40"``) cites too.
@@ -89,10 +102,6 @@ class Attribution:
 
     def __str__(self):
         return f"{self.path}:{self.line}: {self.sentence}"
-
-
-def _cited(text: str) -> bool:
-    return bool(ROLE.search(text) or TEXT_REFERENCE.search(text) or KEY_LITERAL.search(text))
 
 
 #: The book's bibliographic roles: ``{cite}`key```, ``{cite:t}`a,b```, ``{cite:p}`key```.
@@ -133,30 +142,84 @@ def _fold(name: str) -> str:
                    if not unicodedata.combining(c))
 
 
-#: The end of a sentence: a stop and a space, not after an abbreviation (eq., et al., Fig.).
+#: The end of a sentence: a stop and a space, not after an abbreviation (eq., et al., Fig.);
+#: a blank line; the start of a table row or of a list item on a new line.
 _STOP = re.compile(r"(?<!\beq)(?<!\bEq)(?<!\bal)(?<!\bFig)(?<!\bfig)(?<!\be\.g)(?<!\bi\.e)"
-                   r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bno)[.?!](?=\s)|\n\s*\n")
+                   r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bno)[.?!](?=\s)|\n\s*\n"
+                   r"|\n(?=\s*(?:\||[-*+]\s|\d+\.\s))|\|")
 
 
-def _sentence(text: str, start: int, end: int) -> str:
-    """The sentence around ``text[start:end]``, whitespace collapsed, at most ~200 chars."""
+def _span(text: str, start: int, end: int) -> tuple[int, int]:
+    """``(left, right)``: the sentence around ``text[start:end]``.
+
+    A quote role right after the stop (``... eq. 9. {quote}`k```) belongs to the sentence
+    before it: the role is then the first thing after the stop and cites what precedes it.
+    """
     left = 0
     for m in _STOP.finditer(text, 0, start):
         left = m.end()
     m = _STOP.search(text, end)
     right = m.end() if m else len(text)
+    trailing = re.match(r"\s*(?:(?:\{quote\}`[^`]*`|\[quote:[^\]]*\])[\s,;]*)+", text[right:])
+    if trailing:
+        right += trailing.end()
+    return left, right
+
+
+def _sentence(text: str, start: int, end: int) -> str:
+    """The sentence around ``text[start:end]``, whitespace collapsed, at most ~200 chars."""
+    left, right = _span(text, start, end)
     s = re.sub(r"\s+", " ", text[left:right]).strip()
     return s if len(s) <= 200 else s[:197] + "..."
 
 
-def _check_paragraph(text: str, first_line: int, offsets: list[int] | None = None):
-    """``(line, sentence)`` of each attribution in one paragraph that cites no quote."""
-    if _cited(text):
-        return []
+#: The four papers by how a sentence names them: (pattern, register prefix).
+_NAMED = [
+    (re.compile(r"\bLee\s+et\s+al\.?(?:'s)?,?\s*\(?2012"), "lee2012"),
+    (re.compile(r"\bLee\s+et\s+al\b"), "lee2012"),
+    (re.compile(r"\bKim\s+et\s+al\b|\bKim\b,?\s*\(?2016"), "kim2016"),
+    (re.compile(r"\bLee(?:'s)?,?\s*\(?2015|\bLee\s+\(2015\)"), "lee2015"),
+    (re.compile(r"\bCho\s+(?:and|&)\s+Kang\b|\bCho\b,?\s*\(?2005"), "cho2005"),
+]
+
+
+#: The role as it also stands inside a Python f-string, braces doubled: ``{{quote}}`k```.
+_ROLE_ANY = re.compile(r"\{\{?quote\}\}?`([^`]*)`")
+
+
+def _keys(text: str) -> list[str]:
+    """The quote keys a sentence cites: the role (also in an f-string), the plain-text form,
+    a key literal."""
+    return ([m.group(1) for m in _ROLE_ANY.finditer(text)]
+            + [m.group(1) for m in TEXT_REFERENCE.finditer(text)]
+            + [m.group(0).strip("\"'") for m in KEY_LITERAL.finditer(text)])
+
+
+def _problem(sentence: str, extra: list[str] = ()) -> str | None:
+    """Why an attribution sentence fails: no quote, or only quotes of another paper.
+    ``extra``: keys that cite every sentence of its paragraph (a param's ``quote=``)."""
+    keys = _keys(sentence) + list(extra)
+    if not keys:
+        return "cites no quote"
+    named = {paper for rx, paper in _NAMED if rx.search(sentence)}
+    cited = {k.split(".", 1)[0] for k in keys}
+    if named and not named & cited:
+        return f"names {', '.join(sorted(named))} but cites only {', '.join(sorted(cited))}"
+    return None
+
+
+def _check_paragraph(text: str, first_line: int, offsets: list[int] | None = None,
+                     extra: list[str] = ()):
+    """``(line, sentence)`` of each attribution in one paragraph that its sentence does not
+    cite. ``extra``: the keys of a param's ``quote=``, which cite every sentence of its doc.
+    """
     out = []
     for rx in PATTERNS:
         for m in rx.finditer(text):
             if other_work_cited(text, m.start()):   # another work, named and cited
+                continue
+            left, right = _span(text, m.start(), m.end())
+            if _problem(text[left:right], extra) is None:
                 continue
             line = first_line + text.count("\n", 0, m.start())
             if offsets is not None:
@@ -240,7 +303,8 @@ def unquoted(text: str, *, python: bool = False) -> list[tuple[int, str]]:
     out = []
     if python:
         for para, lines in _python_paragraphs(text):
-            out += _check_paragraph(para, lines[0], offsets=lines)
+            literals = [m.group(0).strip("\"'") for m in KEY_LITERAL.finditer(para)]
+            out += _check_paragraph(para, lines[0], offsets=lines, extra=literals)
     else:
         for para, start in _markdown_paragraphs(text):
             out += _check_paragraph(para, start)

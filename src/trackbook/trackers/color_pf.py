@@ -10,8 +10,9 @@ coefficient (eq. 10). This class is the base of the paper's two other trackers:
 
 From section V of the paper: state and motion of eq. 8-9, N = 100 particles, SIR selection
 by cumulative weights (multinomial), estimate = weighted mean of the states. Section V prints
-these for the proposed tracker; the paper prints no setting of this baseline, so each value
-is the book's reading for it (marked so in its params). The paper spreads the t = 0
+these for the proposed tracker [quote: lee2012.n100]; section VI compares with this baseline
+without printing its settings [quote: lee2012.baselines], so each value is the book's reading
+for it (marked so in its params). The paper spreads the t = 0
 particles over the whole frame [quote: lee2012.init_whole_frame]; the book starts them around
 the given box (``init``; the paper preset uses ``"frame"``). ``trackers.departures(name)``
 lists every departure with its why.

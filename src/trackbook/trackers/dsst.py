@@ -49,7 +49,7 @@ from .correlation import _CorrelationTracker
 from .registry import register
 
 #: Where the values marked "reference code" come from: the authors' DSST MATLAB code
-#: (``run_tracker.m``, whose parameter block is headed "parameters according to the paper",
+#: (``run_tracker.m``, whose parameter block is headed as following the published values,
 #: ``dsst.m``, ``get_translation_sample.m``, ``get_scale_sample.m``, ``get_feature_map.m``),
 #: read in the copy kept in the public repository flyers/drone-tracking (trackers/DSST/) and,
 #: for the parameter block, hexdjx/Visual-Tracking-Paper-List (DSST/run_tracker.m).
@@ -58,10 +58,10 @@ _REF_CODE = "the authors' DSST MATLAB code (run_tracker.m, dsst.m)"
 
 @dataclasses.dataclass(frozen=True)
 class DsstParams:
-    # Danelljan, Häger, Khan, Felsberg, BMVC 2014 (danelljan2014). The paper's text is not
-    # among the book's sources; the values below are _REF_CODE's parameter block, which names
-    # each by the paper's symbol (λ, η, S, a) and is headed "parameters according to the
-    # paper".
+    # Danelljan, Häger, Khan, Felsberg, BMVC 2014 (danelljan2014). Danelljan et al.'s text is
+    # not among the book's sources; the values below are _REF_CODE's parameter block, which
+    # names each by its published symbol (λ, η, S, a) and is headed as following the
+    # published values.
     padding: float = param(
         1.5, 0.0, 4.0, 0.25, doc="translation window = target size × (1 + padding)",
         paper=1.0,     # params.padding = 1.0 in _REF_CODE: a window twice the target
