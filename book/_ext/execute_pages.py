@@ -63,12 +63,17 @@ def book_environment() -> None:
     """What the book's Sphinx extension sets for the kernels it starts (``sphinx_playground``):
     the playgrounds display as the HTML book's pages and write their run files where the
     build copies them from. Their runs are computed in the page's own kernel here (the
-    pages already run one per core)."""
+    pages already run one per core). Each kernel also checks every figure it shows
+    (``figure_check.py``: tracker colours, legends clear of the data)."""
     from trackbook.playground.export import BOOK_ENV
     from trackbook.playground.static import BACKGROUND_ENV, OUT_ENV
     from trackbook.sphinx_playground import store_dir
 
     os.environ[BOOK_ENV] = "1"
+    # every figure of every page is checked as it is shown (figure_check.py)
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import figure_check
+    os.environ["IPYTHONDIR"] = str(figure_check.ipython_dir(ROOT / "_build" / ".kernel"))
     os.environ[OUT_ENV] = str(store_dir(ROOT / "_build" / "html"))
     os.environ.pop(BACKGROUND_ENV, None)
 

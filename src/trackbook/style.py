@@ -31,6 +31,48 @@ GREY = "#BBBBBB"
 #: The order in which several trackers of one plot take their colours.
 CYCLE = [OKABE_ITO[k] for k in ("vermillion", "blue", "orange", "reddish purple", "sky blue",
                                 "black", "bluish green", "yellow")]
+#: Each registered tracker's colour, the same in every figure of the book: one colour per
+#: tracker (its re-detecting variant ``<name>-redetect`` shares it and is told apart by a dashed
+#: line), distinct within the groups the book shows together (the correlation filters; the
+#: particle filters of Lee et al. and Kim et al.; the covariance trackers; Condensation and
+#: mean-shift), none of them the ground truth's colour. :func:`tracker_color` looks it up.
+TRACKER_COLORS = {
+    # correlation filters
+    "kcf": OKABE_ITO["vermillion"], "mosse": OKABE_ITO["sky blue"],
+    "dsst": OKABE_ITO["orange"], "staple": OKABE_ITO["reddish purple"],
+    "bacf": OKABE_ITO["blue"],
+    # particle filters on colour, gradients, subspaces and edges
+    "color-pf": "#882255", "color-hog-pf": "#332288", "color-hog-ipca": "#44AA99",
+    "hsi-color-pf": "#999933", "hog-pf": "#AA4499", "edge-ray-pf": OKABE_ITO["black"],
+    # region covariance
+    "covariance": "#CC6677", "kalman-covariance": "#6699CC",
+    "kalman-covariance-manoeuvre": "#8C564B",
+    # Condensation and mean-shift
+    "condensation": "#DDAA33", "mean-shift": "#004488", "condensation-mean-shift": "#BB5566",
+    "camshift": "#661100",
+    # point tracking and tracking by detection
+    "median-flow": "#555555", "opencv-mil": "#997700",
+}
+
+
+def tracker_color(name: str, default: str | None = None) -> str | None:
+    """The colour tracker ``name`` is drawn in in every figure (:data:`TRACKER_COLORS`).
+
+    A re-detecting variant (``kcf-redetect``) has its tracker's colour. A name the book does
+    not register (a student's own tracker) gets ``default``.
+    """
+    base = name[: -len("-redetect")] if name.endswith("-redetect") else name
+    return TRACKER_COLORS.get(base, default)
+
+
+def label_color(label: str, i: int = 0) -> str:
+    """The colour of a plotted series labelled ``label``, ``i``-th in its plot: its tracker's
+    colour when the label starts with a tracker's name ("kcf", "kcf-redetect [0.583]",
+    "kcf (ours)"), otherwise the ``i``-th colour of :data:`CYCLE`."""
+    head = label.strip().split(" ", 1)[0].rstrip(",:;") if label else ""
+    return tracker_color(head) or CYCLE[i % len(CYCLE)]
+
+
 #: What the playground viewer draws each element in (sent to ``viewer.js`` with its config).
 VIEWER = {"gt": GT_COLOR, "est": EST_COLOR, "particle": OKABE_ITO["blue"],
           "window": OKABE_ITO["orange"], "ellipse": OKABE_ITO["reddish purple"],

@@ -194,14 +194,14 @@ def eao_plot(records) -> bytes:
     """A PNG of each tracker's expected average overlap curve (reset records)."""
     from matplotlib.figure import Figure
 
-    from ..style import CYCLE
+    from ..style import label_color
 
     fig = Figure(figsize=(5, 3.6))
     ax = fig.subplots()
     for i, (t, c) in enumerate(curves(records).items()):
         y = np.asarray(c["eao_curve"], dtype=float)
         score = protocols.eao([reset_run(r) for r in _by_tracker(records)[t]])
-        ax.plot(np.arange(len(y)), y, color=CYCLE[i % len(CYCLE)], label=f"{t} [{score:.3f}]")
+        ax.plot(np.arange(len(y)), y, color=label_color(t, i), label=f"{t} [{score:.3f}]")
     ax.set(xlabel="sequence length N (frames)", ylabel="expected average overlap",
            ylim=(0, 1.02), title="expected average overlap curve (reset protocol)")
     ax.grid(alpha=0.3)

@@ -440,7 +440,7 @@ def plot_side_by_side(bench, *, measure: str = "auc", trackers=None):
     from matplotlib.figure import Figure
     from matplotlib.patches import Patch
 
-    from ..style import CYCLE, GREY
+    from ..style import GREY, label_color
 
     if measure not in MEASURES:
         raise ValueError(f"unknown measure {measure!r}; use one of {', '.join(MEASURES)}.")
@@ -468,7 +468,7 @@ def plot_side_by_side(bench, *, measure: str = "auc", trackers=None):
         if r["tracker"] in names:
             label = f"{r['tracker']} (ours)"
             values.setdefault(label, {})[r["sequence"]] = r[measure]
-            colour[label] = CYCLE[names.index(r["tracker"]) % len(CYCLE)]
+            colour[label] = label_color(r["tracker"], names.index(r["tracker"]))
     panels = [(s, {t: v[s] for t, v in values.items() if s in v}) for s in seqs]
     if len(seqs) > 1:
         panels.append((f"mean over {len(seqs)} sequences",
@@ -500,7 +500,8 @@ def plot_side_by_side(bench, *, measure: str = "auc", trackers=None):
                  f"{f' (mean of {seeds} seeds)' if seeds > 1 else ''}, frames 1..N as the "
                  "OTB toolkit counts them", fontsize=9)
     handles = [Patch(color=GREY, label="published (the OTB authors' runs)"),
-               Patch(color=CYCLE[0], label="ours (this bench)")]
+               Patch(color=colour[f"{names[0]} (ours)"],
+                     label="ours (this bench; each tracker in its colour)")]
     fig.legend(handles=handles, loc="lower center", ncols=2, fontsize=8, frameon=False)
     no_value = [t for t in TRACKERS if t not in values]
     if no_value:

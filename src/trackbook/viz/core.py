@@ -13,7 +13,8 @@ import numpy as np
 from matplotlib import patches as mpatches
 
 from ..evaluation import metrics
-from ..style import CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, Palette  # noqa: F401
+from ..style import (CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, Palette,  # noqa: F401
+                     label_color, tracker_color)
 from ..trackers.base import Tracker
 
 
@@ -58,8 +59,9 @@ def show_frame(frame, ax=None, boxes=None, title=None, gt=None):
     Parameters
     ----------
     boxes : dict label -> box, a single box ``(x, y, w, h)`` (drawn as the estimate), or a
-        sequence / ``(n, 4)`` array of boxes (drawn in the colours of ``CYCLE``: the first
-        vermillion, the second blue, ...). Every box given is drawn; a malformed one raises
+        sequence / ``(n, 4)`` array of boxes. A box labelled with a tracker's name is drawn
+        in that tracker's colour (``style.tracker_color``), the others in the colours of
+        ``CYCLE`` (the first vermillion, the second blue, ...). Every box given is drawn; a malformed one raises
         ``ValueError`` (see ``draw_box``).
     gt : box, drawn dashed in green as the ground truth
     """
@@ -80,7 +82,7 @@ def show_frame(frame, ax=None, boxes=None, title=None, gt=None):
                 raise ValueError("show_frame: boxes must be one box (x, y, w, h), an (n, 4) "
                                  f"array or a dict label -> box; got shape {arr.shape}")
         for i, (label, b) in enumerate(boxes.items()):
-            draw_box(ax, b, CYCLE[i % len(CYCLE)], label)
+            draw_box(ax, b, label_color(label, i), label)
     if title:
         ax.set_title(title, fontsize=9)
     return ax
@@ -162,7 +164,7 @@ def plot_curves(results, gt=None, axes=None):
         g = g[: len(r.boxes)]
         ts, s = metrics.success_curve(r.boxes[1:], g[1:])
         tp, p = metrics.precision_curve(r.boxes[1:], g[1:])
-        c = CYCLE[i % len(CYCLE)]
+        c = label_color(label, i)
         ax_s.plot(ts, s, color=c, label=f"{label} [{s.mean():.3f}]")
         ax_p.plot(tp, p, color=c, label=f"{label} [{p[20]:.3f}]")
     ax_s.set(xlabel="overlap threshold", ylabel="success rate", title="Success plot (AUC)",

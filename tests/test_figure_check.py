@@ -1,0 +1,117 @@
+"""The book's figure check (``book/_ext/figure_check.py``) on figures made to break it.
+
+Every page runs with the check installed (``book/_ext/execute_pages.py``); here it must flag a
+tracker drawn in another tracker's colour and a legend over data, and let the right ones
+pass. The palette itself: one colour per registered tracker, none shared, none the ground
+truth's.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.patches import Patch, Rectangle  # noqa: E402
+
+from trackbook import trackers  # noqa: E402
+from trackbook.style import GT_COLOR, TRACKER_COLORS, tracker_color  # noqa: E402
+
+EXT = Path(__file__).resolve().parents[1] / "book" / "_ext"
+sys.path.insert(0, str(EXT))
+import figure_check  # noqa: E402
+
+
+@pytest.fixture
+def ax():
+    fig, ax = plt.subplots(figsize=(4, 3))
+    yield ax
+    plt.close(fig)
+
+
+def test_every_registered_tracker_has_its_own_colour():
+    names = trackers.available()
+    bases = {n[: -len("-redetect")] if n.endswith("-redetect") else n for n in names}
+    assert bases <= set(TRACKER_COLORS), bases - set(TRACKER_COLORS)
+    colours = [c.lower() for c in TRACKER_COLORS.values()]
+    assert len(set(colours)) == len(colours), "two trackers share a colour"
+    assert GT_COLOR.lower() not in colours
+    assert tracker_color("kcf-redetect") == tracker_color("kcf")
+    assert tracker_color("my-tracker") is None and tracker_color("my-tracker", "#123456") == "#123456"
+
+
+def test_a_tracker_in_another_colour_is_flagged(ax):
+    ax.plot([0, 1], [0, 1], color=tracker_color("mosse"), label="kcf")
+    (p,) = figure_check.problems(ax.figure)
+    assert "'kcf'" in p and tracker_color("kcf") in p
+
+
+@pytest.mark.parametrize("label", ["kcf", "kcf-redetect", "kcf (paper)", "kcf, AUC 0.58"])
+def test_a_tracker_in_its_colour_passes(ax, label):
+    ax.plot([0, 1], [0, 1], color=tracker_color("kcf"), label=label)
+    ax.add_patch(Rectangle((0.2, 0.2), 0.1, 0.1, fill=False, edgecolor=tracker_color("dsst"),
+                           label="dsst"))
+    assert figure_check.problems(ax.figure) == []
+
+
+def test_boxes_markers_and_legend_proxies_are_checked(ax):
+    ax.add_patch(Rectangle((0.2, 0.2), 0.1, 0.1, fill=False, edgecolor="#000000", label="bacf"))
+    ax.scatter([0.5], [0.5], color="#000000", label="staple")
+    ax.legend(handles=[Patch(color="#000000", label="mosse")], loc="lower right")
+    found = figure_check.problems(ax.figure)
+    assert len(found) == 3 and all(any(n in p for p in found) for n in ("bacf", "staple", "mosse"))
+
+
+def test_labels_that_are_not_trackers_are_free(ax):
+    ax.plot([0, 1], [0, 1], color="#000000", label="ground truth")
+    ax.plot([0, 1], [1, 0], color="#000000", label="my-tracker")
+    ax.plot([0, 1], [1, 1], color="#000000", label="_hidden")
+    assert figure_check.problems(ax.figure) == []
+
+
+def test_a_legend_over_data_is_flagged_and_one_beside_it_passes(ax):
+    x = np.linspace(0, 1, 50)
+    ax.plot(x, np.full_like(x, 0.95), color="#000000", label="a curve along the top")
+    ax.set_ylim(0, 1)
+    ax.legend(loc="upper center")
+    (p,) = figure_check.problems(ax.figure)
+    assert "legend covers" in p
+    ax.legend(loc="lower center")
+    assert figure_check.problems(ax.figure) == []
+
+
+def test_a_scatter_under_the_legend_is_flagged(ax):
+    ax.scatter([0.5], [0.5], color="#000000", label="points")
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1)
+    ax.legend(loc="center")
+    assert any("legend covers 1" in p for p in figure_check.problems(ax.figure))
+
+
+def test_a_page_with_a_bad_figure_fails_to_execute(tmp_path, monkeypatch):
+    """End to end, as the book runs a page: the kernel's startup installs the check, the cell
+    that shows the figure fails with the problem, the others run."""
+    nbclient = pytest.importorskip("nbclient")
+    nbformat = pytest.importorskip("nbformat")
+    monkeypatch.setenv("IPYTHONDIR", str(figure_check.ipython_dir(tmp_path)))
+    nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell(
+            "import matplotlib.pyplot as plt\n"
+            "fig, ax = plt.subplots()\n"
+            "ax.plot([0, 1], [0, 1], color='#000000', label='kcf')\n"
+            "plt.show()"),
+        nbformat.v4.new_code_cell("print('ran')"),
+    ])
+    nbclient.NotebookClient(nb, timeout=120, kernel_name="python3",
+                            allow_errors=True).execute()
+    errors = [o for o in nb.cells[0].outputs if o.output_type == "error"]
+    assert len(errors) == 1 and errors[0].ename == "FigureCheckError"
+    assert "'kcf' is drawn in #000000" in errors[0].evalue
+    assert nb.cells[1].outputs[0].text == "ran\n"
+    with pytest.raises(nbclient.exceptions.CellExecutionError, match="FigureCheckError"):
+        nbclient.NotebookClient(nb, timeout=120, kernel_name="python3").execute()
