@@ -167,7 +167,8 @@ def orientation(m: Moments):
     Returns
     -------
     theta : radians, the angle of the long axis from the x axis, ``½ atan2(2b, a − c)``
-        written as OpenCV does, ``atan2(2b, a − c + sqrt(4b² + (a − c)²))``.
+        written as OpenCV does, ``atan2(2b, a − c + sqrt(4b² + (a − c)²))``, and 90° where
+        that form gives the short axis (``b = 0, a < c``: OpenCV swaps the axes there too).
     sigma_l, sigma_w : standard deviations along the long and the short axis.
     """
     if m.m00 <= 0:
@@ -178,6 +179,10 @@ def orientation(m: Moments):
     cs, sn = np.cos(theta), np.sin(theta)
     var_l = max(0.0, cs * cs * a + 2 * cs * sn * b + sn * sn * c)
     var_w = max(0.0, sn * sn * a - 2 * cs * sn * b + cs * cs * c)
+    if var_l < var_w:
+        # b = 0 and a < c (a blob longer in y than in x): the half-angle form gives
+        # atan2(0, 0) = 0, the short axis; the long one is at 90 degrees
+        var_l, var_w, theta = var_w, var_l, np.pi / 2 - theta
     return theta, float(np.sqrt(var_l)), float(np.sqrt(var_w))
 
 
