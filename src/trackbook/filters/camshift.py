@@ -16,9 +16,11 @@ grey or too dark to have a reliable hue count nothing, as Bradski masks them). T
    (OpenCV's rotated rect has the full sides ``4 σ_l, 4 σ_w``).
 3. The next frame's **search window**: Bradski's rule, a side ``s = 2 sqrt(M00 / 256)`` (M00
    of an 8-bit probability image over 256 is the number of "full" pixels, so the window is
-   twice the side of the blob), or OpenCV's rule (``window_rule="opencv"``): the bounding
-   box of the rotated rect plus 2 px, after the moments were taken over the converged window
-   grown by 10 px on every side (``TOLERANCE`` in OpenCV's ``camshift.cpp``).
+   twice the side of the blob), or OpenCV's rule (``window_rule="opencv"``): per axis the
+   larger of the rotated rect's two sides projected on it, plus 2 px (narrower than the
+   rect's bounding box, which adds the two projections), after the moments were taken over
+   the converged window grown by 10 px on every side (``TOLERANCE`` in OpenCV's
+   ``camshift.cpp``).
 
 Windows are integer pixel rectangles and pixel ``(i, j)`` sits at ``x = j, y = i``, as in
 OpenCV's ``cv::meanShift`` and ``cv::moments``, so that :func:`camshift` with
@@ -198,7 +200,7 @@ def camshift(prob: np.ndarray, window, max_iter: int = 10, eps: float = 1.0,
     window_rule : ``"bradski"`` (the next window has side ``s = 2 sqrt(M00 / 256)``, height
         ``aspect * s``, centred on the centroid; moments over the converged window) or
         ``"opencv"`` (``cv2.CamShift``'s: moments over the window grown by 10 px a side, next
-        window the rect's bounding box + 2 px).
+        window per axis the larger projection of the rect's sides + 2 px).
     aspect : height / width of Bradski's window (1.2 for his faces).
 
     Returns
