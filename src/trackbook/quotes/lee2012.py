@@ -104,8 +104,8 @@ QUOTES = [
           r"5. 4x4 격자(grid) 안에서 8개의 방향성 저장소 $u$ 로 누적과 정규화(normalization)을 "
           r"이용한 서술자(descriptor) 형성",
           "5. Form the descriptor by accumulation into 8 orientation bins u within a 4x4 grid "
-          "and normalisation (the 4x4 grid read as a cell of 4 x 4 pixels: 16 x 24 / 4 = "
-          "the 4 x 6 cells of Fig. 4)", kind="reading"),
+          "and normalisation (the 4x4 grid read as a cell of 4 x 4 pixels: the 16 x 24 patch "
+          "then holds the 6 x 4 cells of Fig. 4)", kind="reading"),
     Quote("lee2012.hog_eq5", "§III.2, step 5 (eq. 5)",
           r"$$D_u = \frac{1}{f} \sum_{i=1}^n m_i(x, y) \delta(\tilde{\theta}_i(x, y) - u), "
           r"\quad u = 1, \dots, 8 \quad (5)$$",
