@@ -118,6 +118,17 @@ QUOTES = [
           r"0.134% propose method 6/164 96.3% 0.043%",
           "miss/total, detection rate, averaging search rate — covariance matrix: 21/164, "
           "87.1 %, 0.134 %; proposed method: 6/164, 96.3 %, 0.043 %"),
+    Quote("lee2015.table1_redcube", "§III, paragraph after Table 1",
+          r"표 1은 고속 이동 물체(RedCube)의 공분산 행렬만을 적용하였을 때와 제안한 방법을 "
+          r"적용하였을 때의 이동 물체 추적에 대한 성능 평가 결과이다.",
+          "Table 1 is the result of the performance evaluation of moving-object tracking for "
+          "the fast-moving object (RedCube) with the covariance matrix alone and with the "
+          "proposed method."),
+    Quote("lee2015.fig3_cube", "§III, paragraph on Fig. 3",
+          r"숫자가 적힌 큐브의 공분산 행렬과 후보 영역의 공분산 행렬을 비교 연산하면서 추적을 "
+          r"지속하다가",
+          "Tracking went on by comparing the covariance matrix of the cube with numbers written "
+          "on it with the covariance matrices of the candidate regions, until"),
     Quote("lee2015.window24", "§III, paragraph after Table 1",
           r"평균 탐색률은 고속의 이동 물체를 24×24의 영역으로 움직이면서 추적했을 때 결과이다.",
           "The average search rate is the result of tracking the fast-moving object by moving a "
