@@ -133,6 +133,21 @@ def test_orientation_and_axes_of_a_hand_made_ellipse():
     assert r.center == pytest.approx((80, 60), abs=0.1)
 
 
+def test_orientation_of_a_vertical_bar_names_the_long_axis():
+    """A 3 x 16 bar of 255 standing upright: mu11 = 0 and mu20 < mu02, where the half-angle
+    form atan2(2b, a - c + root) is atan2(0, 0) = 0. The long axis is the y axis (90 degrees)
+    and the deviations are those of 16 rows and 3 columns, sqrt((n^2 - 1) / 12)."""
+    p = np.zeros((20, 20), np.uint8)
+    p[2:18, 8:11] = 255
+    theta, s_l, s_w = cs.orientation(cs.moments(p, (0, 0, 20, 20)))
+    assert np.degrees(theta) == pytest.approx(90)
+    assert s_l == pytest.approx(np.sqrt((16 ** 2 - 1) / 12))
+    assert s_w == pytest.approx(np.sqrt((3 ** 2 - 1) / 12))
+    # OpenCV reports the same bar as a rect of sides 4 sigma_w x 4 sigma_l at angle 0
+    (_, (w, h), angle), _ = cv2.CamShift(p, (0, 0, 20, 20), (3, 10, 1))
+    assert (w, h) == pytest.approx((4 * s_w, 4 * s_l), rel=1e-5) and angle == 0
+
+
 def test_bradski_window_side_is_two_sqrt_m00_over_256():
     """A uniform 255 square of side 20 inside the window: M00 = 255 * 400, so the next side is
     round(2 sqrt(255 * 400 / 256)) = round(39.92) = 40, centred on the square."""

@@ -108,6 +108,29 @@ def test_optimal_proposal_is_the_kalman_update_of_the_point_prediction():
     assert S[0, 0] == pytest.approx(H * Q * H + R)
 
 
+def test_optimal_proposal_in_two_dimensions_equals_filterpys_kalman_update():
+    # the optimal proposal of each particle is filterpy's Kalman update of the prediction
+    # F x_prev with prior covariance Q, and the weight it leaves, log N(z; H F x_prev, S),
+    # is filterpy's log-likelihood of that update
+    kalman = pytest.importorskip("filterpy.kalman")
+    F = np.array([[1.0, 1.0], [0.0, 1.0]])
+    Q = np.array([[0.5, 0.1], [0.1, 0.3]])
+    H = np.array([[1.0, 0.0], [0.3, 1.0]])
+    R = np.array([[0.2, 0.05], [0.05, 0.4]])
+    x_prev = np.random.default_rng(43).normal(size=(4, 2))
+    z = np.array([2.5, -0.5])
+    mean, cov, S = optimal_gaussian_proposal(x_prev, z, F, Q, H, R)
+    for i, x in enumerate(x_prev):
+        kf = kalman.KalmanFilter(dim_x=2, dim_z=2)
+        kf.x, kf.P, kf.H, kf.R = F @ x, Q.copy(), H, R
+        kf.update(z)
+        np.testing.assert_allclose(mean[i], kf.x, rtol=1e-12)
+        np.testing.assert_allclose(cov, kf.P, rtol=1e-12)
+        np.testing.assert_allclose(S, kf.S, rtol=1e-12)
+        assert gaussian_log_density(z[None, :], H @ F @ x, S)[0] == pytest.approx(
+            kf.log_likelihood, rel=1e-12)
+
+
 def test_bad_input_names_the_problem():
     with pytest.raises(ValueError, match="one value per particle"):
         importance_weights(np.zeros(3), np.zeros(3), np.zeros(2))

@@ -223,3 +223,32 @@ def test_renaming_the_hypotheses_changes_no_score(seed):
     renamed = [[(names.setdefault(i, f"h{-i * 7 % 1009}"), b) for i, b in f] for f in hyps]
     assert len(set(names.values())) == len(names)
     assert mot_scores(truth, renamed) == mot_scores(truth, hyps)
+
+
+def test_a_match_is_kept_across_a_gap_where_trackeval_matches_afresh():
+    # frame 0: a on the target; frame 1: a far away (a miss); frame 2: a back at IoU 0.6 and b
+    # exactly on the target. The library (and py-motmetrics) keep 1-a, the last match, as it is
+    # valid again: no switch. TrackEval keeps only the previous frame's matches, so frame 2 is
+    # a fresh matching that takes b (IoU 1): one switch. Both: FN 1, FP 2 (frame 1's a, frame
+    # 2's unmatched box), 3 targets -> MOTA 1 − 3/3 = 0 here and 1 − 4/3 in TrackEval.
+    metrics = pytest.importorskip("trackeval.metrics")
+    base = pytest.importorskip("trackeval.datasets._base_dataset")
+    truth = [[(1, BOX)]] * 3
+    hyps = [[("a", BOX)], [("a", FAR)], [("a", shifted(2.5)), ("b", BOX)]]
+    ours = clear_mot(truth, hyps)
+    assert (ours.switches, ours.misses, ours.false_positives) == (0, 1, 2)
+    assert ours.mota == pytest.approx(0.0, abs=1e-12)
+    hmap = {}
+    data = {"gt_ids": [], "tracker_ids": [], "similarity_scores": []}
+    for g, h in zip(truth, hyps):
+        gi, gb = _ids_boxes(g)
+        hi, hb = _ids_boxes(h)
+        data["gt_ids"].append(np.array([0] * len(gi), int))
+        data["tracker_ids"].append(np.array([hmap.setdefault(i, len(hmap)) for i in hi], int))
+        data["similarity_scores"].append(
+            base._BaseDataset._calculate_box_ious(gb, hb, box_format="xywh"))
+    data.update(num_gt_ids=1, num_tracker_ids=len(hmap), num_timesteps=3,
+                num_gt_dets=3, num_tracker_dets=4)
+    ref = metrics.CLEAR().eval_sequence(data)
+    assert (ref["IDSW"], ref["CLR_FN"], ref["CLR_FP"]) == (1, 1, 2)
+    assert ref["MOTA"] == pytest.approx(1 - 4 / 3, abs=1e-12)

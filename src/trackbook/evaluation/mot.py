@@ -140,9 +140,12 @@ def clear_mot(truth, hypotheses, threshold: float = 0.5) -> ClearMot:
 
     Frame by frame, ground-truth targets are matched to hypotheses:
 
-    1. a match of an earlier frame is **kept** while it is still valid (the same two ids are
-       present and their IoU is at least ``threshold``), whatever a fresh matching would say —
-       CLEAR-MOT's rule, so a hypothesis that keeps following its target is never re-matched;
+    1. a target's last match is **kept** while it is still valid (the same two ids are
+       present and their IoU is at least ``threshold``), whatever a fresh matching would say,
+       so a hypothesis that keeps following its target is never re-matched. The last match
+       is the one of whichever earlier frame it was made in, as in py-motmetrics; the paper
+       and TrackEval keep only the previous frame's matches, so after a gap in which the
+       pair was not matched they match afresh (and may count a switch this keeps out);
     2. the remaining targets and hypotheses are matched by the Hungarian method
        (``scipy.optimize.linear_sum_assignment``) on the cost 1 − IoU, pairs below
        ``threshold`` forbidden; among the matchings with the most pairs it takes one of least

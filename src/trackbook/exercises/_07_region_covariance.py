@@ -39,7 +39,9 @@ $C \mapsto ACA^T$ with $A = \mathrm{diag}(1, 1, 1.5, 1.5, 1.5)$. $d_F$ is invari
 matrices get the same $A$ (two windows of the same changed frame keep their distance,
 exercise 7.8), but $d_F(C, ACA^T)$ is not 0: a model stored before the change does not match
 the changed target exactly, because the $x, y$ rows did not scale while the others did. With
-uint8 frames the clipped pixels break both invariances.
+uint8 frames the pixels that clip at 255 do not move with the rest: the shift no longer
+cancels (on this box $d_F$ is about 0.3 instead of 0), and a contrast change is no longer a
+congruence, so two windows of the changed frame no longer keep their distance.
 
 === 7.4 ★★ modify | Small q or large q?
 Run the book's variant `kalman-covariance-manoeuvre` on the first 146 frames of `red-cube`
@@ -59,28 +61,59 @@ Starting from the steady state (Q = R = I, a measurement every
 frame), add σ_v² = 64 to the velocity block of $P^+$ and predict. What is the 3σ half-size
 of the window now, and what are the position and velocity gains of the update? On
 `yellow-ball`, at which frames does `kalman-covariance-manoeuvre` use the manoeuvre window
-(`tracker.manoeuvre`)? Compare with the frames where the true ball bounces.
+(`tracker.manoeuvre`, readable in an `on_frame` callback)? Compare with the frames where the
+true ball turns from falling to rising. Answer `(half_size, k_position, k_velocity, frames)`.
+--- hint
+Iterate predict and update with $F$ of the constant-velocity model, $Q = I_4$, $R = I_2$ until
+$P^+$ stops changing; then $P^- = F(P^+ + \sigma_v^2 D)F^T + Q$ with $D = \mathrm{diag}(0, 0, 1, 1)$,
+$S = P^-_{xx} + 1$, and the gains are $P^-_{xx}/S$ and $P^-_{\dot x x}/S$.
+--- solution
+In the steady state $P^+$ has position variance 0.822, position-velocity covariance 0.422
+and velocity variance 1.947 per axis (the window is then $3\sqrt{S} \approx 7.1$ px). With
+64 added to the velocity variance, $P^-_{xx} = 0.822 + 2 \cdot 0.422 + 65.947 + 1 = 68.61$
+and $P^-_{\dot x x} = 0.422 + 65.947 = 66.37$; $S = 69.61$, so the 3σ half-size is
+$3\sqrt{69.61} \approx 25.0$ px, the position gain $68.61/69.61 \approx 0.986$ and the
+velocity gain $66.37/69.61 \approx 0.953$: the update moves the velocity estimate almost all
+the way to what the measurement implies. On `yellow-ball` the tracker uses the manoeuvre
+window at frames 24, 66 and 105, once per bounce, one or two frames after the true ball turns
+(23, 64 and 103): the first frame predicted into the ground is the one whose $d_F$ jumps.
 
 === 7.6 ★★★ implement | Eq. 4 from integral images
 Write `cov_from_sums(F, box)`: for the rectangle `box = (x, y, w, h)` of a feature image `F`
-(H × W × d), take the sums $P = \sum f$ and $Q = \sum f f^T$ over the rectangle from
-summed-area tables (four look-ups each) and return $\frac{1}{MN}\big(Q - PP^T/MN\big)$, the
+(H × W × d), take the sums $u = \sum f$ and $V = \sum f f^T$ over the rectangle from
+summed-area tables (four look-ups each) and return $\frac{1}{MN}\big(V - uu^T/MN\big)$, the
 population covariance of eq. 4. By hand first: one feature with values 1, 2, 3, 4 over a
 2 × 2 image has mean 2.5 and variance $(2.25 + 0.25 + 0.25 + 2.25)/4 = 1.25$. The check uses
 that case and a box of two features $f$ and $2f$, whose covariance is
 $\begin{bmatrix}v & 2v\\ 2v & 4v\end{bmatrix}$.
 --- solution
-Centre the features first (subtract the image's mean): $Q - PP^T/MN$ then does not lose
-precision to the subtraction of two large numbers.
+Build one summed-area table of the $d$ features and one of their products $f f^T$ (pad a
+zero row and column first), read $u$ and $V$ with the four look-ups
+$S[y+h, x+w] - S[y, x+w] - S[y+h, x] + S[y, x]$, and return $(V - uu^T/MN)/MN$ with
+$MN = wh$. Centre the features first (subtract the image's mean): the covariance does not
+change, and $V - uu^T/MN$ then does not lose precision to the subtraction of two large
+numbers. The appendix's solution cell writes it out.
 
 === 7.7 ★★★ project | Add scale to the covariance tracker
-Neither covariance tracker changes the size of
-its window, which is why both lose David and MotorRolling. Around each frame's best window,
+Neither covariance tracker changes the size of its window; David and MotorRolling, the two
+public sequences on which both score lowest, are annotated with scale variation (among much
+else). Around each frame's best window,
 evaluate the same centre at scales 0.9, 1.0 and 1.1 and keep the smallest $d_F$. Beware: the
 $x, y$ features are pixel coordinates, so a larger window has a larger $x$-variance even for
 the same object — divide the $x, y$ rows and columns of $C$ by the scale (a congruence
 $A C A^T$ with $A = \mathrm{diag}(1/s, 1/s, 1, 1, 1)$) before comparing. Measure the IoU with
 and without the scale step on `red-cube` and `yellow-ball`, and say where it helps.
+--- solution
+A post-hoc step is enough for a first measurement: run `covariance` with an `on_frame`
+callback that, around the tracker's centre, scores the three scaled windows against the
+first frame's model (each candidate's covariance normalised with its $A$) and keeps the
+best; carry the chosen size to the next frame. Measured on the sample clips, it helps on
+neither: the targets there keep their size, and a free choice in every frame lets the size
+drift (each choice starts from the last one). On `red-cube` the mean IoU falls from about
+0.92 to below 0.6, on `yellow-ball` it stays close to its fixed-size value (about 0.83). A
+useful version needs a prior that keeps the size (penalise changes, or accept a new scale
+only when $d_F$ improves clearly) and sequences that do change scale, such as David; the
+chapter's hidden solution cell is the code.
 
 === 7.8 ★★ pen and paper | Why d_F ignores a common change of coordinates
 Show that $d_F(AC_1A^T, AC_2A^T) = d_F(C_1, C_2)$ for every invertible $A$, from the

@@ -38,7 +38,8 @@ to the owner: the first is in front of nothing but $d^2 = 25 > T_b = 16$; the se
 $0.693 < 0.9$ in front of it and $1.5625 < 16$: **background**. The owner gains $\eta$:
 $\pi_2 = 0.2575$, so its step is $\eta / \pi_2 = 0.038835$;
 $\mu_2 = 125 + 0.038835 \cdot (120 - 125) = 124.806$ and
-$\sigma_2^2 = 16 + 0.038835 \cdot (25 - 16) = 16.350$. The weights $0.693, 0.2575, 0.0495$
+$\sigma_2^2 = 16 + 0.038835 \cdot (\lVert \delta_2 \rVert^2 - 16)
+= 16 + 0.038835 \cdot (5^2 - 16) = 16.350$. The weights $0.693, 0.2575, 0.0495$
 already sum to 1, as they must with $c_T = 0$.
 
 === 15.3 ★ pen and paper | The running average's memory
@@ -89,9 +90,10 @@ $P(\chi^2_3 > 3T)$, 0.0074 for $T = 4$ and below $10^{-5}$ from $T = 9$ on. The 
 $T = 4$ is higher in these frames (about 0.013) because the model has not settled: each mean
 started at the first, noisy frame and its error shrinks only by $(1 - \eta)$ a frame, so over
 the measured frames it still adds between a tenth and a quarter of $s^2$ to the variance of
-$I_t - \mu_m$ on every channel, and the tail of that wider distribution is heavier. Run the same model for 150 frames
-and the share over the last 20 falls to the predicted 0.007. From $T = 9$ on nothing is
-flagged. OpenCV's default $T_b = 16$ leaves a wide margin on clean noise; real cameras add
+$I_t - \mu_m$ on every channel, and the tail of that wider distribution is heavier. Run the
+same model for 150 frames and the share over the last 20 falls to the predicted 0.007. At
+$T = 9$ about four pixel-frames in $10^5$ are flagged (above the tail too, for the same
+reason); from $T = 16$ on none. OpenCV's default $T_b = 16$ leaves a wide margin on clean noise; real cameras add
 compression artefacts and flicker, hence the floor $\sigma^2_{\min}$ on every variance.
 
 === 15.6 ★★ modify | The minimum area and the shadow

@@ -51,10 +51,11 @@ its 3 frames on target 2 count as IDFP although they are correct frame by frame.
 Three tracks predict boxes of height 20 at $x = 0, 20, 40$, each 20 px wide (all at $y = 0$).
 The detector returns three boxes of the same height and width at $x = 5, 28, 70$. Write the
 $3 \times 3$ IoU matrix (detections × tracks; boxes of one height overlap by a width $o$ and
-have IoU $o / (2 \cdot 20 - o)$), gate it at IoU ≥ 0.3 and solve the assignment by hand. Which
-track coasts, which detection starts a track? With SORT's reference defaults (a track is
-deleted after more than one frame without a detection), what happens to the coasting track
-if it is missed again in the next frame?
+have IoU $o / (2 \cdot 20 - o)$) and assign in SORT's order by hand: the matching with the
+largest total IoU, then every pair below 0.3 rejected. Would gating first change the answer
+here? Which track coasts, which detection starts a track? With SORT's reference defaults (a
+track is deleted after more than one frame without a detection), what happens to the
+coasting track if it is missed again in the next frame?
 --- solution
 Overlaps: $x = 5$ overlaps track 1 by 15 px (IoU $15/25 = 0.6$) and track 2 by 5 px
 ($5/35 \approx 0.143$); $x = 28$ overlaps track 2 by 12 px ($12/28 \approx 0.429$) and track 3
@@ -66,8 +67,11 @@ by 8 px ($8/32 = 0.25$); $x = 70$ overlaps nothing.
 | $x = 28$ | 0 | 0.429 | 0.25 |
 | $x = 70$ | 0 | 0 | 0 |
 
-The gate leaves two allowed pairs, $(5, 1)$ and $(28, 2)$, in different rows and columns, so
-the assignment takes both. Track 3 coasts on its prediction (its only candidate, $x = 28$,
+The largest total IoU is $0.6 + 0.429 + 0 = 1.029$: $x = 5$ with track 1, $x = 28$ with
+track 2 and $x = 70$ with track 3 (every other matching totals at most 0.85). The gate
+rejects the last pair (IoU 0) and keeps the other two. Gating first gives the same: only
+$(5, 1)$ and $(28, 2)$ pass the gate, in different rows and columns, so the assignment takes
+both. Track 3 coasts on its prediction (its only candidate, $x = 28$,
 fell below the gate); the detection at $x = 70$ starts a tentative track. The coasting track
 is kept this frame (one frame without a detection, $\le$ `max_age` = 1); missed again, it
 has gone two frames without one and is deleted, and if its target is detected later it

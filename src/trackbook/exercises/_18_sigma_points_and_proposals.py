@@ -90,7 +90,7 @@ In the polar-conversion comparison of the chapter, run the unscented transform w
 $\alpha_{\mathrm{UT}} \in \{10^{-3}, 0.3, 1\}$ ($\beta_{\mathrm{UT}} = 2$, $\kappa_{\mathrm{UT}} = 0$) at
 $\sigma_\theta = 0.3$ and $0.6$ rad. Which gives the mean closest to the exact one, and which the
 $y$ standard deviation closest to the Monte Carlo one? Explain the mean with a Taylor
-expansion of $E[\cos\theta]$.
+expansion of $E[\cos(\theta - \theta_0)]$, $\theta_0 = \pi/2$ the mean bearing.
 --- solution
 The side points along $\theta$ lie at $\pm \gamma_{\mathrm{UT}}\sigma_\theta$ with $\gamma_{\mathrm{UT}}^2 = n + \lambda_{\mathrm{UT}} =
 2\alpha_{\mathrm{UT}}^2$, and the unscented estimate of $E[\cos(\theta - \theta_0)]$ is

@@ -90,11 +90,13 @@ Run `trackbook bench --trackers kcf --clips red-cube --protocol tre:5 --max-fram
 --out tre-kcf` and then the same bench with `--protocol ope --out ope-kcf`. Read both
 `table.md` files. Why do the two AUCs differ, and which one weighs the end of the clip more?
 --- solution
-The TRE table pools five runs that start on frames 0, 10, 20, 30 and 40 of the 60 frames: the
+(Each table also has a row for `opencv-mil`, which `bench` always adds as a reference.) The
+TRE table pools five runs that start on frames 0, 10, 20, 30 and 40 of the 60 frames: the
 last frames are tracked by every run, the first ones by one run only, so TRE weighs the end
 of the clip more than the one-pass evaluation does: a tracker that does well early in the
 clip (where OPE starts it) gains less from it under TRE, and one that does well late gains
-more.
+more. The AUCs differ for a second reason too: every later run starts again from the ground
+truth, so a drift that OPE carries to the end of the clip is undone at each start.
 """
 
 

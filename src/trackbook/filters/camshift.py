@@ -16,9 +16,11 @@ grey or too dark to have a reliable hue count nothing, as Bradski masks them). T
    (OpenCV's rotated rect has the full sides ``4 σ_l, 4 σ_w``).
 3. The next frame's **search window**: Bradski's rule, a side ``s = 2 sqrt(M00 / 256)`` (M00
    of an 8-bit probability image over 256 is the number of "full" pixels, so the window is
-   twice the side of the blob), or OpenCV's rule (``window_rule="opencv"``): the bounding
-   box of the rotated rect plus 2 px, after the moments were taken over the converged window
-   grown by 10 px on every side (``TOLERANCE`` in OpenCV's ``camshift.cpp``).
+   twice the side of the blob), or OpenCV's rule (``window_rule="opencv"``): per axis the
+   larger of the rotated rect's two sides projected on it, plus 2 px (narrower than the
+   rect's bounding box, which adds the two projections), after the moments were taken over
+   the converged window grown by 10 px on every side (``TOLERANCE`` in OpenCV's
+   ``camshift.cpp``).
 
 Windows are integer pixel rectangles and pixel ``(i, j)`` sits at ``x = j, y = i``, as in
 OpenCV's ``cv::meanShift`` and ``cv::moments``, so that :func:`camshift` with
@@ -167,7 +169,8 @@ def orientation(m: Moments):
     Returns
     -------
     theta : radians, the angle of the long axis from the x axis, ``½ atan2(2b, a − c)``
-        written as OpenCV does, ``atan2(2b, a − c + sqrt(4b² + (a − c)²))``.
+        written as OpenCV does, ``atan2(2b, a − c + sqrt(4b² + (a − c)²))``, and 90° where
+        that form gives the short axis (``b = 0, a < c``: OpenCV swaps the axes there too).
     sigma_l, sigma_w : standard deviations along the long and the short axis.
     """
     if m.m00 <= 0:
@@ -178,6 +181,10 @@ def orientation(m: Moments):
     cs, sn = np.cos(theta), np.sin(theta)
     var_l = max(0.0, cs * cs * a + 2 * cs * sn * b + sn * sn * c)
     var_w = max(0.0, sn * sn * a - 2 * cs * sn * b + cs * cs * c)
+    if var_l < var_w:
+        # b = 0 and a < c (a blob longer in y than in x): the half-angle form gives
+        # atan2(0, 0) = 0, the short axis; the long one is at 90 degrees
+        var_l, var_w, theta = var_w, var_l, np.pi / 2 - theta
     return theta, float(np.sqrt(var_l)), float(np.sqrt(var_w))
 
 
@@ -193,7 +200,7 @@ def camshift(prob: np.ndarray, window, max_iter: int = 10, eps: float = 1.0,
     window_rule : ``"bradski"`` (the next window has side ``s = 2 sqrt(M00 / 256)``, height
         ``aspect * s``, centred on the centroid; moments over the converged window) or
         ``"opencv"`` (``cv2.CamShift``'s: moments over the window grown by 10 px a side, next
-        window the rect's bounding box + 2 px).
+        window per axis the larger projection of the rect's sides + 2 px).
     aspect : height / width of Bradski's window (1.2 for his faces).
 
     Returns

@@ -5,8 +5,10 @@ Every frame a detector gives boxes without identities. SORT keeps one *track* pe
 1. each track's Kalman filter **predicts** its box in the new frame (constant velocity);
 2. detections are **assigned** to tracks by the Hungarian method on IoU between detection
    and predicted box (the largest total IoU), and an assigned pair with IoU below
-   ``iou_threshold`` is then rejected (the gate), as Bewley et al. 2016 and their reference
-   code do; ``gate_first=True`` is the book's variant that forbids those pairs before solving;
+   ``iou_threshold`` is then rejected (the gate), as Bewley et al. 2016 describe it (their
+   current reference code first checks whether the pairs above the gate are already one to
+   one and then keeps them without solving; that shortcut is not taken here);
+   ``gate_first=True`` is the book's variant that forbids those pairs before solving;
 3. an assigned track **updates** its filter with its detection; a detection left over starts a
    new (tentative) track; a track left over coasts on its prediction;
 4. a track is **reported** in a frame where it was detected and its last ``min_hits`` frames
@@ -104,9 +106,11 @@ class _Track:
 def associate(detections, predicted, iou_threshold: float = 0.3, *, gate_first: bool = False):
     """Assign detections to tracks' predicted boxes by the Hungarian method on IoU, gated.
 
-    SORT's order (``gate_first=False``, Bewley et al. 2016 and their reference code): the
-    one-to-one matching with the largest total IoU over all pairs, then every matched pair
-    with IoU below ``iou_threshold`` is rejected. The book's variant (``gate_first=True``):
+    SORT's order (``gate_first=False``, as Bewley et al. 2016 describe it): the one-to-one
+    matching with the largest total IoU over all pairs, then every matched pair with IoU
+    below ``iou_threshold`` is rejected. (SORT's current reference code keeps the pairs above
+    the threshold without solving when no detection and no track has more than one of them,
+    which is what ``gate_first=True`` gives there; this function always solves.) The book's variant (``gate_first=True``):
     among the matchings whose pairs all have IoU ≥ ``iou_threshold``, one with the most pairs
     and, among those, the largest total IoU. They differ only when SORT's optimum uses a pair
     below the threshold (the several-targets chapter works an example).
@@ -176,8 +180,8 @@ class Sort:
     The defaults (1, 3, 0.3) are SORT's reference code defaults. Two differences from that code,
     both for the book's use: ids count 1, 2, … per tracker (not across all trackers of a
     process), so the same detections always give the same ids; and tracks are not reported
-    before they have ``min_hits`` hits (the reference code reports every track during its first
-    ``min_hits`` frames).
+    before they have ``min_hits`` hits (the reference code also reports, during the first
+    ``min_hits`` frames of the sequence, every track matched or started in that frame).
 
     Examples
     --------

@@ -94,14 +94,23 @@ QUOTES = [
           r"$$g_x(x, y) = I(x+1, y) - I(x-1, y) \quad (2)$$ "
           r"$$g_y(x, y) = I(x, y+1) - I(x, y-1)$$",
           "g_x(x, y) = I(x+1, y) − I(x−1, y) (2); g_y(x, y) = I(x, y+1) − I(x, y−1)"),
+    Quote("lee2012.hog_angle_eq3", "§III.2, step 3 (eq. 3)",
+          r"$$\theta(x, y) = \tan^{-1} \left( \frac{g_y(x, y)}{g_x(x, y)} \right)$$",
+          "θ(x, y) = tan⁻¹(g_y(x, y) / g_x(x, y)) (eq. 3, second line)"),
     Quote("lee2012.hog_signed_eq4", "§III.2, step 4 (eq. 4)",
           r"4. 방향성 성분을 0~360도로 만들기 위해 방향성이 0보다 작을 경우 $2\pi$ 를 더하여 계산",
           "4. To bring the orientation to 0–360 degrees, add 2π when the orientation is below 0"),
     Quote("lee2012.hog_cell_eq5", "§III.2, step 5 (eq. 5)",
           r"5. 4x4 격자(grid) 안에서 8개의 방향성 저장소 $u$ 로 누적과 정규화(normalization)을 "
           r"이용한 서술자(descriptor) 형성",
-          "5. Form the descriptor by accumulating into 8 orientation bins u within a 4x4 grid "
-          "(cell) and normalising", kind="reading"),
+          "5. Form the descriptor by accumulation into 8 orientation bins u within a 4x4 grid "
+          "and normalisation (the 4x4 grid read as a cell of 4 x 4 pixels: the 16 x 24 patch "
+          "then holds the 6 x 4 cells of Fig. 4)", kind="reading"),
+    Quote("lee2012.hog_eq5", "§III.2, step 5 (eq. 5)",
+          r"$$D_u = \frac{1}{f} \sum_{i=1}^n m_i(x, y) \delta(\tilde{\theta}_i(x, y) - u), "
+          r"\quad u = 1, \dots, 8 \quad (5)$$",
+          "D_u = (1/f) Σ_{i=1..n} m_i(x, y) δ(θ̃_i(x, y) − u), u = 1, …, 8 (5); f is not "
+          "defined in the text"),
     Quote("lee2012.window40", "§IV, paragraph before Fig. 5",
           r"IPCA에서 사용되는 $d \times n$ 의 행렬 $A = \{I_1, \dots, I_n\}$ 는 매 프레임 영상에서 "
           r"계산된 물체의 특징인 각 열의 $d$ 차원 벡터 $I_i$ 로 구성된다. 제안된 알고리즘에서는 "
@@ -230,6 +239,9 @@ QUOTES = [
           r"평균적으로 낮은 성능을 보였다.",
           "Also, on the DBs acquired at night, every algorithm performed lower on average "
           "because of insufficient lighting."),
+    Quote("lee2012.table3_header", "§VI, Table 3, header",
+          r"Name Total Frame Color [20] Color + HOG [14] Proposed",
+          "Name, Total Frame, Color [20], Color + HOG [14], Proposed"),
     Quote("lee2012.table3_db01", "§VI, Table 3, first row",
           r"DB 01 3015 2128 70.6 2883 95.6 2923 96.9",
           "DB 01: Total Frame 3015; Color: Frame Pos 2128, 70.6 %; Color + HOG: 2883, 95.6 %; "

@@ -118,6 +118,17 @@ QUOTES = [
           r"0.134% propose method 6/164 96.3% 0.043%",
           "miss/total, detection rate, averaging search rate — covariance matrix: 21/164, "
           "87.1 %, 0.134 %; proposed method: 6/164, 96.3 %, 0.043 %"),
+    Quote("lee2015.table1_redcube", "§III, paragraph after Table 1",
+          r"표 1은 고속 이동 물체(RedCube)의 공분산 행렬만을 적용하였을 때와 제안한 방법을 "
+          r"적용하였을 때의 이동 물체 추적에 대한 성능 평가 결과이다.",
+          "Table 1 is the result of the performance evaluation of moving-object tracking for "
+          "the fast-moving object (RedCube) with the covariance matrix alone and with the "
+          "proposed method."),
+    Quote("lee2015.fig3_cube", "§III, paragraph on Fig. 3",
+          r"숫자가 적힌 큐브의 공분산 행렬과 후보 영역의 공분산 행렬을 비교 연산하면서 추적을 "
+          r"지속하다가",
+          "Tracking went on by comparing the covariance matrix of the cube with numbers written "
+          "on it with the covariance matrices of the candidate regions, until"),
     Quote("lee2015.window24", "§III, paragraph after Table 1",
           r"평균 탐색률은 고속의 이동 물체를 24×24의 영역으로 움직이면서 추적했을 때 결과이다.",
           "The average search rate is the result of tracking the fast-moving object by moving a "
@@ -142,4 +153,33 @@ QUOTES = [
           "computes the region of the frames where there is motion, takes its centre as the "
           "centre of the initial Kalman search window, and after the Kalman update step uses it "
           "to predict the next state."),
+    Quote("lee2015.covariance_search_range", "§2.3, first paragraph",
+          r"그러나 이동 물체가 빠르게 방향을 전환하여 움직이는 경우, 공분산 행렬만을 사용한 탐색 "
+          r"방법은 탐색 범위 밖으로 목표물이 벗어나므로 후보 영역들이 이동 물체를 찾지 못하므로 전체 "
+          r"영역을 다시 탐색하면서 연산해야 하므로 탐색 시간 복잡도가 증가한다.",
+          "However, when the moving object turns quickly, with the search that uses the "
+          "covariance matrix alone the target leaves the search range, so the candidate regions "
+          "do not find the moving object and the whole region must be searched again, which "
+          "increases the time complexity of the search."),
+    Quote("lee2015.fig2_window", "§III, paragraph on Fig. 2",
+          r"그림 2는 칼만 필터에 의해 예측된 탐색 윈도우 영역을 보여준다.",
+          "Fig. 2 shows the search-window area predicted by the Kalman filter."),
+    Quote("lee2015.table1_redcube", "§III, paragraph after Table 1",
+          r"표 1은 고속 이동 물체(RedCube)의 공분산 행렬만을 적용하였을 때와 제안한 방법을 "
+          r"적용하였을 때의 이동 물체 추적에 대한 성능 평가 결과이다.",
+          "Table 1 is the performance evaluation of tracking the fast-moving object (RedCube) "
+          "with the covariance matrix alone and with the proposed method."),
+    Quote("lee2015.yellowball_effective", "§III, paragraph after Fig. 6",
+          r"그림 5의 이동 물체(RedCube) 보다 이동 속도가 빠르지 않으나 제안하는 방법에 의한 이동 "
+          r"물체 추적이 효과적임을 보여주고 있다.",
+          "It moves less fast than the moving object of Fig. 5 (RedCube), but it shows that "
+          "tracking the moving object with the proposed method is effective."),
+    Quote("lee2015.future_size", "§IV, last sentence",
+          r"향후 고속으로 이동하는 사람과 물체의 특성을 고려한 추적 방법에 적용하고 이동 속도 측정 "
+          r"및 이동 방향 예측에 따른 칼만 필터의 적용과 이동 물체의 크기에 가변적인 공분산 행렬의 "
+          r"적용에 대한 연구가 이뤄져야 할 것이다.",
+          "Future work should apply the method to tracking that takes the characteristics of "
+          "fast-moving people and objects into account, and study a Kalman filter that follows "
+          "measured speed and predicted direction and a covariance matrix that varies with the "
+          "size of the moving object."),
 ]
