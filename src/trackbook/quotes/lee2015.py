@@ -164,11 +164,6 @@ QUOTES = [
     Quote("lee2015.fig2_window", "§III, paragraph on Fig. 2",
           r"그림 2는 칼만 필터에 의해 예측된 탐색 윈도우 영역을 보여준다.",
           "Fig. 2 shows the search-window area predicted by the Kalman filter."),
-    Quote("lee2015.table1_redcube", "§III, paragraph after Table 1",
-          r"표 1은 고속 이동 물체(RedCube)의 공분산 행렬만을 적용하였을 때와 제안한 방법을 "
-          r"적용하였을 때의 이동 물체 추적에 대한 성능 평가 결과이다.",
-          "Table 1 is the performance evaluation of tracking the fast-moving object (RedCube) "
-          "with the covariance matrix alone and with the proposed method."),
     Quote("lee2015.yellowball_effective", "§III, paragraph after Fig. 6",
           r"그림 5의 이동 물체(RedCube) 보다 이동 속도가 빠르지 않으나 제안하는 방법에 의한 이동 "
           r"물체 추적이 효과적임을 보여주고 있다.",
