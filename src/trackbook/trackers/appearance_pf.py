@@ -34,7 +34,8 @@ class AppearanceParams(CentrePFParams):
         0.2, 0.01, 1.0, 0.01, "sigma of the likelihood exp(-D^2 / 2 sigma^2)",
         paper=NOT_PRINTED,
         why="Kim et al. (2016) name the HSI and HOG filters they compare with but print none of "
-        "their settings [quote: kim2016.baselines]; 0.2 is the book's choice (02_particle_filters, 03_hog)")
+        "their settings [quote: kim2016.baselines]; 0.2 is the book's choice (the particle-filter "
+        "and HOG chapters)")
 
 
 class AppearancePF(CentreParticleFilter):

@@ -174,8 +174,9 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           "D^2_subspace (0 = subspace only, the paper's eq. 12-13)",
                           reading="lee2012.likelihood_eq12", paper=0.0,
                           why="the book's addition: the first frame keeps pulling drifted "
-                          "subspaces back; 0.7 chosen on the seven public sequences we tuned "
-                          "on (the incremental-SVD chapter, lab notes)")
+                          "subspaces back; 0.7 chosen on the lab notes' development sequences "
+                          "(Bag, Couple, Crossing, Jogging1), with Ball1, David and "
+                          "MotorRolling held out")
     gate_k: float = param(0.0, 0.0, 10.0, 0.5,
                           "relative gate: learn a frame only if its energy -log(similarity) is "
                           "<= median + k * MAD of the last accepted frames (0 = off, the paper "

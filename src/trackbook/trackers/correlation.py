@@ -105,7 +105,8 @@ class KcfParams:
     bins: int = param(
         8, 4, 18, 1, doc="signed orientation bins per cell (feature channels)",
         paper=9,     # hog_orientations = 9 in _REF_CODE: FHOG's 18 signed + 9 unsigned + 4
-        why="the book's 8 signed bins of 03_hog (exact octant binning) instead of FHOG's "
+        why="the book's 8 signed bins of the HOG chapter (exact octant binning) "
+            "instead of FHOG's "
             "31 channels, so the features are the HOG cells the reader already knows; "
             "paper preset: 9 signed bins of the same cells, not FHOG")
 

@@ -110,7 +110,8 @@ class DsstParams:
     bins: int = param(
         8, 4, 18, 1, doc="signed orientation bins per cell (feature channels)",
         paper=9,       # FHOG's 9 orientations (18 signed + 9 unsigned + 4 texture channels)
-        why="the book's 8 signed bins of 03_hog (exact octant binning) instead of FHOG, so "
+        why="the book's 8 signed bins of the HOG chapter (exact octant binning) "
+            "instead of FHOG, so "
             "the features are the HOG cells the reader already knows, as for KCF; paper "
             "preset: 9 signed bins of the same cells, not FHOG")
 

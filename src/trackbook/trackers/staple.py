@@ -87,7 +87,8 @@ class StapleParams:
     bins: int = param(
         8, 4, 18, 1, doc="signed orientation bins per cell (template channels, plus grey)",
         paper=9,       # FHOG with 9 orientations in _REF_CODE (18 signed + 9 unsigned used)
-        why="the book's 8 signed bins of 03_hog (exact octant binning) instead of FHOG's "
+        why="the book's 8 signed bins of the HOG chapter (exact octant binning) "
+            "instead of FHOG's "
             "27 orientation channels, so the features are the HOG cells the reader already "
             "knows (as for kcf); paper preset: 9 signed bins of the same cells, not FHOG")
     padding: float = param(
