@@ -85,6 +85,14 @@ def test_a_legend_over_data_is_flagged_and_one_beside_it_passes(ax):
     assert figure_check.problems(ax.figure) == []
 
 
+def test_a_point_clipped_outside_the_axes_is_not_under_a_legend_outside_them(ax):
+    ax.plot([0, 3], [0, 1], color="#000000", label="runs past the right edge")
+    ax.set_xlim(0, 1)
+    ax.set_ylim(0, 1.2)
+    ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.75))
+    assert figure_check.problems(ax.figure) == []
+
+
 def test_a_scatter_under_the_legend_is_flagged(ax):
     ax.scatter([0.5], [0.5], color="#000000", label="points")
     ax.set_xlim(0, 1)

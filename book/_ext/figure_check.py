@@ -9,8 +9,8 @@ fails, naming the figure's problem, when
   ``kcf-redetect``, ``kcf (paper)``) is not drawn in that tracker's colour
   (``trackbook.style.tracker_color``): a reader who learns that ``kcf`` is vermillion in one
   figure must find it vermillion in every other;
-- a legend covers a data point: a vertex of a plotted line or a scatter marker of its axes
-  lies inside the legend's box.
+- a legend covers a data point: a vertex of a plotted line or a scatter marker of its axes,
+  inside the axes (where it is drawn), lies inside the legend's box.
 
 :func:`problems` is the check itself, so it can be tested on figures made for the purpose.
 """
@@ -113,8 +113,11 @@ def _legend_problems(fig) -> list[str]:
             continue
         box = legend.get_window_extent(renderer)
         pts = _data_points(ax)
+        seen = ax.bbox                # a point outside the axes is clipped away: not seen
         inside = ((pts[:, 0] > box.x0) & (pts[:, 0] < box.x1)
-                  & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1))
+                  & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
+                  & (pts[:, 0] >= seen.x0) & (pts[:, 0] <= seen.x1)
+                  & (pts[:, 1] >= seen.y0) & (pts[:, 1] <= seen.y1))
         if inside.any():
             out.append(f"axes {k}: the legend covers {int(inside.sum())} data point(s); "
                        "move it (loc=..., or outside the axes with bbox_to_anchor)")

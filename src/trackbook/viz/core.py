@@ -173,7 +173,10 @@ def plot_curves(results, gt=None, axes=None):
              title="Precision plot (at 20 px)", xlim=(0, 50), ylim=(0, 1.02))
     for ax in axes:
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="lower right")
+        # under the axes: inside, a curve of some tracker always passes behind it
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.22),
+                  ncols=2 if len(results) > 3 else 1, frameon=False)
+    ax_s.figure.tight_layout()
     return axes
 
 
