@@ -258,3 +258,17 @@ def test_the_replaced_files_are_named_exactly():
     for p in BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE:
         assert any(f == p or (p.endswith("/") and f.startswith(p)) for f in ALL_FILES), (
             f"{p} is gone: delete BEING_REPLACED_BY_THE_EXPERIMENT_PIPELINE and its uses")
+
+
+#: A chapter's file stem as a reader would meet it in printed text: "03_hog", "(07_region_...".
+_STEM = re.compile(r"\b\d\d_[a-z]+(?:_[a-z]+)*\b")
+
+
+def test_departures_tables_name_chapters_by_title():
+    """The departures tables print each knob's ``why`` on a reader's page: a chapter is named
+    there by its title ("the HOG chapter"), never by its file stem."""
+    from trackbook import trackers
+    hits = [f"{name}.{d['param']}: {d['why']}" for name in trackers.available()
+            for d in trackers.departures(name) if _STEM.search(str(d.get("why", "")))]
+    assert not hits, "a chapter's file stem in a departures table:\n" + "\n".join(hits)
+    assert _STEM.search("the book's 8 signed bins of 03_hog") and not _STEM.search("the HOG chapter")
