@@ -377,3 +377,120 @@ class Visits:
             part.write_bytes(pickle.dumps(v))
             part.replace(path)
             return v
+
+
+# ---- the Korean font shipped with the book (test_korean_font.py, test_browser.py) ----------
+
+#: the family ``_static/korean-font.css`` declares for ``fonts/noto-sans-kr-subset.woff``
+FONT_FACE = "Noto Sans KR subset"
+#: the font's own family name, which Chromium reports for the glyphs it drew with it
+FONT_FAMILY = "Noto Sans KR"
+#: the Unicode blocks of Korean text (inclusive): Hangul Jamo, circled digits, CJK Symbols and
+#: Punctuation, Hangul Compatibility Jamo, Enclosed CJK, CJK Unified Ideographs and Extension
+#: A, Hangul Jamo Extended-A, Hangul Syllables and Jamo Extended-B, CJK Compatibility
+#: Ideographs, Halfwidth and Fullwidth Forms
+KOREAN_BLOCKS = ((0x1100, 0x11FF), (0x2460, 0x24FF), (0x3000, 0x303F), (0x3130, 0x318F),
+                 (0x3200, 0x32FF), (0x3400, 0x4DBF), (0x4E00, 0x9FFF), (0xA960, 0xA97F),
+                 (0xAC00, 0xD7FF), (0xF900, 0xFAFF), (0xFF00, 0xFFEF))
+
+
+def is_korean(ch: str) -> bool:
+    """Whether ``ch`` lies in one of :data:`KOREAN_BLOCKS`."""
+    return any(lo <= ord(ch) <= hi for lo, hi in KOREAN_BLOCKS)
+
+
+#: how many characters of the element's own text nodes are Korean, and how many are not blank
+_OWN_TEXT = """(el, blocks) => {
+  let korean = 0, other = 0;
+  for (const n of el.childNodes) {
+    if (n.nodeType !== Node.TEXT_NODE) continue;
+    for (const ch of n.textContent) {
+      const c = ch.codePointAt(0);
+      if (blocks.some(([lo, hi]) => lo <= c && c <= hi)) korean++;
+      else if (ch.trim()) other++;
+    }
+  }
+  return {korean: korean, other: other};
+}"""
+
+
+def _drawn_with(page, selector: str) -> list[dict]:
+    """The fonts Chromium drew the own text nodes of the first element matching ``selector``
+    with (DevTools' ``CSS.getPlatformFontsForNode``: each font's family name, whether it is a
+    web font, how many glyphs it drew)."""
+    client = page.context.new_cdp_session(page)
+    try:
+        client.send("DOM.enable")
+        client.send("CSS.enable")
+        root = client.send("DOM.getDocument", {"depth": 0})["root"]["nodeId"]
+        node = client.send("DOM.querySelector", {"nodeId": root, "selector": selector})["nodeId"]
+        return client.send("CSS.getPlatformFontsForNode", {"nodeId": node})["fonts"]
+    finally:
+        client.detach()
+
+
+def _font_use(page, selector: str, what: str) -> list[str]:
+    """What is wrong with how the element's own text was drawn: each of its Korean characters
+    with the shipped face, the rest (Latin, digits) with another font."""
+    el = page.query_selector(selector)
+    if el is None:
+        return [f"{what}: no {selector}"]
+    count = el.evaluate(_OWN_TEXT, [list(b) for b in KOREAN_BLOCKS])
+    fonts = _drawn_with(page, selector)
+    ours = sum(f["glyphCount"] for f in fonts
+               if f["isCustomFont"] and f["familyName"] == FONT_FAMILY)
+    others = sum(f["glyphCount"] for f in fonts
+                 if not (f["isCustomFont"] and f["familyName"] == FONT_FAMILY))
+    problems = []
+    if not count["korean"]:
+        problems.append(f"{what}: no Korean text in {selector}")
+    if ours != count["korean"]:
+        problems.append(f"{what}: {ours} glyphs drawn with the shipped face for "
+                        f"{count['korean']} Korean characters (fonts used: {fonts})")
+    if count["other"] and not others:
+        problems.append(f"{what}: its Latin text is drawn with the shipped face too ({fonts})")
+    return problems
+
+
+def font_check(browser, root: str, rel: str, key: str, prose: str | None = None) -> dict:
+    """Open page ``rel`` of the book at ``root`` (a ``file:`` or ``http:`` URL), open the
+    popover of quote ``key`` (a Korean passage) and read how its passage, and the page's
+    element ``prose`` when given, were drawn.
+
+    Returns ``{"faces": the statuses of the shipped face in document.fonts, "fetched": the
+    font files the page loaded, "problems": [...]}``; no problem means: the face was fetched
+    from the book's ``_static/fonts`` and is loaded, every Korean character of the passage
+    (and of ``prose``) was drawn with it and the rest of their text with another font.
+    """
+    page = browser.new_page(viewport={"width": WIDTHS[0], "height": 900})
+    fetched, failed, blocked = [], [], []
+    try:
+        local_only(page, blocked)
+        page.on("response", lambda r: fetched.append(r.url)       # a 404 is no font
+                if r.request.resource_type == "font" and r.ok else None)
+        page.on("requestfailed", lambda r: failed.append(f"{r.url}: {r.failure}"))
+        page.goto(f"{root}/{rel}", wait_until="load", timeout=60_000)
+        typeset(page)                   # MathJax rewrites the passage while it typesets
+        quote = f'.tb-quote[data-quote="{key}"]'
+        page.focus(quote)               # a popover is laid out, and its font asked for, once open
+        # lay the open popover out (which asks for the face), wait for the face, then for the
+        # frame drawn with it
+        page.evaluate("""(sel) => {
+            document.querySelector(sel).getBoundingClientRect();
+            return document.fonts.ready.then(() => new Promise(
+                done => requestAnimationFrame(() => requestAnimationFrame(() => done(null)))));
+        }""", f"{quote} .tb-quote-pop")
+        faces = page.evaluate("""(name) => [...document.fonts]
+            .filter(f => f.family.replace(/["']/g, '') === name).map(f => f.status)""",
+                              FONT_FACE)
+        problems = [f"failed: {f}" for f in failed] + [f"left the machine: {b}" for b in blocked]
+        if faces != ["loaded"]:
+            problems.append(f"the face {FONT_FACE!r} is {faces} in document.fonts, not loaded")
+        if f"{root}/_static/fonts/noto-sans-kr-subset.woff" not in fetched:
+            problems.append(f"the font was not fetched from the book's _static: {fetched}")
+        problems += _font_use(page, f"{quote} .tb-quote-orig", f"quote {key}")
+        if prose is not None:
+            problems += _font_use(page, prose, prose)
+        return {"faces": faces, "fetched": fetched, "problems": problems}
+    finally:
+        page.close()

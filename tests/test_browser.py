@@ -21,7 +21,8 @@ from pathlib import Path
 
 import pytest
 
-from ._book_pages import assert_offline, open_watched, own_weight, playground_fails, serve
+from ._book_pages import (assert_offline, font_check, open_watched, own_weight, playground_fails,
+                          serve)
 from ._playground_browser import CHROMIUM, exercise, settle, watch_errors
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -209,6 +210,34 @@ def test_built_pages_offline_and_playgrounds_live(browser, book_visits, server, 
     src = ROOT / Path(rel).with_suffix(".md")
     if not OTHER_HTML and src.is_file() and "Playground(" in src.read_text():
         assert seen > 0, f"{rel}: the chapter calls Playground but the page has no .tb-playground"
+
+
+def _korean_quote_page():
+    """The smallest built page with a quote in Korean, and that quote's key (None, None when
+    no page has one)."""
+    from trackbook import quotes
+
+    for rel in sorted(BUILT_PAGES, key=lambda r: (HTML / r).stat().st_size):
+        for key in re.findall(r'class="tb-quote[^"]*"[^>]*data-quote="([^"]+)"',
+                              (HTML / rel).read_text(encoding="utf-8")):
+            if quotes.quote(key).language == "ko":
+                return rel, key
+    return None, None
+
+
+@needs_build
+@pytest.mark.parametrize("scheme", ["file", "http"])
+def test_korean_quote_drawn_with_the_shipped_font(browser, server, scheme):
+    """The book ships its Korean font (``_static/korean-font.css``): on a page with a quote in
+    Korean, once its popover is open, the face is fetched from the book's ``_static/fonts``
+    and loaded, every Korean character of the passage is drawn with it and its Latin text
+    with the theme's font, from file:// as over http (no system font needed)."""
+    rel, key = _korean_quote_page()
+    if rel is None:
+        assert OTHER_HTML, "no page of the book shows a quote in Korean"
+        pytest.skip("no page of this build shows a quote in Korean")
+    seen = font_check(browser, HTML.as_uri() if scheme == "file" else server, rel, key)
+    assert not seen["problems"], f"{rel}, quote {key}: {seen['problems']}"
 
 
 @pytest.fixture(scope="module")
