@@ -66,7 +66,9 @@ class MedianFlowParams:
         paper=10)           # Kalal et al. 2010: a 10 x 10 grid of points in the box
     fb_threshold: float = param(
         10.0, 0.5, 100.0, 0.5, doc="median forward-backward error (px) above which the frame "
-        "is a tracking failure", paper=10.0)   # Kalal et al. 2010: failure when median FB > 10 px
+        "is a tracking failure", paper=10.0)
+    # the authors' released code (OpenTLD's tldTrack.m, BIG_FB = 10): failure when the median
+    # FB error exceeds 10 px
     half_win: int = param(
         5, 1, 20, 1, doc="Lucas-Kanade window half-side r (px): a (2r + 1) x (2r + 1) window",
         paper=NOT_PRINTED,
@@ -93,7 +95,8 @@ class MedianFlowParams:
 @register
 class MedianFlowTracker(Tracker):
     """Median Flow (Kalal, Mikolajczyk & Matas 2010); the module docstring has the steps, the
-    failure rule (the paper's median FB > ``fb_threshold``, then the failure-detection layer),
+    failure rule (the released code's median FB > ``fb_threshold``, then the failure-detection
+    layer),
     the book's addition and the confidence; ``median-flow-redetect`` adds the re-detection
     layer.
 
