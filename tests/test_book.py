@@ -93,3 +93,39 @@ def test_exported_notebook_runs(exported, page):
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
               if o.get("output_type") == "error"]
     assert not errors
+
+
+#: A code cell of a page, its MyST options and its source.
+_CELL = re.compile(r"```\{code-cell\}[^\n]*\n(.*?)^```", re.S | re.M)
+#: The width of the book's column in monospace characters (PEP 8's 79).
+CODE_COLUMNS = 79
+
+
+def _long_visible_code_lines(text: str) -> list[tuple[int, int]]:
+    """``(line, length)`` of each line over CODE_COLUMNS in a code cell a reader can see (not
+    tagged ``remove-cell`` or ``remove-input``)."""
+    out = []
+    for m in _CELL.finditer(text):
+        tags = re.search(r"^:tags:\s*\[(.*?)\]", m.group(1), re.M)
+        if tags and re.search(r"remove-(?:cell|input)", tags.group(1)):
+            continue
+        first = text.count("\n", 0, m.start(1)) + 1
+        out += [(first + i, len(line)) for i, line in enumerate(m.group(1).split("\n"))
+                if len(line) > CODE_COLUMNS]
+    return out
+
+
+def test_the_column_rule_sees_what_a_reader_sees():
+    long = "x = " + "1" * 80
+    page = (f"```{{code-cell}} ipython3\n{long}\n```\n\n"
+            f"```{{code-cell}} ipython3\n:tags: [remove-cell]\n{long}\n```\n\n"
+            f"```{{code-cell}} ipython3\n:tags: [hide-input]\n{long}\n```\n")
+    assert _long_visible_code_lines(page) == [(2, 84), (12, 84)]
+
+
+@pytest.mark.parametrize("page", sorted(p.name for p in (ROOT / "book").glob("*.md")))
+def test_visible_code_fits_the_column(page):
+    """Code a reader sees (open or behind "Show code") fits the book's column: no line over
+    79 characters, so nothing scrolls sideways at 1280 px."""
+    found = _long_visible_code_lines((ROOT / "book" / page).read_text(encoding="utf-8"))
+    assert not found, f"code lines over {CODE_COLUMNS} characters (line, length): {found}"
