@@ -76,7 +76,9 @@ $3\sqrt{69.61} \approx 25.0$ px, the position gain $68.61/69.61 \approx 0.986$ a
 velocity gain $66.37/69.61 \approx 0.953$: the update moves the velocity estimate almost all
 the way to what the measurement implies. On `yellow-ball` the tracker uses the manoeuvre
 window at frames 24, 66 and 105, once per bounce, one or two frames after the true ball turns
-(23, 64 and 103): the first frame predicted into the ground is the one whose $d_F$ jumps.
+(23, 64 and 103). The second window is searched only when the best $d_F$ of the ordinary
+window exceeds three times its recent median; after the second and third turns the first
+frame predicted into the ground stays just under that gate, and the jump comes a frame later.
 
 === 7.6 ★★★ implement | Eq. 4 from integral images
 Write `cov_from_sums(F, box)`: for the rectangle `box = (x, y, w, h)` of a feature image `F`
