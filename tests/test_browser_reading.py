@@ -182,3 +182,18 @@ def test_measure_names_each_offender_and_nothing_else(page):
     lines = _offences(r)
     assert len(lines) == 10 and all("#broken" in line or "#exercises" in line
                                    for line in lines), lines
+
+
+@needs_build
+@pytest.mark.parametrize("name", _toc_pages())
+def test_figures_have_alt_texts_that_describe_them(name):
+    """Every image of a page has an alt text, and none is a file's path (``figure_alt.py``
+    gives each figure a page's code draws the description the figure hook wrote)."""
+    html = (HTML / f"{name}.html").read_text(encoding="utf-8")
+    bad = []
+    for tag in re.findall(r"<img\b[^>]*>", html):
+        alt = re.search(r'\balt="([^"]*)"', tag)
+        text = alt.group(1) if alt else ""
+        if not text.strip() or "_images/" in text or re.search(r"\.(png|jpe?g|svg|gif)$", text):
+            bad.append(tag[:160])
+    assert not bad, f"{name}: images without a describing alt text:\n" + "\n".join(bad)

@@ -101,13 +101,54 @@ def test_a_scatter_under_the_legend_is_flagged(ax):
     assert any("legend covers 1" in p for p in figure_check.problems(ax.figure))
 
 
+def test_a_description_says_what_each_panel_shows():
+    fig, (a, b) = plt.subplots(1, 2)
+    a.plot([0, 1], [0, 1], color=tracker_color("kcf"), label="kcf")
+    a.plot([0, 1], [1, 0], color=tracker_color("dsst"), label="dsst")
+    a.set(title="Success plot", xlabel="overlap threshold", ylabel="success rate")
+    a.legend(loc="center left", bbox_to_anchor=(1, 0.5))
+    b.imshow(np.zeros((4, 4)))
+    b.set_title("frame $t$")
+    fig.suptitle("two trackers")
+    text = figure_check.describe(fig)
+    plt.close(fig)
+    assert text == ("two trackers. 2 panels. Success plot: success rate against overlap "
+                    "threshold; showing kcf, dsst | frame t: an image")
+
+
+def test_the_alt_text_goes_to_the_image_of_its_figure(tmp_path):
+    """figure_alt.py puts the description written under the PNG's hash on the image MyST-NB
+    names by that hash, and leaves an image that has its own alt text alone."""
+    from docutils import nodes
+    import figure_alt
+
+    (tmp_path / "ab12.txt").write_text("success rate against overlap threshold\n")
+    doc = nodes.document(None, None)
+    doc += nodes.image(uri="../_images/ab12.png")
+    doc += nodes.image(uri="../_images/cd34.png", alt="a photo")
+    doc += nodes.image(uri="../_images/ef56.png")
+    old, figure_alt.ALTS = figure_alt.ALTS, tmp_path
+    try:
+        figure_alt.set_alt_texts(None, doc, "page")
+    finally:
+        figure_alt.ALTS = old
+    alts = [i.get("alt") for i in doc.findall(nodes.image)]
+    assert alts == ["success rate against overlap threshold", "a photo", None]
+
+
 def test_a_page_with_a_bad_figure_fails_to_execute(tmp_path, monkeypatch):
     """End to end, as the book runs a page: the kernel's startup installs the check, the cell
     that shows the figure fails with the problem, the others run."""
     nbclient = pytest.importorskip("nbclient")
     nbformat = pytest.importorskip("nbformat")
     monkeypatch.setenv("IPYTHONDIR", str(figure_check.ipython_dir(tmp_path)))
+    monkeypatch.setenv(figure_check.ALTS_ENV, str(tmp_path / "alts"))
     nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell(
+            "import matplotlib.pyplot as plt\n"
+            "fig, ax = plt.subplots()\n"
+            "ax.plot([0, 1], [0, 1], label='a line')\n"
+            "ax.set(xlabel='x', ylabel='y')"),
         nbformat.v4.new_code_cell(
             "import matplotlib.pyplot as plt\n"
             "fig, ax = plt.subplots()\n"
@@ -117,9 +158,15 @@ def test_a_page_with_a_bad_figure_fails_to_execute(tmp_path, monkeypatch):
     ])
     nbclient.NotebookClient(nb, timeout=120, kernel_name="python3",
                             allow_errors=True).execute()
-    errors = [o for o in nb.cells[0].outputs if o.output_type == "error"]
+    # the good figure: shown, its description written under its PNG's hash
+    import base64
+    import hashlib
+    png = [o for o in nb.cells[0].outputs if "image/png" in o.get("data", {})][0]
+    sha = hashlib.sha256(base64.b64decode(png.data["image/png"])).hexdigest()
+    assert (tmp_path / "alts" / f"{sha}.txt").read_text() == "y against x; showing a line"
+    errors = [o for o in nb.cells[1].outputs if o.output_type == "error"]
     assert len(errors) == 1 and errors[0].ename == "FigureCheckError"
     assert "'kcf' is drawn in #000000" in errors[0].evalue
-    assert nb.cells[1].outputs[0].text == "ran\n"
+    assert nb.cells[2].outputs[0].text == "ran\n"
     with pytest.raises(nbclient.exceptions.CellExecutionError, match="FigureCheckError"):
         nbclient.NotebookClient(nb, timeout=120, kernel_name="python3").execute()

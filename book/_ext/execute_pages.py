@@ -74,6 +74,7 @@ def book_environment() -> None:
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     import figure_check
     os.environ["IPYTHONDIR"] = str(figure_check.ipython_dir(ROOT / "_build" / ".kernel"))
+    os.environ[figure_check.ALTS_ENV] = str(ROOT / "_build" / ".figure_alts")
     os.environ[OUT_ENV] = str(store_dir(ROOT / "_build" / "html"))
     os.environ.pop(BACKGROUND_ENV, None)
 
@@ -89,6 +90,7 @@ def main() -> int:
         todo = [str(Path(p).resolve()) for p in sys.argv[1:]]
     else:
         shutil.rmtree(CACHE, ignore_errors=True)       # every page afresh
+        shutil.rmtree(ROOT / "_build" / ".figure_alts", ignore_errors=True)
         todo = [str(p) for p in pages()]
     cache = get_cache(str(CACHE))
     start, failed = time.time(), []

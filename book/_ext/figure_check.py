@@ -13,10 +13,17 @@ fails, naming the figure's problem, when
   inside the axes (where it is drawn), lies inside the legend's box.
 
 :func:`problems` is the check itself, so it can be tested on figures made for the purpose.
+
+The same hook writes a description of each figure shown (:func:`describe`: its panels' titles,
+what is plotted against what, the legend's entries) where ``figure_alt.py`` finds it, so that
+every figure of the built book has an alt text that says what it shows, not a file name.
 """
 
 from __future__ import annotations
 
+import base64
+import hashlib
+import os
 import re
 import shutil
 from pathlib import Path
@@ -130,6 +137,60 @@ def problems(fig) -> list[str]:
     return _colour_problems(fig) + _legend_problems(fig)
 
 
+#: Where a kernel writes the description of each figure it shows (set by execute_pages.py):
+#: ``<sha256 of the PNG>.txt``, the name MyST-NB gives the image, so ``figure_alt.py`` can put
+#: the description in the page as the image's alt text.
+ALTS_ENV = "TRACKBOOK_FIGURE_ALTS"
+
+
+def _text(s) -> str:
+    return re.sub(r"\s+", " ", re.sub(r"\$([^$]*)\$", r"\1", str(s or ""))).strip()
+
+
+def describe(fig, limit: int = 400) -> str:
+    """A description of a figure for readers who cannot see it, read off the figure itself:
+    its title, and per panel the title, what is plotted against what, and the legend's
+    entries (or that the panel is an image)."""
+    panels = []
+    for ax in fig.axes:
+        if not ax.get_visible() or ax.get_label() == "<colorbar>":
+            continue
+        bits = []
+        title = _text(ax.get_title())
+        x, y = _text(ax.get_xlabel()), _text(ax.get_ylabel())
+        if ax.images:
+            bits.append("an image")
+        if y and x:
+            bits.append(f"{y} against {x}")
+        elif y or x:
+            bits.append(y or x)
+        legend = ax.get_legend()
+        names = ([_text(t.get_text()) for t in legend.get_texts()] if legend is not None
+                 else [_text(a.get_label()) for a in [*ax.lines, *ax.collections]
+                       if not str(a.get_label()).startswith("_")])
+        names = [n for n in names if n]
+        if names:
+            bits.append("showing " + ", ".join(names))
+        if title or bits:
+            panels.append((f"{title}: " if title else "") + "; ".join(bits))
+    head = _text(fig._suptitle.get_text()) if getattr(fig, "_suptitle", None) else ""
+    n = len(panels)
+    body = " | ".join(panels) if panels else "a figure"
+    text = (f"{head}. " if head else "") + (f"{n} panels. " if n > 1 else "") + body
+    return text if len(text) <= limit else text[:limit - 1].rstrip() + "…"
+
+
+def _record_alt(fig, data) -> None:
+    """Write the figure's description where the build looks for it (``ALTS_ENV``)."""
+    folder = os.environ.get(ALTS_ENV)
+    if not folder or data is None:
+        return
+    raw = base64.b64decode(data) if isinstance(data, str) else bytes(data)
+    Path(folder).mkdir(parents=True, exist_ok=True)
+    (Path(folder) / f"{hashlib.sha256(raw).hexdigest()}.txt").write_text(
+        describe(fig), encoding="utf-8")
+
+
 class FigureCheckError(AssertionError):
     """A figure of the cell breaks the book's rules (see the module's docstring)."""
 
@@ -151,7 +212,10 @@ def install(ip) -> None:
     def print_figure(fig, *args, **kwargs):
         found.extend(f"{fig.get_label() or 'a figure'}: {p}" for p in problems(fig)
                      if f"{fig.get_label() or 'a figure'}: {p}" not in found)
-        return original(fig, *args, **kwargs)
+        data = original(fig, *args, **kwargs)
+        if kwargs.get("fmt", args[0] if args else "png") in ("png", "retina"):
+            _record_alt(fig, data)
+        return data
 
     def fail_cell(result):
         if found and result.error_in_exec is None and result.error_before_exec is None:
