@@ -123,3 +123,29 @@ def test_a_page_with_a_bad_figure_fails_to_execute(tmp_path, monkeypatch):
     assert nb.cells[1].outputs[0].text == "ran\n"
     with pytest.raises(nbclient.exceptions.CellExecutionError, match="FigureCheckError"):
         nbclient.NotebookClient(nb, timeout=120, kernel_name="python3").execute()
+
+
+def test_a_check_that_cannot_run_fails_the_cell_and_still_shows_the_figure(tmp_path, monkeypatch):
+    """An error inside the check must not be swallowed by IPython's display formatter (which
+    prints it, drops the figure and lets the cell pass): the cell fails, naming it."""
+    nbclient = pytest.importorskip("nbclient")
+    nbformat = pytest.importorskip("nbformat")
+    monkeypatch.setenv("IPYTHONDIR", str(figure_check.ipython_dir(tmp_path)))
+    nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell(
+            "import figure_check\n"
+            "def broken(fig):\n"
+            "    raise RuntimeError('boom')\n"
+            "figure_check.problems = broken\n"
+            "import matplotlib.pyplot as plt\n"
+            "fig, ax = plt.subplots()\n"
+            "ax.plot([0, 1], [0, 1])\n"
+            "plt.show()"),
+    ])
+    nbclient.NotebookClient(nb, timeout=120, kernel_name="python3",
+                            allow_errors=True).execute()
+    outputs = nb.cells[0].outputs
+    errors = [o for o in outputs if o.output_type == "error"]
+    assert len(errors) == 1 and errors[0].ename == "FigureCheckError", outputs
+    assert "RuntimeError: boom" in errors[0].evalue
+    assert any("image/png" in o.get("data", {}) for o in outputs)
