@@ -149,3 +149,13 @@ def test_a_check_that_cannot_run_fails_the_cell_and_still_shows_the_figure(tmp_p
     assert len(errors) == 1 and errors[0].ename == "FigureCheckError", outputs
     assert "RuntimeError: boom" in errors[0].evalue
     assert any("image/png" in o.get("data", {}) for o in outputs)
+
+
+def test_a_series_that_is_no_tracker_never_takes_a_tracker_s_colour_of_its_plot():
+    from trackbook.style import CYCLE, label_colors
+    # CYCLE[0] is kcf's vermillion: a student's tracker listed first must not get it
+    assert CYCLE[0].lower() == tracker_color("kcf").lower()
+    mine, kcf, other = label_colors(["my-tracker", "kcf [0.5]", "another"])
+    assert kcf == tracker_color("kcf")
+    assert mine.lower() != kcf.lower() and other.lower() != kcf.lower() and mine != other
+    assert label_colors(["a", "b"]) == CYCLE[:2]            # no tracker: the cycle as it is
