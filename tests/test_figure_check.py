@@ -170,3 +170,39 @@ def test_a_page_with_a_bad_figure_fails_to_execute(tmp_path, monkeypatch):
     assert nb.cells[2].outputs[0].text == "ran\n"
     with pytest.raises(nbclient.exceptions.CellExecutionError, match="FigureCheckError"):
         nbclient.NotebookClient(nb, timeout=120, kernel_name="python3").execute()
+
+
+def test_a_check_that_cannot_run_fails_the_cell_and_still_shows_the_figure(tmp_path, monkeypatch):
+    """An error inside the check must not be swallowed by IPython's display formatter (which
+    prints it, drops the figure and lets the cell pass): the cell fails, naming it."""
+    nbclient = pytest.importorskip("nbclient")
+    nbformat = pytest.importorskip("nbformat")
+    monkeypatch.setenv("IPYTHONDIR", str(figure_check.ipython_dir(tmp_path)))
+    nb = nbformat.v4.new_notebook(cells=[
+        nbformat.v4.new_code_cell(
+            "import figure_check\n"
+            "def broken(fig):\n"
+            "    raise RuntimeError('boom')\n"
+            "figure_check.problems = broken\n"
+            "import matplotlib.pyplot as plt\n"
+            "fig, ax = plt.subplots()\n"
+            "ax.plot([0, 1], [0, 1])\n"
+            "plt.show()"),
+    ])
+    nbclient.NotebookClient(nb, timeout=120, kernel_name="python3",
+                            allow_errors=True).execute()
+    outputs = nb.cells[0].outputs
+    errors = [o for o in outputs if o.output_type == "error"]
+    assert len(errors) == 1 and errors[0].ename == "FigureCheckError", outputs
+    assert "RuntimeError: boom" in errors[0].evalue
+    assert any("image/png" in o.get("data", {}) for o in outputs)
+
+
+def test_a_series_that_is_no_tracker_never_takes_a_tracker_s_colour_of_its_plot():
+    from trackbook.style import CYCLE, label_colors
+    # CYCLE[0] is kcf's vermillion: a student's tracker listed first must not get it
+    assert CYCLE[0].lower() == tracker_color("kcf").lower()
+    mine, kcf, other = label_colors(["my-tracker", "kcf [0.5]", "another"])
+    assert kcf == tracker_color("kcf")
+    assert mine.lower() != kcf.lower() and other.lower() != kcf.lower() and mine != other
+    assert label_colors(["a", "b"]) == CYCLE[:2]            # no tracker: the cycle as it is

@@ -134,7 +134,8 @@ def test_ours_are_marked_as_ours(bench_out):
     assert "no AUC published for CPF, KMS, MIL (toolkit scores only)" in texts
     assert any(t.startswith("AUC of the success plot") and "frames 1..N" in t for t in texts)
     legend = [t.get_text() for t in fig.legends[0].get_texts()]
-    assert legend == ["published (the OTB authors' runs)", "ours (this bench)"]
+    assert legend == ["published (the OTB authors' runs)",
+                      "ours (this bench; each tracker in its colour)"]
 
 
 @needs_benched

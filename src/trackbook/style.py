@@ -73,6 +73,24 @@ def label_color(label: str, i: int = 0) -> str:
     return tracker_color(head) or CYCLE[i % len(CYCLE)]
 
 
+def label_colors(labels) -> list[str]:
+    """The colours of the series ``labels`` of one plot, in order: a tracker's label in its
+    tracker's colour (:func:`label_color`), every other label in the next colour of
+    :data:`CYCLE` that no tracker of this plot is drawn in (so a student's tracker beside
+    ``kcf`` is not drawn in ``kcf``'s vermillion)."""
+    labels = list(labels)
+    heads = [label.strip().split(" ", 1)[0].rstrip(",:;") if label else "" for label in labels]
+    own = [tracker_color(h) for h in heads]
+    taken = {c.lower() for c in own if c}
+    free = [c for c in CYCLE if c.lower() not in taken] or CYCLE
+    out, k = [], 0
+    for c in own:
+        if c is None:
+            c, k = free[k % len(free)], k + 1
+        out.append(c)
+    return out
+
+
 #: What the playground viewer draws each element in (sent to ``viewer.js`` with its config).
 VIEWER = {"gt": GT_COLOR, "est": EST_COLOR, "particle": OKABE_ITO["blue"],
           "window": OKABE_ITO["orange"], "ellipse": OKABE_ITO["reddish purple"],

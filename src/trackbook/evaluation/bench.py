@@ -571,7 +571,7 @@ def _plot(records, out, suffix="", title=""):
     # benchmark run inside a notebook would switch the kernel away from inline figures.
     from matplotlib.figure import Figure
 
-    from ..style import label_color
+    from ..style import label_colors
 
     by = {}
     for r in records:
@@ -582,10 +582,11 @@ def _plot(records, out, suffix="", title=""):
                              ("precision", metrics.PRECISION_THRESHOLDS, "centre error (px)")):
         fig = Figure(figsize=(5, 3.6))
         ax = fig.subplots()
+        colours = label_colors(by)
         for i, (t, rs) in enumerate(by.items()):
             curve = np.mean([r[kind] for r in rs], axis=0)
             score = curve.mean() if kind == "success" else curve[20]
-            ax.plot(xs, curve, color=label_color(t, i), label=f"{t} [{score:.3f}]")
+            ax.plot(xs, curve, color=colours[i], label=f"{t} [{score:.3f}]")
         ax.set(xlabel=xlabel, ylabel="fraction of frames", ylim=(0, 1.02),
                title=f"{kind} plot{title}, mean over {n_clips} clips")
         ax.grid(alpha=0.3)

@@ -194,14 +194,16 @@ def eao_plot(records) -> bytes:
     """A PNG of each tracker's expected average overlap curve (reset records)."""
     from matplotlib.figure import Figure
 
-    from ..style import label_color
+    from ..style import label_colors
 
     fig = Figure(figsize=(5, 3.6))
     ax = fig.subplots()
-    for i, (t, c) in enumerate(curves(records).items()):
+    by_curve = curves(records)
+    colours = label_colors(by_curve)
+    for i, (t, c) in enumerate(by_curve.items()):
         y = np.asarray(c["eao_curve"], dtype=float)
         score = protocols.eao([reset_run(r) for r in _by_tracker(records)[t]])
-        ax.plot(np.arange(len(y)), y, color=label_color(t, i), label=f"{t} [{score:.3f}]")
+        ax.plot(np.arange(len(y)), y, color=colours[i], label=f"{t} [{score:.3f}]")
     ax.set(xlabel="sequence length N (frames)", ylabel="expected average overlap",
            ylim=(0, 1.02), title="expected average overlap curve (reset protocol)")
     ax.grid(alpha=0.3)

@@ -440,7 +440,7 @@ def plot_side_by_side(bench, *, measure: str = "auc", trackers=None):
     from matplotlib.figure import Figure
     from matplotlib.patches import Patch
 
-    from ..style import GREY, label_color
+    from ..style import GREY, label_colors
 
     if measure not in MEASURES:
         raise ValueError(f"unknown measure {measure!r}; use one of {', '.join(MEASURES)}.")
@@ -464,11 +464,12 @@ def plot_side_by_side(bench, *, measure: str = "auc", trackers=None):
         if r["sequence"] in seqs and r[measure] is not None:
             values.setdefault(r["tracker"], {})[r["sequence"]] = r[measure]
             colour[r["tracker"]] = GREY
+    ours_colour = dict(zip(names, label_colors(names)))
     for r in ours:
         if r["tracker"] in names:
             label = f"{r['tracker']} (ours)"
             values.setdefault(label, {})[r["sequence"]] = r[measure]
-            colour[label] = label_color(r["tracker"], names.index(r["tracker"]))
+            colour[label] = ours_colour[r["tracker"]]
     panels = [(s, {t: v[s] for t, v in values.items() if s in v}) for s in seqs]
     if len(seqs) > 1:
         panels.append((f"mean over {len(seqs)} sequences",

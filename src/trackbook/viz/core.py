@@ -14,7 +14,7 @@ from matplotlib import patches as mpatches
 
 from ..evaluation import metrics
 from ..style import (CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, Palette,  # noqa: F401
-                     label_color, tracker_color)
+                     label_color, label_colors, tracker_color)
 from ..trackers.base import Tracker
 
 
@@ -81,8 +81,8 @@ def show_frame(frame, ax=None, boxes=None, title=None, gt=None):
             else:
                 raise ValueError("show_frame: boxes must be one box (x, y, w, h), an (n, 4) "
                                  f"array or a dict label -> box; got shape {arr.shape}")
-        for i, (label, b) in enumerate(boxes.items()):
-            draw_box(ax, b, label_color(label, i), label)
+        for (label, b), colour in zip(boxes.items(), label_colors(boxes)):
+            draw_box(ax, b, colour, label)
     if title:
         ax.set_title(title, fontsize=9)
     return ax
@@ -159,12 +159,13 @@ def plot_curves(results, gt=None, axes=None):
     if axes is None:
         _, axes = plt.subplots(1, 2, figsize=(9, 3.4))
     ax_s, ax_p = axes
+    colours = label_colors(results)
     for i, (label, r) in enumerate(results.items()):
         g = gt if gt is not None else _clips.load(r.clip).groundtruth
         g = g[: len(r.boxes)]
         ts, s = metrics.success_curve(r.boxes[1:], g[1:])
         tp, p = metrics.precision_curve(r.boxes[1:], g[1:])
-        c = label_color(label, i)
+        c = colours[i]
         ax_s.plot(ts, s, color=c, label=f"{label} [{s.mean():.3f}]")
         ax_p.plot(tp, p, color=c, label=f"{label} [{p[20]:.3f}]")
     ax_s.set(xlabel="overlap threshold", ylabel="success rate", title="Success plot (AUC)",

@@ -7,7 +7,7 @@ import numpy as np
 
 from .._markdown import table
 from ..features import edge_rays as er
-from ..style import CYCLE, EST_COLOR, GT_COLOR, label_color
+from ..style import CYCLE, EST_COLOR, GT_COLOR, label_colors
 from .core import bgr2rgb, draw_box
 
 RAY_COLORS = CYCLE              # one colour per ray, the book's palette
@@ -107,11 +107,12 @@ def plot_center_errors(results: dict, gt, ax=None, title=None):
     from ..evaluation import metrics
     if ax is None:
         _, ax = plt.subplots(figsize=(6.0, 2.8))
+    colours = label_colors(results)
     for i, (name, r) in enumerate(results.items()):
         boxes = r.boxes if hasattr(r, "boxes") else np.asarray(r)
         ce = metrics.center_error(boxes, gt)
         ax.plot(np.arange(len(ce)), np.where(np.isfinite(ce), ce, np.nan),
-                color=label_color(name, i),
+                color=colours[i],
                 label=f"{name} (mean {np.nanmean(ce[1:][np.isfinite(ce[1:])]):.0f} px)")
     ax.set_xlabel("frame")
     ax.set_ylabel("centre error (px)")

@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..filters.mean_shift import bin_image, ellipse_rho
-from ..style import CYCLE, GT_COLOR, OKABE_ITO, label_color
+from ..style import CYCLE, GT_COLOR, OKABE_ITO, label_colors
 from .core import bgr2rgb, draw_box, draw_ellipse
 
 
@@ -86,9 +86,10 @@ def plot_per_frame(series: dict, ylabel: str, ax=None, title=None, logy=False):
     """One line per tracker of a per-frame number (Fig. 5: mean likelihood; Fig. 6: error)."""
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 2.8))
+    colours = label_colors(series)
     for i, (name, v) in enumerate(series.items()):
         v = np.asarray(v, dtype=float)
-        ax.plot(np.arange(len(v)), v, lw=1.3, color=label_color(name, i), label=name)
+        ax.plot(np.arange(len(v)), v, lw=1.3, color=colours[i], label=name)
     ax.set_xlabel("frame")
     ax.set_ylabel(ylabel)
     if logy:
