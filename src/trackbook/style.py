@@ -48,8 +48,8 @@ TRACKER_COLORS = {
     "covariance": "#CC6677", "kalman-covariance": "#6699CC",
     "kalman-covariance-manoeuvre": "#8C564B",
     # Condensation and mean-shift
-    "condensation": "#DDAA33", "mean-shift": "#004488", "condensation-mean-shift": "#BB5566",
-    "camshift": "#661100",
+    "condensation": "#BBCC33", "mean-shift": "#004488", "condensation-mean-shift": "#EE3377",
+    "camshift": "#EE7733",
     # point tracking and tracking by detection
     "median-flow": "#555555", "opencv-mil": "#997700",
 }
