@@ -1,4 +1,4 @@
-"""What the four papers print: their headline tables, timings, hardware and citations.
+"""What is printed in the four papers: their headline tables, timings, hardware and citations.
 
 One dictionary, :data:`PAPERS`, keyed by paper (``lee2012``, ``kim2016``, ``lee2015``,
 ``cho2005``; the keys are also the entries of ``book/references.bib``). Chapters, the lab

@@ -22,7 +22,8 @@ so V never has to be stored. Ross et al. 2008 (the paper's [15]) add two things 
   correction column sqrt(n m / (n + m)) (mu_B - mu_A) that makes the update exact, and the
   effective count n <- f n + m.
 
-Lee et al. project the raw feature (z_reconst = U U^T z, eq. 12-13) so the trackers use
+Lee et al. project the raw feature (z_reconst = U U^T z, eq. 12-13)
+[quote: lee2012.likelihood_eq12], so the trackers use
 ``centre=False``; ``centre=True`` is what scikit-learn's ``IncrementalPCA`` does (without
 forgetting), which the tests use as an oracle.
 """

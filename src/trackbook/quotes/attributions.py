@@ -10,7 +10,7 @@ sentences that break either rule. (In a param's doc -- the string literals of on
 ``Param(..., why="...", quote="lee2012.t40")`` -- the ``quote=`` key is the citation of every
 sentence of its ``why``.)
 
-The register holds the four papers only. A sentence that speaks for another work, by name
+The register holds only the four papers. A sentence that speaks for another work, by name
 ("Bolme et al. build ...", "Henriques et al. 2015 use ...", "Comaniciu et al. (2003) stop
 ..."), is backed by that work's bibliographic citation instead: it passes when its author is
 not Lee, Kim or Cho and its paragraph cites that author -- a ``{cite}`` role with a key of that
@@ -55,6 +55,8 @@ _YEAR_TIGHT = r"(?:\(?\d{4}\)?\s+)"
 #: Words after a citation that do not make it an attribution (a conjunction, a preposition).
 _NOT_A_VERB = (r"(?!(?:is|was|are|were|be|and|or|in|on|of|for|to|with|the|a|an|as|at|by|from|"
                r"than|that|which|who|also|here|there|do|does|did|has|have|had|paper|papers|beside|"
+               r"trackers?|methods?|results?|presets?|filters?|values?|settings?|equations?|"
+               r"quotes?|text|data|ones?|work|variants?|baselines?|rows?|runs|"
                r"against|below|above|under|after|before|into|over|through|per|about|section|"
                r"sections|table|tables|eq|fig|figure|page|pp?)\b)")
 #: After a citation with its year (no comma), any other word is taken as its verb.
@@ -73,8 +75,16 @@ _NOUN = (r"(?:measure|gain|value|values|setting|settings|criterion|choice|defaul
 PATTERNS = [
     re.compile(r"\bthe\s+papers?(?:'s?)?,?\s+(?:which\s+|that\s+)?(?:own\s+)?(?:text\s+)?"
                r"(?:also\s+|only\s+)?" + _VERB + r"\b", re.I),
+    # "the four papers", "both papers", "neither paper", "each paper" with a verb (not a
+    # possessive: "each paper's claim" names a claim, it does not make one)
+    re.compile(r"\b(?:the\s+(?:four|two)|both|neither|each|all\s+four)\s+papers?,?\s+"
+               r"(?:which\s+|that\s+)?(?:also\s+|only\s+)?" + _VERB + r"\b", re.I),
     re.compile(r"\bet\s+al\.?,?\s+(?:" + _YEAR + r"?" + _VERB + r"\b|" + _YEAR_TIGHT + _ANY_VERB
                + r")", re.I),
+    # an "et al." without a year and any verb after it, but not after a comma (a list)
+    re.compile(r"\bet\s+al\.?\s+" + _ANY_VERB, re.I),
+    re.compile(r"\b(?:et\s+al\.?|Lee|Kim|Cho(?:\s+(?:and|&)\s+Kang)?),?\s*(?:\(?\d{4}\)?)?,\s+"
+               r"who\s+[a-z]+"),
     re.compile(r"\b(?:Lee|Kim|Cho)\s+(?:" + _YEAR + _VERB + r"\b|" + _YEAR_TIGHT + _ANY_VERB
                + r")"),
     re.compile(r"\bCho\s+(?:and|&)\s+Kang,?\s+" + _YEAR + r"?" + _VERB + r"\b"),
@@ -86,6 +96,16 @@ PATTERNS = [
                r"(?:own\s+)?(?:[a-z\-]+\s+)?" + _NOUN + r"\s+(?:also\s+|only\s+)?" + _VERB + r"\b"),
     # "according to" one of the four, or to the paper
     re.compile(r"\baccording\s+to\s+(?:the\s+papers?\b|(?:Lee|Kim|Cho)\b)", re.I),
+    # a possessive after the year, with a noun and a verb
+    re.compile(r"\b(?:Lee|Kim|Cho)(?:\s+et\s+al\.?)?\s*\(?\d{4}\)?'s\s+"
+               r"(?:[a-z\-]+\s+)?" + _NOUN + r"\s+" + _VERB + r"\b"),
+    # "the" with an author of the four, "paper" and a verb
+    re.compile(r"\b[Tt]he\s+(?:Lee|Kim|Cho)\b[^;:]{0,24}?\bpaper\s+(?:also\s+|only\s+)?"
+               + _VERB + r"\b"),
+    # a sentence that opens by placing itself in a paper: "In the paper, ...", "Per the
+    # paper ...", "In Lee et al. (2012), ..."
+    re.compile(r"(?:^|(?<=[.!?]\s)|(?<=\n))\s*(?:In|Per)\s+(?:the\s+paper\b|"
+               r"(?:Lee|Kim|Cho)\b[^,]{0,30}?\d{4}\)?,)"),
 ]
 
 #: In Python, a string literal that is a register key (``quote="lee2012.t40"``) cites too.
@@ -145,8 +165,9 @@ def _fold(name: str) -> str:
 #: The end of a sentence: a stop and a space, not after an abbreviation (eq., et al., Fig.);
 #: a blank line; the start of a table row or of a list item on a new line.
 _STOP = re.compile(r"(?<!\beq)(?<!\bEq)(?<!\bal)(?<!\bFig)(?<!\bfig)(?<!\be\.g)(?<!\bi\.e)"
-                   r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bno)[.?!](?=\s)|\n\s*\n"
-                   r"|\n(?=\s*(?:\||[-*+]\s|\d+\.\s))|\|")
+                   r"(?<!\bvs)(?<!\bcf)(?<!\bch)(?<!\bsec)(?<!\bSec)(?<!\bno)(?<!\bp)"
+                   r"(?<!\bpp)(?<!\bapprox)(?<!\beqs)(?<!\bTab)[.?!](?=\s)|\n\s*\n"
+                   r"|\n(?=\s*(?:\||[-*+]\s|\d+\.\s))|(?<=\s)\|(?=\s)")
 
 
 def _span(text: str, start: int, end: int) -> tuple[int, int]:
@@ -180,7 +201,12 @@ _NAMED = [
     (re.compile(r"\bKim\s+et\s+al\b|\bKim\b,?\s*\(?2016"), "kim2016"),
     (re.compile(r"\bLee(?:'s)?,?\s*\(?2015|\bLee\s+\(2015\)"), "lee2015"),
     (re.compile(r"\bCho\s+(?:and|&)\s+Kang\b|\bCho\b,?\s*\(?2005"), "cho2005"),
+    (re.compile(r"\bKim\b"), "kim2016"),
+    (re.compile(r"\bCho\b"), "cho2005"),
 ]
+#: A bare "Lee" (no "et al.", no year) is one of the two Lee papers, either of whose quotes
+#: cites it.
+_BARE_LEE = re.compile(r"\bLee\b(?!\s+et\s+al)(?![^.]{0,6}\b20(?:12|15)\b)")
 
 
 #: The role as it also stands inside a Python f-string, braces doubled: ``{{quote}}`k```.
@@ -203,6 +229,8 @@ def _problem(sentence: str, extra: list[str] = ()) -> str | None:
         return "cites no quote"
     named = {paper for rx, paper in _NAMED if rx.search(sentence)}
     cited = {k.split(".", 1)[0] for k in keys}
+    if not named and _BARE_LEE.search(sentence) and not cited & {"lee2012", "lee2015"}:
+        return f"names Lee but cites only {', '.join(sorted(cited))}"
     if named and not named & cited:
         return f"names {', '.join(sorted(named))} but cites only {', '.join(sorted(cited))}"
     return None
