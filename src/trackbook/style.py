@@ -65,22 +65,25 @@ def tracker_color(name: str, default: str | None = None) -> str | None:
     return TRACKER_COLORS.get(base, default)
 
 
+def _tracker_of(label: str) -> str | None:
+    """The colour of the tracker a plot label starts with ("kcf", "kcf-redetect [0.583]",
+    "kcf (ours)"), or None."""
+    return tracker_color(label.strip().split(" ", 1)[0].rstrip(",:;")) if label else None
+
+
 def label_color(label: str, i: int = 0) -> str:
     """The colour of a plotted series labelled ``label``, ``i``-th in its plot: its tracker's
-    colour when the label starts with a tracker's name ("kcf", "kcf-redetect [0.583]",
-    "kcf (ours)"), otherwise the ``i``-th colour of :data:`CYCLE`."""
-    head = label.strip().split(" ", 1)[0].rstrip(",:;") if label else ""
-    return tracker_color(head) or CYCLE[i % len(CYCLE)]
+    colour when the label starts with a tracker's name, otherwise the ``i``-th colour of
+    :data:`CYCLE` (:func:`label_colors` also keeps clear of the plot's trackers' colours)."""
+    return _tracker_of(label) or CYCLE[i % len(CYCLE)]
 
 
 def label_colors(labels) -> list[str]:
     """The colours of the series ``labels`` of one plot, in order: a tracker's label in its
-    tracker's colour (:func:`label_color`), every other label in the next colour of
-    :data:`CYCLE` that no tracker of this plot is drawn in (so a student's tracker beside
-    ``kcf`` is not drawn in ``kcf``'s vermillion)."""
-    labels = list(labels)
-    heads = [label.strip().split(" ", 1)[0].rstrip(",:;") if label else "" for label in labels]
-    own = [tracker_color(h) for h in heads]
+    tracker's colour, every other label in the next colour of :data:`CYCLE` that no tracker
+    of this plot is drawn in (so a student's tracker beside ``kcf`` is not drawn in
+    ``kcf``'s vermillion)."""
+    own = [_tracker_of(label) for label in labels]
     taken = {c.lower() for c in own if c}
     free = [c for c in CYCLE if c.lower() not in taken] or CYCLE
     out, k = [], 0

@@ -14,7 +14,7 @@ from matplotlib import patches as mpatches
 
 from ..evaluation import metrics
 from ..style import (CYCLE, EST_COLOR, GREY, GT_COLOR, OKABE_ITO, Palette,  # noqa: F401
-                     label_color, label_colors, tracker_color)
+                     label_colors, tracker_color)
 from ..trackers.base import Tracker
 
 
