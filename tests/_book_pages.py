@@ -99,9 +99,28 @@ def open_watched(browser, url) -> Opened:
         if page.url == url:
             page.wait_for_url(lambda u: u != url, timeout=60_000)
         page.wait_for_load_state("load")
+        # and until the document is the book's page: once (CI, a busy machine) the checks
+        # still read the redirect's own document after the waits above
+        wait_for_article(page)
     page.wait_for_timeout(300)
     settle(page)
     return o
+
+
+def wait_for_article(page, tries: int = 5) -> None:
+    """Wait until the page's document has loaded and holds the book's article (or ``main``);
+    a navigation still under way destroys the context the wait runs in, so it is tried again."""
+    for i in range(tries):
+        try:
+            page.wait_for_function(
+                "() => document.readyState === 'complete'"
+                " && !!document.querySelector('article.bd-article, main')",
+                timeout=60_000)
+            return
+        except Exception as e:  # noqa: BLE001 -- a context destroyed by the navigation
+            if i == tries - 1 or "destroyed" not in str(e).lower():
+                raise
+            page.wait_for_load_state("load")
 
 
 def _local_file(url, root: Path, base: str | None):
@@ -326,6 +345,7 @@ def visit(browser, server: str, html_dir: Path, rel: str) -> Visit:
     page = o.page
     try:
         own = own_weight(list(o.loaded), Path(html_dir), server)
+        wait_for_article(page)     # a redirect missed by open_watched's test is still followed
         v = Visit(o.url, typeset=typeset(page))
         v.measured = page.evaluate(MEASURE, MAX_LINES)
         v.sidebar = page.eval_on_selector_all("nav.bd-links a, .bd-sidenav a", SIDEBAR)
