@@ -460,3 +460,31 @@ def test_every_quote_in_the_texts_is_in_the_register():
     cited = {k for e in exercises.all_exercises()
              for k in re.findall(r"\{quote\}`([^`]+)`", e.statement + e.hint + e.solution)}
     assert cited and cited <= keys, cited - keys
+
+
+# -- the legend ---------------------------------------------------------------------------------
+
+def test_every_chapter_opens_its_exercises_with_the_legend():
+    """The legend a chapter prints is :data:`exercises.LEGEND`, word for word."""
+    legend = " ".join(exercises.LEGEND.split())
+    for stem in exercises.chapters():
+        text = (BOOK / f"{stem}.md").read_text(encoding="utf-8")
+        section = " ".join(_section(text, "## Exercises").split())
+        assert legend in section, stem
+
+
+def test_the_legend_describes_every_grade_and_kind_in_use():
+    for e in exercises.all_exercises():
+        assert e.stars in exercises.GRADES[e.kind], (e.number, e.stars, e.kind)
+    for kind, grades in exercises.GRADES.items():
+        assert f"*{kind}*" in exercises.LEGEND, kind
+        assert all(g in exercises.LEGEND for g in grades), kind
+
+
+def test_show_renders_several_exercises_in_order():
+    md = exercises.show("1.1", "1.2").data
+    assert md.index("Exercise 1.1") < md.index("Exercise 1.2")
+    assert exercises.show(solution=False, number="1.6").data == exercises.markdown(
+        "1.6", solution=False)
+    with pytest.raises(ValueError, match="needs an exercise number"):
+        exercises.show()

@@ -1,7 +1,8 @@
 """The book's exercises, defined once and rendered in the chapters and in the exercises appendix.
 
 Every exercise lives in the text of its chapter's module (``_01_kernel_histograms.py`` ...):
-its number, its grade (★ use, ★★ modify, ★★★ implement), its kind, a title, the statement
+its number, its grade (★ short, ★★ longer, ★★★ an implementation or a project), its kind, a
+title, the statement
 (MyST), an optional hint and an optional worked solution. A chapter shows an exercise with
 ``show("1.6")`` in a ``remove-input`` cell; the appendix shows the same exercise, with the
 same number, the same way. The ★★★ exercises with an auto-check have it in
@@ -33,6 +34,17 @@ from ._chapters import CHAPTERS  # noqa: E402  (the one list, shared with checks
 #: The grades and the kinds an exercise may have.
 STARS = ("★", "★★", "★★★")
 KINDS = ("use", "modify", "implement", "pen and paper", "project")
+#: What the grades and the kinds mean: the sentence every chapter's exercises open with (a test
+#: holds the chapters and the exercises to it). The stars measure effort; the kind says what
+#: the student does, so a pen-and-paper exercise can be short (★) or longer (★★).
+LEGEND = ("Graded by effort, ★ short, ★★ longer, ★★★ an implementation or a project, with the "
+          "kind in brackets: *use* (run trackbook and read the answer off), *modify* (change a "
+          "parameter, a clip or a few lines and explain what changes), *implement* (write a "
+          "function from an equation), *pen and paper* (a derivation or a calculation by hand) "
+          "or *project*.")
+#: The grades each kind may have (:data:`LEGEND` as a table).
+GRADES = {"use": ("★",), "modify": ("★★",), "implement": ("★★★",),
+          "pen and paper": ("★", "★★"), "project": ("★★★",)}
 
 _HEAD = re.compile(r"^=== (\d+)\.(\d+) (★+) ([a-z ]+?) \| (.*)$")
 _PART = re.compile(r"^--- (hint|solution)$")
@@ -158,10 +170,15 @@ def markdown(number, *, solution: bool = True, title_level: int | None = None) -
     return "\n\n".join(parts) + "\n"
 
 
-def show(number, **kwargs):
-    """:func:`markdown` as an ``IPython.display.Markdown`` for a ``remove-input`` cell."""
+def show(*numbers, **kwargs):
+    """:func:`markdown` of one exercise or of several in a row (``show("1.8", "1.9")``), as an
+    ``IPython.display.Markdown`` for a ``remove-input`` cell."""
     from IPython.display import Markdown
-    return Markdown(markdown(number, **kwargs))
+    if "number" in kwargs:          # show(solution=False, number="6.8"): the appendix's recipe
+        numbers = numbers + (kwargs.pop("number"),)
+    if not numbers:
+        raise ValueError("show() needs an exercise number, e.g. show('6.8')")
+    return Markdown("\n".join(markdown(n, **kwargs) for n in numbers))
 
 
 def autocheck(number: str, answer):
