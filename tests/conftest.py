@@ -1,4 +1,11 @@
-"""Shared fixtures. Tests that need the real sequences skip cleanly when they are absent."""
+"""Shared fixtures. Tests that need the real sequences skip cleanly when they are absent.
+
+The book's build modules (``book/_ext``: its Sphinx extensions, the figure check) are not part
+of the package; the tests import them from there by name (``import sphinx_quotes``).
+"""
+import sys
+from pathlib import Path
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -7,6 +14,10 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from trackbook import clips  # noqa: E402
+
+BOOK_EXT = Path(__file__).resolve().parents[1] / "book" / "_ext"
+if str(BOOK_EXT) not in sys.path:
+    sys.path.insert(0, str(BOOK_EXT))
 
 SEQUENCES = clips.find_sequences()
 needs_sequences = pytest.mark.skipif(

@@ -223,7 +223,7 @@ def test_main_lists_and_exits(tmp_path, capsys):
 
 OWN_FILES = [
     *sorted((REPO / "src" / "trackbook" / "quotes").glob("*.py")),
-    REPO / "src" / "trackbook" / "sphinx_quotes.py",
+    REPO / "book" / "_ext" / "sphinx_quotes.py",
 ]
 
 
@@ -296,10 +296,11 @@ Bolme et al. give a PSR of 7.
 def _all_files():
     import subprocess
     try:
-        src = subprocess.run(["git", "ls-files", "src/*.py"], cwd=REPO, capture_output=True,
-                             text=True, check=True).stdout.split()
+        src = subprocess.run(["git", "ls-files", "src/*.py", "book/_ext/*.py"], cwd=REPO,
+                             capture_output=True, text=True, check=True).stdout.split()
     except (OSError, subprocess.CalledProcessError):
-        src = [str(p.relative_to(REPO)) for p in (REPO / "src").rglob("*.py")]
+        src = [str(p.relative_to(REPO)) for d in ("src", "book/_ext")
+               for p in (REPO / d).rglob("*.py")]
     return [*sorted((REPO / "book").glob("*.md")), REPO / "README.md",
             *sorted(REPO / s for s in src)]
 

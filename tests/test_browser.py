@@ -246,7 +246,7 @@ def static_page(tmp_path_factory):
     copied beside it by the Sphinx extension), without a book build."""
     from trackbook.playground.export import STATIC_BASE, static_html
     from trackbook.playground.static import OUT_ENV
-    from trackbook.sphinx_playground import STATIC_DIR, copy_files
+    from sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
     d = tmp_path_factory.mktemp("static")
@@ -315,7 +315,7 @@ def cf_page(tmp_path_factory):
     shows it, without a book build."""
     from trackbook.playground.export import STATIC_BASE, static_html
     from trackbook.playground.static import OUT_ENV
-    from trackbook.sphinx_playground import STATIC_DIR, copy_files
+    from sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
     d = tmp_path_factory.mktemp("cf")
@@ -463,7 +463,7 @@ def test_book_animation_loads_its_frames_and_runs_from_files(browser, tmp_path, 
     from trackbook.playground.animations import kalman_ball
     from trackbook.playground.export import STATIC_BASE
     from trackbook.playground.static import OUT_ENV
-    from trackbook.sphinx_playground import STATIC_DIR, copy_files
+    from sphinx_playground import STATIC_DIR, copy_files
 
     monkeypatch.setenv(OUT_ENV, str(tmp_path / "store"))
     monkeypatch.setenv(BOOK_ENV, "1")

@@ -266,7 +266,7 @@ def one_page_book(tmp_path_factory):
     (src / "index.md").write_text(PAGE, encoding="utf-8")
     static = ROOT / "_static"
     app = Sphinx(str(src), str(src), str(out), str(tmp / ".doctrees"), "html",
-                 confoverrides={"extensions": ["myst_parser", "trackbook.sphinx_quotes"],
+                 confoverrides={"extensions": ["myst_parser", "sphinx_quotes"],
                                 "html_theme": "sphinx_book_theme",
                                 "html_static_path": [str(static)],
                                 "html_css_files": sorted(p.relative_to(static).as_posix()

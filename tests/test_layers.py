@@ -13,7 +13,7 @@ package. Layers, bottom up:
    trackers' params they back: it reads the trackers' declarations)
 5. ``viz``
 6. ``playground``
-7. ``widgets``, ``cli``, ``_cli_output``, ``_cli_errors``, ``_cli_notebooks``, ``__main__``, ``exercises``, ``sphinx_*``
+7. ``widgets``, ``cli``, ``_cli_output``, ``_cli_errors``, ``_cli_notebooks``, ``__main__``, ``exercises``
 
 A module may import its own layer or a lower one. The package's ``__init__`` re-exports the
 public names and may import any layer.
@@ -47,8 +47,6 @@ def layer(module: str) -> int:
     if len(parts) == 1:
         return max(LAYERS.values()) + 1          # trackbook/__init__: the re-exports
     top = parts[1]
-    if top.startswith("sphinx_"):
-        return 7
     if top not in LAYERS:
         raise KeyError(f"module {module} has no layer: add {top!r} to LAYERS in "
                        f"tests/test_layers.py (and to the layer list of the README)")

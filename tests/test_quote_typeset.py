@@ -1,4 +1,4 @@
-"""How a quoted passage's TeX reaches the page (``trackbook.sphinx_quotes._typeset``).
+"""How a quoted passage's TeX reaches the page (``book/_ext/sphinx_quotes.py``'s ``_typeset``).
 
 The register keeps each passage verbatim, and a passage may be cut inside an equation. On the
 page its maths is typeset by MathJax where it is whole TeX; a cut display equation gets its
@@ -16,7 +16,7 @@ import pytest
 
 pytest.importorskip("sphinx")
 from trackbook import quotes  # noqa: E402
-from trackbook.sphinx_quotes import _balanced, _typeset  # noqa: E402
+from sphinx_quotes import _balanced, _typeset  # noqa: E402
 
 
 @pytest.mark.parametrize("text, expected", [

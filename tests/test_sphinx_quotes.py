@@ -19,7 +19,7 @@ from sphinx.application import Sphinx  # noqa: E402
 from sphinx.errors import SphinxError  # noqa: E402
 
 from trackbook import quotes  # noqa: E402
-from trackbook.sphinx_quotes import CSS_NAME  # noqa: E402
+from sphinx_quotes import CSS_NAME  # noqa: E402
 
 PAGE = """# Evidence
 
@@ -28,7 +28,7 @@ Lee et al. keep forty frames {quote}`lee2012.window40` and remove old ones
 """
 
 
-def build(tmp_path, page, builder="html", extensions=("myst_parser", "trackbook.sphinx_quotes"),
+def build(tmp_path, page, builder="html", extensions=("myst_parser", "sphinx_quotes"),
           **config):
     src, out = tmp_path / "src", tmp_path / "out"
     src.mkdir(parents=True, exist_ok=True)
@@ -152,8 +152,8 @@ state {quote}`cho2005.state_meaning` and the bandwidth {quote}`cho2005.bandwidth
 def math_page(tmp_path_factory):
     pytest.importorskip("jupyter_server_mathjax")
     out, _ = build(tmp_path_factory.mktemp("quotes_tex"), MATH_PAGE,
-                   extensions=["myst_parser", "trackbook.sphinx_offline_mathjax",
-                               "trackbook.sphinx_quotes"])
+                   extensions=["myst_parser", "sphinx_offline_mathjax",
+                               "sphinx_quotes"])
     return out
 
 

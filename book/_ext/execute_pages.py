@@ -67,12 +67,12 @@ def book_environment() -> None:
     (``figure_check.py``: tracker colours, legends clear of the data)."""
     from trackbook.playground.export import BOOK_ENV
     from trackbook.playground.static import BACKGROUND_ENV, OUT_ENV
-    from trackbook.sphinx_playground import store_dir
 
     os.environ[BOOK_ENV] = "1"
     # every figure of every page is checked as it is shown (figure_check.py)
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     import figure_check
+    from sphinx_playground import store_dir
     os.environ["IPYTHONDIR"] = str(figure_check.ipython_dir(ROOT / "_build" / ".kernel"))
     os.environ[figure_check.ALTS_ENV] = str(ROOT / "_build" / ".figure_alts")
     os.environ[OUT_ENV] = str(store_dir(ROOT / "_build" / "html"))

@@ -4,7 +4,7 @@ fragment that runs with no kernel and no network.
 For every clip and tracker of a playground, the runs at the defaults and for a few values of
 each knob (one knob at a time) over whole clips and several seeds are computed
 (:mod:`trackbook.playground.static`) and written as small files the page loads when the reader
-picks them. The book's build (:mod:`trackbook.sphinx_playground`) sets :data:`BOOK_ENV` for
+picks them. The book's build (its Sphinx extension ``book/_ext/sphinx_playground.py``) sets :data:`BOOK_ENV` for
 the chapters' kernels, so a playground displayed there is this page; in Jupyter it is the
 live widget.
 """
@@ -47,7 +47,7 @@ def page_html(payload: dict, png: bytes, alt: str, files: bool = False) -> str:
     """One fragment: root ``div.tb-playground``, the data as JSON in a ``<script>`` (no
     fetch, so ``file://`` works), the viewer module inline and ``png`` in a ``<noscript>``
     (print, no JavaScript). Files the data names (``payload["files"]``) are loaded from
-    ``data-tb-base``, the path :mod:`trackbook.sphinx_playground` writes there. With
+    ``data-tb-base``, the path the book's ``sphinx_playground`` extension writes there. With
     ``files`` (the book's pages) inline runs and frames (an animation's) and the picture
     become files too (:func:`trackbook.playground.static.to_files`): the page stays light."""
     if files:

@@ -4,7 +4,7 @@ Each :class:`Quote` holds the passage word for word (Korean, or the English abst
 a faithful English translation, where it comes from (section, table, equation) and its kind:
 ``printed`` (the passage states it) or ``reading`` (the passage is ambiguous and supports the
 book's reading). The book shows a quote beside the sentence that relies on it with the role
-``{quote}`lee2012.window40``` (:mod:`trackbook.sphinx_quotes`); docstrings, comments and
+``{quote}`lee2012.window40``` (the book's Sphinx extension ``book/_ext/sphinx_quotes.py``); docstrings, comments and
 param docs write ``[quote: lee2012.window40]``. ``tests/test_quotes.py`` checks every original
 against the papers' texts.
 

@@ -26,8 +26,8 @@ from docutils import nodes
 from sphinx.errors import ExtensionError
 from sphinx.util import logging
 
-from . import quotes
-from .quotes import attributions
+from trackbook import quotes
+from trackbook.quotes import attributions
 
 logger = logging.getLogger(__name__)
 
@@ -207,7 +207,7 @@ def _load_mathjax(app, doctree):
 
     Sphinx adds MathJax only to pages with equations (its math domain's ``has_equations``);
     the popovers' passages are raw HTML, not maths nodes, so their page is marked here. Only
-    a MathJax served with the book (``trackbook.sphinx_offline_mathjax``) is added this way:
+    a MathJax served with the book (``sphinx_offline_mathjax``) is added this way:
     a page never asks a CDN for its popovers.
     """
     path = str(getattr(app.config, "mathjax_path", "") or "")

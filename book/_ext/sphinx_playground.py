@@ -29,9 +29,9 @@ import re
 import shutil
 from pathlib import Path
 
-from .playground.data import VIEWER_CSS, VIEWER_JS
-from .playground.export import BOOK_ENV, STATIC_BASE
-from .playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
+from trackbook.playground.data import VIEWER_CSS, VIEWER_JS
+from trackbook.playground.export import BOOK_ENV, STATIC_BASE
+from trackbook.playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 
 #: the folder of the built book that holds the playgrounds' files
 STATIC_DIR = "_static/playground"
