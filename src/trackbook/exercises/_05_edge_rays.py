@@ -61,8 +61,8 @@ measures.
 --- solution
 `trackbook.evaluate("edge-ray-pf", clip, seed=s, adapt_scale=True)` for s = 0, 1, 2 against the
 same call without the option. Expect no gain: the Ratio mixes size with edge density (section
-"The median pair and the Ratio"), so the box drifts with texture changes. The lab notes report
-the same on the seven sequences.
+"The median pair and the Ratio" of the case study of Kim et al. 2016), so the box drifts with
+texture changes. The lab notes report the same on the seven sequences.
 
 === 5.7 ★ pen and paper | Condensation's contour likelihood
 Condensation's likelihood with $\sigma = 3$ and the cap $\mu = 10$: hypothesis A has four
