@@ -343,7 +343,7 @@ def test_manoeuvre_gate_zero_is_the_paper_tracker():
 @pytest.mark.slow
 @pytest.mark.skipif("red-cube" not in clips.available(), reason="red-cube sample not available")
 def test_red_cube_table1_claims():
-    # Measured on red-cube (book/07_region_covariance.md): both trackers 183/183 frames with IoU > 0.5
+    # Measured on red-cube (book/case_study_lee2015.md): both trackers 183/183 frames with IoU > 0.5
     # (tracking rate 1.000); search rate covariance 0.448 %, kalman-covariance 0.348 %; at most
     # 289 resp. 225 candidates per frame. The paper's detection rates are 87.1 % / 96.3 %: we
     # assert at least the paper's proposed rate for both. Its search-rate claim (proposed
@@ -360,7 +360,7 @@ def test_red_cube_table1_claims():
 @pytest.mark.slow
 @pytest.mark.skipif("yellow-ball" not in clips.available(), reason="yellow-ball not available")
 def test_yellow_ball_needs_the_manoeuvre_window():
-    # Measured (book/07_region_covariance.md): tracking rate covariance 0.916, kalman-covariance
+    # Measured (book/case_study_lee2015.md): tracking rate covariance 0.916, kalman-covariance
     # (the paper's tracker) 0.496 — it loses the ball at the bounces — and with
     # the book's manoeuvre re-search (kalman-covariance-manoeuvre) 0.992, at a lower search rate than the baseline
     # (0.402 % vs 0.427 %).

@@ -64,7 +64,7 @@ def test_samples_hold_the_default_and_the_paper_value(tracker):
 
 def test_the_chapters_central_values_are_stops():
     """By hand: sigma_color, the book 0.2 against Lee et al.'s 0.4; the manoeuvre gate's
-    'off' (0: kalman-covariance, the paper's method) that the region-covariance chapter asks the
+    'off' (0: kalman-covariance, the paper's method) that the case study of Lee (2015) asks the
     reader to set on the book's variant."""
     pf = trackers.get("color-pf")
     assert {0.2, 0.4} <= set(D.static_samples(D.knob_spec(pf, "sigma_color"),

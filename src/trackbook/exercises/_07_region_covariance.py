@@ -44,7 +44,8 @@ cancels (on this box $d_F$ is about 0.3 instead of 0), and a contrast change is 
 congruence, so two windows of the changed frame no longer keep their distance.
 
 === 7.4 ★★ modify | Small q or large q?
-Run the book's variant `kalman-covariance-manoeuvre` on the first 146 frames of `red-cube`
+Run the book's variant `kalman-covariance-manoeuvre` (from the
+{doc}`case study <case_study_lee2015>`) on the first 146 frames of `red-cube`
 (`evaluate(..., seed=0, q=..., max_frames=146)`) with `q=0.01` and with `q=100`; the cube
 accelerates suddenly at frames 139–142. One of the two needs its second, larger search (the
 manoeuvre window, `tracker.manoeuvre`, readable in an `on_frame` callback), and why? The other
@@ -98,8 +99,8 @@ numbers. The appendix's solution cell writes it out.
 
 === 7.7 ★★★ project | Add scale to the covariance tracker
 Neither covariance tracker changes the size of its window; David and MotorRolling, the two
-public sequences on which both score lowest, are annotated with scale variation (among much
-else). Around each frame's best window,
+public sequences on which both score lowest (the {doc}`case study <case_study_lee2015>`),
+are annotated with scale variation (among much else). Around each frame's best window,
 evaluate the same centre at scales 0.9, 1.0 and 1.1 and keep the smallest $d_F$. Beware: the
 $x, y$ features are pixel coordinates, so a larger window has a larger $x$-variance even for
 the same object — divide the $x, y$ rows and columns of $C$ by the scale (a congruence

@@ -149,7 +149,7 @@ def kalman_ball(clip="yellow-ball", n_frames=40, seed=0, sensor="noisy-truth",
         ``"noisy-truth"`` (``06_kalman``): the measurement is the ground-truth centre plus Gaussian
         noise of standard deviation ``noise_sd`` px, filtered by the constant-velocity model
         with ``R = noise_sd**2 I`` and one run per process-noise scale in ``qs`` (the viewer
-        offers them as a choice). ``"covariance"`` (``07_region_covariance``): the measurement is the best
+        offers them as a choice). ``"covariance"`` (``case_study_lee2015``): the measurement is the best
         covariance match of the ``kalman-covariance`` tracker (``params`` go to it).
     """
     if sensor == "noisy-truth":

@@ -18,7 +18,7 @@
     ``kalman-covariance`` plus a manoeuvre re-search, not in the paper: when the best ρ is
     much worse than usual (``manoeuvre_gate``) the target has probably changed velocity (a
     bounce); the window is searched again as if the velocity were uncertain by
-    ``manoeuvre_sigma`` px/frame (07_region_covariance, "The bounce").
+    ``manoeuvre_sigma`` px/frame (case_study_lee2015, "The bounce").
 
 All of them report ``ok`` from the failure-detection layer
 (:class:`~trackbook.trackers.failure.FailureDetector` on the confidence -d_F), and also lost

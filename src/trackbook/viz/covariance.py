@@ -1,5 +1,5 @@
-"""Drawings for ``07_region_covariance`` (region covariance) and ``06_kalman`` (the Kalman
-search window)."""
+"""Drawings for ``07_region_covariance`` (region covariance) and ``case_study_lee2015`` (the
+Kalman search window)."""
 
 from __future__ import annotations
 
@@ -52,7 +52,7 @@ def rho_map(frame, tracker, ax=None, title=None):
 
 
 def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
-    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (``07_region_covariance``).
+    """Frames with the tracker's box, the Kalman search window and the 3σ ellipse (``case_study_lee2015``).
 
     ``states`` is a list (per frame) of dicts with ``search_window``, ``ellipse`` and
     ``center`` (the posterior centre), as recorded by ``evaluate(..., on_frame=...)``.
@@ -83,7 +83,7 @@ def kalman_frames(clip, states, boxes, frames, size=2.6, gt=True, zoom=None):
 
 
 def recorder(states: list):
-    """An ``on_frame`` callback that appends what ``07_region_covariance`` draws to ``states``."""
+    """An ``on_frame`` callback that appends what ``case_study_lee2015`` draws to ``states``."""
     def record(i, tracker, frame, box):
         st = tracker.state()          # the search window; the Kalman gate (kalman-covariance)
         sw, el = st.search_window, st.ellipse
