@@ -419,7 +419,7 @@ def two_faces_alike(n: int = 120) -> Clip:
     Same background, paths, scales and frames as the ``two-faces`` sample; only face2's texture
     differs (the astronaut crop, flipped left-right, at the cat's size), so the two targets
     have the same colour histogram up to resampling. Not a registered sample:
-    ``08_mean_shift`` builds it to test Cho and Kang 2005's two-face claim with two faces of
+    ``case_study_cho2005`` builds it to test Cho and Kang 2005's two-face claim with two faces of
     one colour.
     """
     twin = np.ascontiguousarray(crop("astronaut", 170, 40, 285, 185, (60, 58))[:, ::-1])

@@ -1,4 +1,4 @@
-"""Identity switches: does each target keep the same track? (``08_mean_shift``, several targets)
+"""Identity switches: does each target keep the same track? (``case_study_cho2005``, several targets)
 
 Each frame, tracks are matched to ground-truth identities as the CLEAR MOT metrics do
 (Bernardin & Stiefelhagen 2008): a correspondence of the previous frame is kept while its IoU

@@ -56,7 +56,8 @@ $\begin{bmatrix}\sum I_x^2 & \sum I_xI_y\\ \sum I_xI_y & \sum I_y^2\end{bmatrix}
 === 8.6 ★★ modify | Force a swap
 On `two-faces`, force a swap by hand: exchange the two trackers (`mt.trackers.reverse()`)
 after the crossing (frame 95), then *during* the overlap (frame 65) — `run_faces(faces,
-name, associate, swap_at=...)` does it. How many identity switches do the independent and
+name, associate, swap_at=...)` of the {doc}`case study <case_study_cho2005>`'s data-association
+section does it. How many identity switches do the independent and
 the associated trackers make? Look at the distance between the face centres and at the
 squared distances `d2` of the gate to explain why association copes at frame 65 too.
 --- solution

@@ -1,6 +1,6 @@
 """The least-squares motion vector of a target region (eq. 5-8 of Cho & Kang 2005).
 
-Chapter ``08_mean_shift`` of the book. Brightness constancy ``I(x + p, y + q, t + 1) = I(x, y, t)`` (eq. 5),
+The case study ``case_study_cho2005`` of the book. Brightness constancy ``I(x + p, y + q, t + 1) = I(x, y, t)`` (eq. 5),
 linearised by Taylor (eq. 6), gives one constraint ``p Ix + q Iy + It = 0`` per pixel (eq. 7).
 One (p, q) for the whole region R minimises ``Err(p, q) = sum_R (p Ix + q Iy + It)^2`` (eq. 8),
 whose normal equations are the 2x2 system

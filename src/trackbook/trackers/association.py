@@ -1,4 +1,4 @@
-"""Data association for several targets: a gate and the Hungarian assignment (``08_mean_shift``).
+"""Data association for several targets: a gate and the Hungarian assignment (``case_study_cho2005``).
 
 Independent trackers (:class:`trackbook.trackers.MultiTracker`, as in Cho & Kang 2005 §5.3)
 never ask which target a box belongs to. This module adds that question as a layer on top of

@@ -1,6 +1,7 @@
 """Cho & Kang 2005: Condensation, mean-shift, and Condensation with candidates moved by mean-shift.
 
-The chapter ``08_mean_shift`` (and its lab notes, ``lab_notes_cho2005``). Three registered
+The case study ``case_study_cho2005`` (built on the chapter ``08_mean_shift``) and its lab notes,
+``lab_notes_cho2005``. Three registered
 trackers share one target model, an ellipse with a kernel-weighted colour distribution:
 
 - ``condensation`` (baseline, Nummiaro et al. 2003): factored sampling -> predict

@@ -1,4 +1,4 @@
-"""Drawings of ``08_mean_shift`` and ``lab_notes_cho2005`` (Cho & Kang 2005 Fig. 1-6).
+"""Drawings of ``08_mean_shift``, ``case_study_cho2005`` and ``lab_notes_cho2005`` (Cho & Kang 2005 Fig. 1-6).
 
 Coordinates: trackers use continuous image coordinates (pixel i covers [i, i+1)); matplotlib's
 ``imshow`` puts pixel i at i, so everything drawn here is shifted by half a pixel.
