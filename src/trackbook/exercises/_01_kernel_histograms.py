@@ -102,7 +102,7 @@ A red target two pixels wide stands on a blue background. The box sees red in it
 columns and blue in its right one (patch A); then it slides one pixel to the right and sees
 red in its left column only (patch B). Give $C$, and the two-bin (red, blue) histograms of A
 and B with the kernel and with every weight 1. Compute $\rho(A, B)$ both ways: which falls
-further when the box slides off the target, and why?
+further when the box slides, and why?
 --- solution
 Swap the two sums:
 $\sum_u \hat q_u = C \sum_{i=1}^n k(\|x_i^*\|^2) \sum_u \delta[b(x_i^*) - u]$, and the inner
@@ -160,7 +160,7 @@ The numbers: $\rho(p, q) = \sqrt{0.45} + \sqrt{0.05} = 4\sqrt{0.05} = 2/\sqrt 5 
 $D(p, q) = D(q, r) = \sqrt{1 - 0.894} \approx 0.325$ and $D(p, r) = \sqrt{0.4} \approx 0.632
 \le 0.325 + 0.325 = 0.650$: the triangle inequality holds. But
 $-\ln \rho(p, q) = -\ln \rho(q, r) = \tfrac12 \ln \tfrac54 \approx 0.112$, while
-$-\ln \rho(p, r) = \ln \tfrac53 \approx 0.511 > 0.112 + 0.112 = \ln \tfrac54 \approx 0.223$:
+$-\ln \rho(p, r) = \ln \tfrac53 \approx 0.511 > 2 \cdot \tfrac12 \ln \tfrac54 \approx 0.223$:
 $-\ln \rho$ breaks the triangle inequality, by more than a factor 2 here. Both still order
 the pairs the same way, and $-\ln \rho \ge D^2$ holds in each ($0.112 \ge 0.106$,
 $0.511 \ge 0.4$).

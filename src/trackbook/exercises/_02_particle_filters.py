@@ -179,7 +179,7 @@ $u = 0.05$: the pointers are $u + k/4$, $k = 0, \dots, 3$, and each picks the sm
 with $c_i \ge$ pointer, $c_i$ the cumulative weights (particles counted from 0). How many
 copies does each particle get, and does each count lie between $\lfloor N w^{(i)} \rfloor$
 and $\lceil N w^{(i)} \rceil$? (c) Repeat (a) and (b) with $\sigma_{color} = 0.4$. What does
-the larger σ do to the weights and to the copies? (A calculator for the exponentials.)
+the larger σ do to the weights and to the copies? (Use a calculator for the exponentials.)
 --- solution
 (a) The factor $1/\sqrt{2\pi\sigma_{color}^2}$ is the same for every particle and cancels when
 the weights are divided by their sum. With $2\sigma_{color}^2 = 0.08$ the exponents

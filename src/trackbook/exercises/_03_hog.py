@@ -79,8 +79,8 @@ def gx_loop(P):
 Eq. 2 takes, at every pixel, the right neighbour minus the left one. Inside the patch both
 exist; at the borders the replicated pixel stands in for the missing one, which is the same
 as clamping the column index into $0, \dots, w - 1$ (`min`, `max`). So the first column gets
-the one-sided difference $I(1, y) - I(0, y)$ and the last $I(w-1, y) - I(w-2, y)$, each half
-of a central difference's span: a border pixel still sees the edge it sits on, and nothing
+the one-sided difference $I(1, y) - I(0, y)$ and the last $I(w-1, y) - I(w-2, y)$, taken
+over one pixel instead of two: a border pixel still sees the edge it sits on, and nothing
 outside the box enters. By hand, the row $(0, 1, 4, 9)$: at $x = 0$, $1 - 0 = 1$; at
 $x = 1$, $4 - 0 = 4$; at $x = 2$, $9 - 1 = 8$; at $x = 3$, $9 - 4 = 5$. A constant row has
 every difference 0, borders included: no edge, no vote. The library's `gradients` computes the
@@ -156,7 +156,7 @@ the strong value becomes $4 / (4\sqrt 2) = 1/\sqrt 2 \approx 0.707$ and a weak o
 $1 / (4\sqrt 2) \approx 0.177$. The ratio is still 4: dividing by a norm scales every value by
 the same factor. Clipping at 0.2 turns 0.707 into 0.2 and leaves the weak values
 ($0.177 < 0.2$) and the zeros alone. The new norm is
-$\sqrt{0.2^2 + 16 \cdot 0.177^2} = \sqrt{0.04 + 0.5} = \sqrt{0.54} \approx 0.735$, so the
+$\sqrt{0.2^2 + 16 \cdot \tfrac1{32}} = \sqrt{0.04 + 0.5} = \sqrt{0.54} \approx 0.735$, so the
 final values are $0.2 / 0.735 \approx 0.272$ and $0.177 / 0.735 \approx 0.241$: ratio
 $0.2 \cdot 4\sqrt 2 = 0.8\sqrt 2 \approx 1.13$ instead of 4. Not every value is at most 0.2 at
 the end: the second normalisation lifts all seventeen non-zero values above it. The recipe
