@@ -90,4 +90,78 @@ picks the one bin $u = c(x_i)$); then divide by `q.sum()`. Without a loop,
 `np.bincount(labels.ravel(), weights=kernel.ravel(), minlength=n_bins)` is the same sum. For
 the hand case the sums are $1$, $2 + 3$, $4$ and $0$, out of $10$. The exercises appendix runs
 this solution through the check.
+
+=== 1.8 ★ pen and paper | The constant C, and a two-colour patch by hand
+In the kernel histogram
+$\hat q_u = C \sum_{i=1}^n k(\|x_i^*\|^2)\, \delta[b(x_i^*) - u]$, show that
+$C = 1 / \sum_{i=1}^n k(\|x_i^*\|^2)$ makes the $\hat q_u$ sum to 1, and that $C$ depends on
+the kernel and the size of the patch but not on its colours. Then take a 3 × 3 patch with the
+weights $k = 1 - r^2$ of the chapter ($r$ the distance to the centre pixel divided by the
+largest such distance): 0 at the four corners, $\tfrac12$ on the four edges, 1 in the middle.
+A red target two pixels wide stands on a blue background. The box sees red in its left two
+columns and blue in its right one (patch A); then it slides one pixel to the right and sees
+red in its left column only (patch B). Give $C$, and the two-bin (red, blue) histograms of A
+and B with the kernel and with every weight 1. Compute $\rho(A, B)$ both ways: which falls
+further when the box slides, and why?
+--- solution
+Swap the two sums:
+$\sum_u \hat q_u = C \sum_{i=1}^n k(\|x_i^*\|^2) \sum_u \delta[b(x_i^*) - u]$, and the inner
+sum is 1 because every pixel has exactly one bin. So $\sum_u \hat q_u = C \sum_i
+k(\|x_i^*\|^2)$, which is 1 exactly when $C = 1 / \sum_i k(\|x_i^*\|^2)$. The colours enter
+only through $b$, which has dropped out: $C$ is fixed by the kernel and the patch size (for
+the 16 × 24 patches of the chapter it is one number for every box).
+
+For the 3 × 3 patch, $\sum_i k = 4 \cdot 0 + 4 \cdot \tfrac12 + 1 = 3$, so $C = \tfrac13$.
+Patch A: the red pixels are the left column ($0 + \tfrac12 + 0$) and the middle column
+($\tfrac12 + 1 + \tfrac12$), together $\tfrac52$; the blue right column has
+$0 + \tfrac12 + 0 = \tfrac12$. So $\hat q(A) = (\tfrac56, \tfrac16)$; with every weight 1,
+6 of the 9 pixels are red: $(\tfrac23, \tfrac13)$. Patch B is A mirrored with the colours
+swapped: $\hat q(B) = (\tfrac16, \tfrac56)$ with the kernel, $(\tfrac13, \tfrac23)$ without.
+
+With the kernel
+$\rho(A, B) = \sqrt{\tfrac56 \cdot \tfrac16} + \sqrt{\tfrac16 \cdot \tfrac56}
+= \tfrac{2\sqrt 5}{6} = \tfrac{\sqrt 5}{3} \approx 0.745$; without it
+$\rho(A, B) = 2\sqrt{\tfrac23 \cdot \tfrac13} = \tfrac{2\sqrt 2}{3} \approx 0.943$. The
+kernel version falls further: the middle column, which turned from red to blue, carries
+$\tfrac12 + 1 + \tfrac12 = 2$ of the kernel's total weight 3, but only a third of the pixels.
+Weighing the centre most makes ρ fall faster as the box leaves the target, a sharper peak
+for a tracker to find.
+
+=== 1.9 ★★ pen and paper | Which distance is a metric?
+Show that $0 \le \rho(p, q) \le 1$ for any two histograms (you may use $\rho \le 1$ from
+exercise 1.6), with $\rho = 0$ exactly when no bin holds mass in both, and give the ranges of
+$D = \sqrt{1 - \rho}$ and of $-\ln \rho$. Show that
+$D^2 = \tfrac12 \sum_u (\sqrt{p_u} - \sqrt{q_u})^2$ and conclude that $D$ satisfies the
+triangle inequality $D(p, r) \le D(p, q) + D(q, r)$. Show that $-\ln \rho \ge D^2$. Finally,
+for $p = (0.9, 0.1)$, $q = (0.5, 0.5)$ and $r = (0.1, 0.9)$, compute ρ, $D$ and $-\ln \rho$
+of the three pairs, and check the triangle inequality for both distances.
+--- hint
+$\ln x \le x - 1$ for every $x > 0$. For the numbers, $\sqrt{0.45} = 3\sqrt{0.05}$.
+--- solution
+Every term $\sqrt{p_u q_u}$ is $\ge 0$, so $\rho \ge 0$, and $\rho = 0$ only when every
+product $p_u q_u$ is 0: no bin is non-empty in both. With $\rho \le 1$ (equality only for
+$p = q$): $D \in [0, 1]$, 0 only for $p = q$ and 1 only for histograms with no bin in common;
+$-\ln \rho \in [0, \infty]$, infinite for histograms with no bin in common.
+
+Expanding the square, and using $\sum_u p_u = \sum_u q_u = 1$:
+
+$$\tfrac12 \sum_u (\sqrt{p_u} - \sqrt{q_u})^2
+= \tfrac12 \Bigl(\sum_u p_u + \sum_u q_u - 2 \sum_u \sqrt{p_u q_u}\Bigr)
+= 1 - \rho = D^2 .$$
+
+So $D(p, q) = \|\sqrt p - \sqrt q\| / \sqrt 2$: a fixed multiple of the Euclidean distance
+between the vectors $\sqrt p$ and $\sqrt q$, which satisfies the triangle inequality, and so
+does $D$. With $D \ge 0$, $D = 0$ only for $p = q$, and $D(p, q) = D(q, p)$, $D$ is a metric
+(the Hellinger distance). From $\ln x \le x - 1$ with $x = \rho$:
+$-\ln \rho \ge 1 - \rho = D^2$, with equality only at $\rho = 1$.
+
+The numbers: $\rho(p, q) = \sqrt{0.45} + \sqrt{0.05} = 4\sqrt{0.05} = 2/\sqrt 5 \approx
+0.894$, and $\rho(q, r)$ is the same by symmetry; $\rho(p, r) = 2\sqrt{0.09} = 0.6$. Then
+$D(p, q) = D(q, r) = \sqrt{1 - 0.894} \approx 0.325$ and $D(p, r) = \sqrt{0.4} \approx 0.632
+\le 0.325 + 0.325 = 0.650$: the triangle inequality holds. But
+$-\ln \rho(p, q) = -\ln \rho(q, r) = \tfrac12 \ln \tfrac54 \approx 0.112$, while
+$-\ln \rho(p, r) = \ln \tfrac53 \approx 0.511 > 2 \cdot \tfrac12 \ln \tfrac54 \approx 0.223$:
+$-\ln \rho$ breaks the triangle inequality, by more than a factor 2 here. Both still order
+the pairs the same way, and $-\ln \rho \ge D^2$ holds in each ($0.112 \ge 0.106$,
+$0.511 \ge 0.4$).
 """

@@ -119,4 +119,90 @@ the pointers $u + k/N$ for $k = 0, \dots, N-1$, and return for each pointer the 
 $i$ with $c_i \ge$ pointer, $c$ the cumulative weights (set $c_N = 1$ exactly). By hand:
 $w = (0.7, 0.1, 0.1, 0.1)$, `rng.random()` = 0.5, so $u = 0.125$: pointers 0.125, 0.375, 0.625,
 0.875 against $c = (0.7, 0.8, 0.9, 1)$, indices $(0, 0, 0, 2)$. The check uses that case and three more worked by hand.
+--- solution
+```python
+def my_systematic(w, rng):
+    n = len(w)
+    c = np.cumsum(w)
+    c[-1] = 1.0             # round-off must not leave c_N below 1
+    pointers = rng.random() / n + np.arange(n) / n
+    return np.searchsorted(c, pointers, side="left")
+```
+The cumulative weights $c_i$ lay the particles side by side on $[0, 1]$: particle $i$ owns
+$(c_{i-1}, c_i]$, of length $w_i$. Setting the last one to 1 exactly matters because round-off
+can leave the sum of the weights a hair below 1, and a pointer above it would find no
+particle. The single call `rng.random() / N` gives the offset $u \in [0, 1/N)$, and
+$u + k/N$, $k = 0, \dots, N-1$, are the $N$ pointers, $1/N$ apart and all below 1.
+`np.searchsorted(c, pointers, side="left")` returns, for each pointer, the first $i$ with
+$c_i \ge$ pointer, the rule of the statement; since the pointers are sorted, a loop that walks
+$i$ forward once through the particles does the same. By hand, with
+$w = (0.7, 0.1, 0.1, 0.1)$ and $u = 0.125$: the pointers 0.125, 0.375 and 0.625 are all
+$\le c_0 = 0.7$ and pick particle 0; 0.875 is above $c_1 = 0.8$ but not above $c_2 = 0.9$ and
+picks particle 2: indices $(0, 0, 0, 2)$. Particle 0 gets 3 copies for $N w_0 = 2.8$,
+particle 2 one for $N w_2 = 0.4$, particles 1 and 3 none for 0.4 each: every count is
+$\lfloor N w_i \rfloor$ or $\lceil N w_i \rceil$, as exercise 2.7 shows it must be. The
+exercises appendix runs this solution through the check.
+
+=== 2.9 ★ pen and paper | The effective sample size and its bounds
+The effective sample size of normalised weights ($w^{(i)} \ge 0$,
+$\sum_{i=1}^N w^{(i)} = 1$) is $N_{\mathrm{eff}} = 1 / \sum_{i=1}^N (w^{(i)})^2$. Show that
+$1 \le N_{\mathrm{eff}} \le N$, that $N_{\mathrm{eff}} = 1$ only when one particle has all
+the weight and $N_{\mathrm{eff}} = N$ only when all weights are equal, and that $k$ particles
+sharing the weight equally (the others at 0) give $N_{\mathrm{eff}} = k$. Then compute
+$N_{\mathrm{eff}}$ of $w = (\tfrac12, \tfrac14, \tfrac18, \tfrac18)$.
+--- hint
+For the upper bound, apply the Cauchy–Schwarz inequality to the vectors
+$(w^{(1)}, \dots, w^{(N)})$ and $(1, \dots, 1)$.
+--- solution
+Lower bound: every $w^{(i)} \le 1$, so $(w^{(i)})^2 \le w^{(i)}$ and
+$\sum_i (w^{(i)})^2 \le \sum_i w^{(i)} = 1$: $N_{\mathrm{eff}} \ge 1$. Equality needs
+$(w^{(i)})^2 = w^{(i)}$ for every $i$, so every weight is 0 or 1: one particle has weight 1,
+the others 0. Upper bound: by Cauchy–Schwarz,
+
+$$1 = \Bigl(\sum_i w^{(i)} \cdot 1\Bigr)^2 \le \sum_i (w^{(i)})^2 \cdot \sum_i 1^2
+= N \sum_i (w^{(i)})^2,$$
+
+so $N_{\mathrm{eff}} \le N$, with equality only when $w$ is parallel to $(1, \dots, 1)$:
+every $w^{(i)} = 1/N$. With $k$ weights $1/k$ and the rest 0,
+$\sum_i (w^{(i)})^2 = k / k^2 = 1/k$ and $N_{\mathrm{eff}} = k$: $N_{\mathrm{eff}}$ reads as
+the number of equally weighted particles the set is worth. For the vector,
+$\sum_i (w^{(i)})^2 = \tfrac14 + \tfrac1{16} + \tfrac1{64} + \tfrac1{64}
+= \tfrac{16 + 4 + 1 + 1}{64} = \tfrac{11}{32}$, so $N_{\mathrm{eff}} = \tfrac{32}{11}
+\approx 2.91$ of 4: more than the 2 of two equal particles, less than the 4 of four.
+
+=== 2.10 ★★ pen and paper | Weigh and resample four particles by hand
+Four particles have the squared Bhattacharyya distances $D^2 = (0, 0.08, 0.16, 0.24)$ to the
+reference histogram. (a) With the likelihood of eq. 10 and $\sigma_{color} = 0.2$, give their
+normalised weights $w^{(i)}$ and $N_{\mathrm{eff}}$; why does the factor
+$1/\sqrt{2\pi\sigma_{color}^2}$ not matter? (b) Resample them systematically with the offset
+$u = 0.05$: the pointers are $u + k/4$, $k = 0, \dots, 3$, and each picks the smallest $i$
+with $c_i \ge$ pointer, $c_i$ the cumulative weights (particles counted from 0). How many
+copies does each particle get, and does each count lie between $\lfloor N w^{(i)} \rfloor$
+and $\lceil N w^{(i)} \rceil$? (c) Repeat (a) and (b) with $\sigma_{color} = 0.4$. What does
+the larger σ do to the weights and to the copies? (Use a calculator for the exponentials.)
+--- solution
+(a) The factor $1/\sqrt{2\pi\sigma_{color}^2}$ is the same for every particle and cancels when
+the weights are divided by their sum. With $2\sigma_{color}^2 = 0.08$ the exponents
+$D^2 / 2\sigma_{color}^2$ are $(0, 1, 2, 3)$, so the likelihoods are proportional to
+$(1, e^{-1}, e^{-2}, e^{-3}) \approx (1, 0.368, 0.135, 0.050)$, of sum $\approx 1.553$:
+$w \approx (0.644, 0.237, 0.087, 0.032)$. Then
+$\sum_i (w^{(i)})^2 \approx 0.4146 + 0.0561 + 0.0076 + 0.0010 \approx 0.479$ and
+$N_{\mathrm{eff}} \approx 2.09$.
+
+(b) The cumulative weights are $c \approx (0.644, 0.881, 0.968, 1)$ and the pointers 0.05,
+0.30, 0.55 and 0.80. The first three are $\le c_0$ and pick particle 0; 0.80 lies above
+$c_0$ and below $c_1$ and picks particle 1: indices $(0, 0, 0, 1)$, copies $(3, 1, 0, 0)$.
+$N w \approx (2.58, 0.95, 0.35, 0.13)$, so every count is the floor or the ceiling of its
+$N w^{(i)}$, as systematic resampling guarantees (exercise 2.7).
+
+(c) With $2\sigma_{color}^2 = 0.32$ the exponents are $(0, 0.25, 0.5, 0.75)$ and the
+likelihoods are proportional to $(1, 0.779, 0.607, 0.472)$, of sum $\approx 2.858$:
+$w \approx (0.350, 0.273, 0.212, 0.165)$, $\sum_i (w^{(i)})^2 \approx 0.269$ and
+$N_{\mathrm{eff}} \approx 3.72$. Now $c \approx (0.350, 0.622, 0.835, 1)$: 0.05 and 0.30 pick
+particle 0, 0.55 particle 1 and 0.80 particle 2, copies $(2, 1, 1, 0)$, again floor or ceiling
+of $N w \approx (1.40, 1.09, 0.85, 0.66)$. The larger σ flattens the weights: $N_{\mathrm{eff}}$
+is close to 4, the worst particle keeps about a sixth of the weight, and three particles
+survive the resampling instead of two. With σ = 0.2 the best particle takes three of the four
+copies. Flat weights let the estimate drift with the cloud; too sharp ones collapse it onto
+a single particle.
 """

@@ -64,6 +64,28 @@ $I(x+1, y) - I(x-1, y)$, with the border replicated: $I(-1, y) = I(0, y)$,
 $I(w, y) = I(w - 1, y)$) of a 2-D patch `P`, as a plain Python loop over pixels. By hand
 first: the row $(0, 1, 4, 9)$ gives $(1 - 0, 4 - 0, 9 - 1, 9 - 4) = (1, 4, 8, 5)$. The check
 uses that row and a constant one.
+--- solution
+```python
+def gx_loop(P):
+    h, w = P.shape
+    out = np.zeros((h, w))
+    for y in range(h):
+        for x in range(w):
+            # the replicated border: I(-1, y) = I(0, y), I(w, y) = I(w - 1, y)
+            right, left = P[y, min(x + 1, w - 1)], P[y, max(x - 1, 0)]
+            out[y, x] = right - left
+    return out
+```
+Eq. 2 takes, at every pixel, the right neighbour minus the left one. Inside the patch both
+exist; at the borders the replicated pixel stands in for the missing one, which is the same
+as clamping the column index into $0, \dots, w - 1$ (`min`, `max`). So the first column gets
+the one-sided difference $I(1, y) - I(0, y)$ and the last $I(w-1, y) - I(w-2, y)$, taken
+over one pixel instead of two: a border pixel still sees the edge it sits on, and nothing
+outside the box enters. By hand, the row $(0, 1, 4, 9)$: at $x = 0$, $1 - 0 = 1$; at
+$x = 1$, $4 - 0 = 4$; at $x = 2$, $9 - 1 = 8$; at $x = 3$, $9 - 4 = 5$. A constant row has
+every difference 0, borders included: no edge, no vote. The library's `gradients` computes the
+same with array slices for many patches at once (the chapter compares the two on a random
+patch); the exercises appendix runs this solution through the check.
 
 === 3.7 ★★ pen and paper | Why HOG ignores brightness and contrast
 Let $I' = cI + b$ with $c > 0$. Show from eq. 2–5 that every pixel's orientation bin is
@@ -81,4 +103,68 @@ Clipping breaks the linear relation where pixels saturate, so there the gradient
 scale. Exercise 3.1 halves the frame ($c = 1/2$, $b = 0$), which cannot saturate a pixel:
 what is left there is the rounding of the integer halving alone (on a float copy of the frame
 the two descriptors are identical).
+
+=== 3.8 ★★ pen and paper | One pixel's gradient and its vote
+Take the 3 × 3 grey patch (no blur; $x$ along the columns, $y$ down the rows)
+
+$$I = \begin{bmatrix} 20 & 10 & 70 \\ 60 & 35 & 30 \\ 90 & 50 & 40 \end{bmatrix}.$$
+
+For its centre pixel compute $g_x$ and $g_y$ by eq. 2, $m$ and $\tilde\theta$ by eq. 3–4
+(mind the quadrant: use $\operatorname{atan2}(g_y, g_x)$), and the bin $u$ (counted from 0)
+of the chapter's 8 signed bins $[u\,\pi/4, (u+1)\,\pi/4)$. Dalal and Triggs' unsigned
+descriptor instead folds the angle into $[0°, 180°)$ and has 9 bins of 20°, bin $k$ centred
+at $20k + 10°$ ($k = 0, \dots, 8$); it splits the magnitude linearly between the two bins
+whose centres are nearest, each getting $m \cdot (1 - d/20°)$ with $d$ the angle's distance
+to that bin's centre. Which two bins get how much? Then invert the contrast, $255 - I$: what
+happens to $g_x$, $g_y$, $m$, $\tilde\theta$, the signed bin and the unsigned votes?
+--- solution
+Eq. 2 at the centre: $g_x = I(x+1, y) - I(x-1, y) = 30 - 60 = -30$ and
+$g_y = I(x, y+1) - I(x, y-1) = 50 - 10 = 40$ (the corners do not enter). Then
+$m = \sqrt{(-30)^2 + 40^2} = 50$. With $g_x < 0$ and $g_y > 0$ the gradient lies in the second
+quadrant: $\theta = \operatorname{atan2}(40, -30) = 180° - \arctan(40/30) = 180° - 53.13°
+= 126.87°$ (2.214 rad). A plain $\tan^{-1}(g_y / g_x) = \tan^{-1}(-4/3) = -53.13°$ would name
+the opposite direction. As $\theta \ge 0$, eq. 4 keeps it: $\tilde\theta = 126.87°$, and
+$u = \lfloor 126.87 / 45 \rfloor = 2$, the bin $[90°, 135°)$ (bin 3 when counted from 1 as in
+eq. 5). The image gets brighter towards the left ($g_x < 0$) and down ($g_y > 0$, as $y$
+grows downwards).
+
+Unsigned: $126.87°$ is already in $[0°, 180°)$. The nearest centres are $130°$ ($k = 6$, at
+$d = 3.13°$) and $110°$ ($k = 5$, at $d = 16.87°$): bin 6 gets
+$50 \cdot (1 - 3.13/20) \approx 42.2$ and bin 5 gets $50 \cdot (1 - 16.87/20) \approx 7.8$,
+together $m = 50$.
+
+Inverted contrast: the 255 cancels in the differences and their signs flip, $g_x = 30$,
+$g_y = -40$, $m = 50$ unchanged. $\theta = \operatorname{atan2}(-40, 30) = -53.13° < 0$, so
+eq. 4 adds $360°$: $\tilde\theta = 306.87°$, bin $\lfloor 306.87/45 \rfloor = 6 = 2 + 4$: the
+signed descriptor moves the vote to the opposite bin. Folded into $[0°, 180°)$,
+$306.87° - 180° = 126.87°$, the same angle as before: the unsigned votes are again 42.2 in bin
+6 and 7.8 in bin 5, and the unsigned descriptor cannot tell the two contrasts apart
+(exercise 3.3 measures this on the target).
+
+=== 3.9 ★★ pen and paper | Block normalisation: L2-Hys against a plain sum
+A 36-value block of Dalal and Triggs' descriptor (2 × 2 cells of 9 bins) holds one strong
+edge and weak texture: one value 4, sixteen values 1 and nineteen values 0. Normalise it with
+L2-Hys, taking $\varepsilon = 0$: $v \leftarrow v / \lVert v \rVert_2$, clip every value at
+0.2, then $v \leftarrow v / \lVert v \rVert_2$ once more. Give the strong value and a weak
+value after each step, and the ratio of the strong to a weak value at the start and at the
+end. Is every value at most 0.2 at the end? Then normalise the same 36 values the way the
+chapter's descriptor is normalised, dividing by their sum ($f$ in eq. 5, taken over the
+whole descriptor): values and ratio? What does the clipping buy?
+--- solution
+$\lVert v \rVert_2^2 = 4^2 + 16 \cdot 1^2 = 32$, $\lVert v \rVert_2 = 4\sqrt 2 \approx 5.657$:
+the strong value becomes $4 / (4\sqrt 2) = 1/\sqrt 2 \approx 0.707$ and a weak one
+$1 / (4\sqrt 2) \approx 0.177$. The ratio is still 4: dividing by a norm scales every value by
+the same factor. Clipping at 0.2 turns 0.707 into 0.2 and leaves the weak values
+($0.177 < 0.2$) and the zeros alone. The new norm is
+$\sqrt{0.2^2 + 16 \cdot \tfrac1{32}} = \sqrt{0.04 + 0.5} = \sqrt{0.54} \approx 0.735$, so the
+final values are $0.2 / 0.735 \approx 0.272$ and $0.177 / 0.735 \approx 0.241$: ratio
+$0.2 \cdot 4\sqrt 2 = 0.8\sqrt 2 \approx 1.13$ instead of 4. Not every value is at most 0.2 at
+the end: the second normalisation lifts all seventeen non-zero values above it. The recipe
+clips once and normalises once more; it does not repeat until the bound holds. Dividing by the
+sum, $4 + 16 = 20$, gives 0.2 and 0.05: the ratio stays 4, as for any division by one
+number. Only the clipping changes the ratio: it caps what one strong edge can contribute, so
+the block says more about which directions occur and less about how strong the strongest one
+is, and a single high-contrast edge (a sharp shadow, a bright border) cannot swamp the rest.
+The chapter's descriptor has no such cap: there every edge counts in proportion to its
+magnitude, however strong.
 """
