@@ -10,10 +10,12 @@ from ._cli_errors import CLIError
 
 
 def _chapters(book: Path) -> list[Path]:
-    # every page: the numbered chapters, the unnumbered ones (where_next), appendices, lab notes
-    parts = [sorted(book.glob(g)) for g in ("[0-9][0-9]_*.md", "appendix_*.md", "lab_notes_*.md")]
+    # every page: the numbered chapters, the case studies, the unnumbered ones (where_next),
+    # appendices, lab notes
+    parts = [sorted(book.glob(g)) for g in ("[0-9][0-9]_*.md", "case_study_*.md",
+                                            "appendix_*.md", "lab_notes_*.md")]
     rest = [p for p in sorted(book.glob("*.md")) if not any(p in q for q in parts)]
-    return parts[0] + rest + parts[1] + parts[2]
+    return parts[0] + parts[1] + rest + parts[2] + parts[3]
 
 
 def find_book(book=None) -> Path:
