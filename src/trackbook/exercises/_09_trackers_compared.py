@@ -104,9 +104,9 @@ way.
 2. **The runs.** `ds = clips.load_dataset("~/data/OTB100")` (read `ds.skipped`), keep the
    chosen sequences, and run
    `bench.run(["color-pf", "color-hog-pf", "color-hog-ipca"], chosen, out, seeds="0-2",
-   preset=p, reference=False)` once with `p = "paper"` and once with `p = "book"`: with ten sequences
-   $3 \times 10 \times 3 \times 2 = 180$ runs, and each comparison pairs $10 \times 3 = 30$
-   runs per preset.
+   preset=p, reference=False)` once with `p = "paper"` and once with `p = "book"`: with
+   ten sequences $3 \times 10 \times 3 \times 2 = 180$ runs, and each comparison pairs
+   $10 \times 3 = 30$ runs per preset.
 3. **The verdicts.** `compare.check_claims(rows, metric=m,
    papers={"lee2012": PAPERS["lee2012"]})` for each preset and each measure (`"auc"`,
    `"tracking_rate"`): a table of the mean paired difference, its 95 % interval over
@@ -121,8 +121,8 @@ way.
    new ones, that is what that section predicts.
 5. **The conclusion, no further than the interval.** "Holds" only if the interval lies above
    0; "inconclusive" says these sequences cannot separate the trackers, not that the paper
-   was wrong; and the verdict is about these ten sequences, one run of the ground truth,
-   three seeds: not about the trackers in general. The limits go in too: one benchmark's
+   was wrong; and the verdict is about these ten sequences, their one set of ground-truth
+   boxes and three seeds: not about the trackers in general. The limits go in too: one benchmark's
    boxes, the book's choices wherever a setting is not printed, and video of other sizes and
    frame rates.
 
@@ -169,13 +169,15 @@ Trackers $A$ and $B$ each ran once on four sequences, with AUCs
 | $A$ | 0.70 | 0.40 | 0.55 | 0.25 |
 | $B$ | 0.66 | 0.35 | 0.52 | 0.27 |
 
-(a) Compute the paired differences $d = A - B$ and their mean $\bar d$. (b) With
-$S_{aa} = \sum (a - \bar a)^2$, $S_{bb} = \sum (b - \bar b)^2$ and
-$S_{ab} = \sum (a - \bar a)(b - \bar b)$ over the four sequences, show that
+Write $a$ and $b$ for a sequence's AUCs of $A$ and $B$. (a) Compute the paired differences
+$d = a - b$ and their mean $\bar d$. (b) With $S_{aa} = \sum (a - \bar a)^2$,
+$S_{bb} = \sum (b - \bar b)^2$ and $S_{ab} = \sum (a - \bar a)(b - \bar b)$ over the four
+sequences, show that
 $\sum (d - \bar d)^2 = S_{aa} + S_{bb} - 2 S_{ab}$, and compute the three sums. Compare the
 standard error of $\bar d$ from the paired differences, $s_d / \sqrt 4$ (with
 $s_d^2 = \sum (d - \bar d)^2 / 3$), with the one that treats $A$'s and $B$'s scores as two
-unrelated samples, $\sqrt{(s_a^2 + s_b^2)/4}$. Why are they so different? (c) The bootstrap
+unrelated samples, $\sqrt{(s_a^2 + s_b^2)/4}$ (with $s_a^2 = S_{aa}/3$ and
+$s_b^2 = S_{bb}/3$). Why are they so different? (c) The bootstrap
 draws four sequences with replacement and averages their differences; each of the
 $4^4 = 256$ ordered draws is equally likely. How many draws have a mean $\le 0$? The ends of
 the 95 % percentile interval lie at rank $256 \times 0.025 = 6.4$ from each end of the 256

@@ -116,9 +116,10 @@ fits the rest.
 
 === 10.6 ★★ pen and paper | KCF's solution on a circulant kernel matrix
 KCF's kernel ridge regression over all shifts $x_j$ (the training patch $x$ shifted by $j$,
-$(x_j)_m = x_{(m+j) \bmod n}$, as the rows of $X$) solves $(K + \lambda I)\alpha = y$ with $K_{ij} = \kappa(x_i, x_j)$. The kernel treats every
-shift alike: $\kappa$ of two signals does not change when both are shifted by the same
-amount, and $\kappa(a, b) = \kappa(b, a)$. Let $k^{xx}_t = \kappa(x, x \text{ shifted by }
+$(x_j)_m = x_{(m+j) \bmod n}$, as the rows of $X$) solves $(K + \lambda I)\alpha = y$ with
+$K_{ij} = \kappa(x_i, x_j)$. The kernel treats every shift alike: $\kappa$ of two signals
+does not change when both are shifted by the same amount, and $\kappa(a, b) =
+\kappa(b, a)$. Let $k^{xx}_t = \kappa(x, x \text{ shifted by }
 t)$. A fact you may use: for sequences $u$ and $v$ with $v$ real, the sequence
 $\sum_m v_m u_{(m+t) \bmod n}$ has the DFT $\hat u \odot \hat v^*$.
 (a) Show that $K_{ij} = k^{xx}_{(j-i) \bmod n}$, that $k^{xx}_{-t} = k^{xx}_t$ (so
@@ -155,5 +156,6 @@ $-\tfrac1{12} + \tfrac2{12} - \tfrac1{12} = 0$, row 4 $\tfrac7{24} + \tfrac1{24}
 (c) $\hat k^{xx}_2 = 0$: $K$ is singular ($K (1, -1, 1, -1)^T = 0$), and $\hat\alpha_2 =
 \hat y_2 / 0$ with $\hat y_2 = 1$: $K\alpha = y$ has no solution. $\lambda > 0$ makes every
 $\hat k^{xx} + \lambda$ positive ($\hat k^{xx}$ holds the eigenvalues of $K$, never negative
-for a positive semi-definite kernel such as the linear or the Gaussian one), so the system always has exactly one solution.
+for a positive semi-definite kernel such as the linear or the Gaussian one), so the system
+always has exactly one solution.
 """
