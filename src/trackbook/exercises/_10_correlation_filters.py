@@ -33,4 +33,129 @@ the explicit solve on a random signal.
 The kernel matrix of all cyclic shifts is circulant, so the Fourier transform diagonalises
 it: $\hat\alpha = \hat y / (\hat k + \lambda)$, with $k$ its first row,
 $k_t = \exp(-(2\lVert x\rVert^2 - 2\,x \cdot \text{shift}_t(x)) / (n\sigma^2))$.
+=== 10.4 ★★ pen and paper | The MOSSE filter from its squared error
+MOSSE trains on patches $f_i$ with desired responses $g_i$; $F_i$, $G_i$ and $H$ are their
+DFTs and the filter's, and the filter's response on $f_i$ has the DFT $F_i \odot H^*$. The
+filter minimises the output sum of squared error plus a penalty on its size,
+$$E = \sum_i \sum_\omega \lvert F_i(\omega) H^*(\omega) - G_i(\omega) \rvert^2
++ \lambda \sum_\omega \lvert H(\omega) \rvert^2 ,$$
+with $\omega$ running over the frequencies and $\lambda > 0$.
+(a) Show that $E$ splits into one term per frequency, and minimise each term over the
+complex number $H^*(\omega)$ to obtain
+$H^* = \sum_i G_i \odot F_i^* / (\sum_i F_i \odot F_i^* + \lambda)$. Why is the stationary
+point a minimum? (b) At one frequency, two training patches have $F_1 = 2$ and $F_2 = i$
+(the imaginary unit), with $G_1 = G_2 = 1$ and $\lambda = 1$. Compute $H^*$ there. What is
+$H^*$ at a frequency where every $F_i$ is 0, and what would it be without $\lambda$?
+--- hint
+Perturb $h = H^*(\omega)$ to $h + \varepsilon$ and expand $\lvert a + b \rvert^2 =
+\lvert a \rvert^2 + 2\operatorname{Re}(a \bar b) + \lvert b \rvert^2$.
+--- solution
+(a) Each summand holds one frequency's $H(\omega)$ and no other, so $E$ is a sum of terms
+that can be minimised one at a time. At one frequency write $h = H^*(\omega)$ (then
+$\lvert H(\omega) \rvert^2 = \lvert h \rvert^2$) and
+$E_\omega(h) = \sum_i \lvert F_i h - G_i \rvert^2 + \lambda \lvert h \rvert^2$. Expanding
+with $a = F_i h - G_i$, $b = F_i \varepsilon$:
+$$E_\omega(h + \varepsilon) = E_\omega(h) + 2 \operatorname{Re}\Big[\bar\varepsilon
+\Big(\sum_i F_i^* (F_i h - G_i) + \lambda h\Big)\Big]
++ \Big(\sum_i F_i F_i^* + \lambda\Big) \lvert \varepsilon \rvert^2 .$$
+The linear term vanishes for every $\varepsilon$ (real and imaginary) only if
+$\sum_i F_i^* (F_i h - G_i) + \lambda h = 0$, that is
+$h \,(\sum_i F_i F_i^* + \lambda) = \sum_i G_i F_i^*$, so
+$H^*(\omega) = \sum_i G_i F_i^* / (\sum_i F_i F_i^* + \lambda)$: at every frequency, the
+element-wise formula. At this $h$, $E_\omega(h + \varepsilon) - E_\omega(h) =
+(\sum_i \lvert F_i \rvert^2 + \lambda) \lvert \varepsilon \rvert^2 > 0$ for every
+$\varepsilon \ne 0$, since $\lambda > 0$: the stationary point is the unique minimum. (By
+Parseval, with $n$ the number of pixels, $r_i$ the filter's response on $f_i$ and
+$h = \operatorname{DFT}^{-1}(H)$, $E = n\,(\sum_i \lVert r_i - g_i \rVert^2 + \lambda
+\lVert h \rVert^2)$: the same minimiser as the least squares on the patches themselves.)
+
+(b) $\sum_i G_i F_i^* = 1 \cdot 2 + 1 \cdot (-i) = 2 - i$ and
+$\sum_i F_i F_i^* + \lambda = 4 + 1 + 1 = 6$, so $H^* = (2 - i)/6 \approx 0.333 - 0.167i$.
+Where every $F_i$ is 0 the numerator is 0 and the denominator $\lambda$: $H^* = 0$. Without
+$\lambda$ it would be $0/0$, undefined: $\lambda$ keeps the filter defined where the
+training patches have no energy, and damps it where they have little, where dividing by a
+tiny $\sum_i F_i F_i^*$ would amplify noise.
+
+=== 10.5 ★★ pen and paper | Correlation as a product of spectra
+In the one-dimensional setting of this chapter, row $t$ of the circulant matrix $X$ is the
+signal $x$ shifted by $t$, so the filter $w$ answers at shift $t$ with
+$(Xw)_t = \sum_m x_{(m+t) \bmod n}\, w_m$. The DFT is
+$\hat x_k = \sum_m x_m e^{-2\pi i k m / n}$.
+(a) Show that the DFT of $Xw$ is $\hat x \odot \hat w^*$ for a real $w$. (b) For $n = 4$,
+$x = (2, 1, 0, 1)$ and $w = (1, 0, 0, 1)$, compute $Xw$ directly, then $\hat x$, $\hat w$
+and $\hat x \odot \hat w^*$ (for $n = 4$, $e^{-2\pi i k m / 4} = (-i)^{km}$), and check
+that the last is the DFT of $Xw$. (c) The circular convolution
+$(x * w)_t = \sum_m x_{(t-m) \bmod n}\, w_m$ has the DFT $\hat x \odot \hat w$. Compute it
+for the same $x$ and $w$: how does it differ from $Xw$? (d) With $\lambda = 0$, at which
+frequency $k$ is the filter $\hat w^* = \hat y \odot \hat x^* / (\hat x \odot \hat x^* +
+\lambda)$ undefined for this $x$, and which part of a label $y$ can no filter reproduce?
+--- solution
+(a) $\widehat{Xw}_k = \sum_t \sum_m x_{m+t}\, w_m\, e^{-2\pi i k t/n}$. Put $s = m + t$
+(mod $n$, which the exponential does not see, being $n$-periodic), so $t = s - m$ and
+$e^{-2\pi i k t/n} = e^{-2\pi i k s/n} e^{+2\pi i k m/n}$:
+$\widehat{Xw}_k = \big(\sum_s x_s e^{-2\pi i k s/n}\big)\big(\sum_m w_m e^{+2\pi i k m/n}\big)
+= \hat x_k \, \hat w_k^*$, the second factor being the conjugate of $\hat w_k$ because $w$
+is real.
+
+(b) $(Xw)_t = x_t + x_{(t+3) \bmod 4}$: $Xw = (2 + 1, 1 + 2, 0 + 1, 1 + 0) = (3, 3, 1, 1)$.
+$\hat x_k = 2 + (-i)^k + (-i)^{3k}$: $\hat x = (4, 2, 0, 2)$.
+$\hat w_k = 1 + (-i)^{3k}$: $\hat w = (2, 1 + i, 0, 1 - i)$, so
+$\hat w^* = (2, 1 - i, 0, 1 + i)$ and $\hat x \odot \hat w^* = (8, 2 - 2i, 0, 2 + 2i)$.
+The DFT of $(3, 3, 1, 1)$: $k = 0$: 8; $k = 1$: $3 - 3i - 1 + i = 2 - 2i$; $k = 2$:
+$3 - 3 + 1 - 1 = 0$; $k = 3$: $3 + 3i - 1 - i = 2 + 2i$. The same.
+
+(c) $(x * w)_t = x_t + x_{(t-3) \bmod 4} = x_t + x_{(t+1) \bmod 4}$: $x * w = (3, 1, 1, 3)$,
+with DFT $\hat x \odot \hat w = (8, 2 + 2i, 0, 2 - 2i)$. It differs from $Xw = (3, 3, 1, 1)$:
+the convolution flips the filter. Correlating with $w$ is convolving with
+$w_{(-m) \bmod 4} = (1, 1, 0, 0)$, whose DFT is $\hat w^*$.
+
+(d) At $k = 2$: $\hat x_2 = 0$, so numerator and denominator are both 0. There
+$\widehat{Xw}_2 = \hat x_2 \hat w_2^* = 0$ whatever the filter: the part of a label at
+frequency 2, $\hat y_2$, is out of reach. With $\lambda > 0$ the filter is 0 there and
+fits the rest.
+
+=== 10.6 ★★ pen and paper | KCF's solution on a circulant kernel matrix
+KCF's kernel ridge regression over all shifts $x_j$ (the training patch $x$ shifted by $j$,
+$(x_j)_m = x_{(m+j) \bmod n}$, as the rows of $X$) solves $(K + \lambda I)\alpha = y$ with
+$K_{ij} = \kappa(x_i, x_j)$. The kernel treats every shift alike: $\kappa$ of two signals
+does not change when both are shifted by the same amount, and $\kappa(a, b) =
+\kappa(b, a)$. Let $k^{xx}_t = \kappa(x, x \text{ shifted by }
+t)$. A fact you may use: for sequences $u$ and $v$ with $v$ real, the sequence
+$\sum_m v_m u_{(m+t) \bmod n}$ has the DFT $\hat u \odot \hat v^*$.
+(a) Show that $K_{ij} = k^{xx}_{(j-i) \bmod n}$, that $k^{xx}_{-t} = k^{xx}_t$ (so
+$\hat k^{xx}$ is real), and that $\hat\alpha = \hat y / (\hat k^{xx} + \lambda)$.
+(b) By hand, for $n = 4$, the linear kernel $\kappa(a, b) = a^T b$, the patch
+$x = (1, 1, 0, 0)/\sqrt 2$, labels $y = (1, 0, 0, 0)$ and $\lambda = 1$: compute
+$k^{xx}$, $\hat k^{xx}$, $\hat\alpha$ and $\alpha$, and check $(K + \lambda I)\alpha = y$
+with $K$ written out. (c) What goes wrong with $\lambda = 0$ here?
+--- solution
+(a) $x_j$ is $x_i$ shifted by $j - i$; shifting both back by $i$ does not change $\kappa$,
+so $K_{ij} = \kappa(x, x \text{ shifted by } j - i) = k^{xx}_{(j-i) \bmod n}$:
+$K$ is circulant, its first row $k^{xx}$. By the same invariance and the symmetry,
+$k^{xx}_{-t} = \kappa(x, x \text{ shifted by } -t) = \kappa(x \text{ shifted by } t, x) =
+k^{xx}_t$; an even real sequence has a real DFT ($\hat k^{*}_k = \sum_t k_t e^{2\pi i k t/n}
+= \sum_t k_{-t} e^{-2\pi i k t/n} = \hat k_k$). Then $(K\alpha)_i = \sum_j k^{xx}_{j-i}
+\alpha_j = \sum_m k^{xx}_m \alpha_{m+i}$, which by the fact has the DFT
+$\hat\alpha \odot \hat k^{xx*} = \hat\alpha \odot \hat k^{xx}$. The system becomes
+$(\hat k^{xx} + \lambda) \odot \hat\alpha = \hat y$, one division per frequency:
+$\hat\alpha = \hat y / (\hat k^{xx} + \lambda)$, $n$ divisions in place of an $n \times n$
+solve.
+
+(b) $x$ shifted by $t = 0, 1, 2, 3$ is $(1,1,0,0)$, $(1,0,0,1)$, $(0,0,1,1)$, $(0,1,1,0)$, each
+over $\sqrt 2$, so $k^{xx} = (1, 1/2, 0, 1/2)$. $\hat k^{xx}_k = 1 + \tfrac12 (-i)^k +
+\tfrac12 i^k$: $\hat k^{xx} = (2, 1, 0, 1)$. $\hat y = (1, 1, 1, 1)$, so
+$\hat\alpha = (1/3, 1/2, 1, 1/2)$, and
+$\alpha_t = \tfrac14 \sum_k \hat\alpha_k\, i^{kt}$:
+$\alpha = (7/12, -1/6, 1/12, -1/6)$. With $K + I$ the circulant of rows
+$(2, \tfrac12, 0, \tfrac12)$, $(\tfrac12, 2, \tfrac12, 0)$, $(0, \tfrac12, 2, \tfrac12)$,
+$(\tfrac12, 0, \tfrac12, 2)$: row 1 gives $\tfrac{14}{12} - \tfrac1{12} - \tfrac1{12} = 1$,
+row 2 $\tfrac7{24} - \tfrac8{24} + \tfrac1{24} = 0$, row 3
+$-\tfrac1{12} + \tfrac2{12} - \tfrac1{12} = 0$, row 4 $\tfrac7{24} + \tfrac1{24} -
+\tfrac8{24} = 0$: $y$.
+
+(c) $\hat k^{xx}_2 = 0$: $K$ is singular ($K (1, -1, 1, -1)^T = 0$), and $\hat\alpha_2 =
+\hat y_2 / 0$ with $\hat y_2 = 1$: $K\alpha = y$ has no solution. $\lambda > 0$ makes every
+$\hat k^{xx} + \lambda$ positive ($\hat k^{xx}$ holds the eigenvalues of $K$, never negative
+for a positive semi-definite kernel such as the linear or the Gaussian one), so the system
+always has exactly one solution.
 """
