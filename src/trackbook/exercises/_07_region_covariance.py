@@ -130,4 +130,84 @@ generalised eigenvalues, hence the same $d_F$. The invariance needs the same $A$
 sides; $d_F(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
 $ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_F = \sqrt{0 + \ln^2 4} = \ln 4 \approx
 1.39$.
+
+=== 7.9 ★★ pen and paper | A window's covariance from four look-ups
+A 3 × 3 grey image has rows $y = 0, 1, 2$ from the top and columns $x = 0, 1, 2$:
+
+$$I = \begin{bmatrix} 1 & 2 & 0\\ 3 & 5 & 1\\ 2 & 4 & 6 \end{bmatrix}.$$
+
+Each pixel has the $d = 2$ features $f = (x, I)$. The zero-padded summed-area table of a
+channel $g$ is the 4 × 4 array $S_g[r, c] = \sum_{y < r,\, x < c} g(x, y)$ (row 0 and
+column 0 are zeros), and the sum of $g$ over the rectangle `box = (x, y, w, h)` is
+$S_g[y+h, x+w] - S_g[y, x+w] - S_g[y+h, x] + S_g[y, x]$. (a) Write out $S_I$ and say why
+the four look-ups give the rectangle's sum. (b) For the window $(1, 1, 2, 2)$, the
+bottom-right 2 × 2 pixels, read $u_I = \sum I$ from $S_I$. (c) Read $u_x$, $V_{xx}$,
+$V_{xI}$ and $V_{II}$ the same way from the tables of $x$, $x^2$, $xI$ and $I^2$ (only
+their entries $[3, 3]$, $[1, 3]$, $[3, 1]$ and $[1, 1]$ are needed) and compute
+$C_R = \frac{1}{MN}\big(V - \frac{1}{MN}uu^T\big)$. (d) Check $C_R$ against eq. 4 on the
+four pixels directly. How many tables do the five features $x, y, I, |I_x|, |I_y|$ need,
+and how many look-ups does one window cost?
+--- solution
+(a) Cumulative sums down the columns and along the rows, with a zero row and column in
+front:
+
+$$S_I = \begin{bmatrix} 0 & 0 & 0 & 0\\ 0 & 1 & 3 & 3\\ 0 & 4 & 11 & 12\\
+0 & 6 & 17 & 24 \end{bmatrix}.$$
+
+$S[y+h, x+w]$ sums everything above and to the left of the rectangle's far corner.
+Subtracting $S[y, x+w]$ (the strip above the rectangle) and $S[y+h, x]$ (the strip to its
+left) removes the block above and to the left twice, and $+S[y, x]$ adds it back once
+(inclusion–exclusion): what is left is the rectangle.
+
+(b) $u_I = S_I[3, 3] - S_I[1, 3] - S_I[3, 1] + S_I[1, 1] = 24 - 3 - 6 + 1 = 16$, and indeed
+$5 + 1 + 4 + 6 = 16$.
+
+(c) The four entries $[3, 3], [1, 3], [3, 1], [1, 1]$ of each table: $x$: 9, 3, 0, 0, so
+$u_x = 6$; $x^2$: 15, 5, 0, 0, so $V_{xx} = 10$; $xI$: 25, 2, 0, 0, so $V_{xI} = 23$;
+$I^2$: 96, 5, 14, 1, so $V_{II} = 78$. With $MN = 4$ and $u = (6, 16)$,
+
+$$V - \tfrac14 uu^T = \begin{bmatrix} 10 - 9 & 23 - 24\\ 23 - 24 & 78 - 64 \end{bmatrix}
+= \begin{bmatrix} 1 & -1\\ -1 & 14 \end{bmatrix}, \qquad
+C_R = \begin{bmatrix} 0.25 & -0.25\\ -0.25 & 3.5 \end{bmatrix}.$$
+
+(d) The four pixels are $(x, I) = (1, 5), (2, 1), (1, 4), (2, 6)$ with mean $(1.5, 4)$; the
+deviations are $x$: $-0.5, 0.5, -0.5, 0.5$ and $I$: $1, -3, 0, 2$. Eq. 4 gives the
+$x$-variance $4 \cdot 0.25/4 = 0.25$, the $I$-variance $(1 + 9 + 0 + 4)/4 = 3.5$ and the
+covariance $(-0.5 - 1.5 + 0 + 1)/4 = -0.25$: the same matrix. The negative entry says
+"darker to the right" (the left column averages 4.5, the right one 3.5). Five features need
+5 tables of the features and $5 \cdot 6/2 = 15$ of their products, 20 in all, and a window
+costs $4 \cdot 20 = 80$ look-ups, whatever its size.
+
+=== 7.10 ★★ pen and paper | Symmetric, and zero only for equal matrices
+Let $C_i$ and $C_j$ be symmetric positive definite $d \times d$ matrices and $\lambda_k$ the
+generalised eigenvalues of eq. 6, $\lambda_k C_i x_k = C_j x_k$; eq. 5 is
+$d_F(C_i, C_j) = \sqrt{\sum_k \ln^2 \lambda_k}$. (a) Show that the $\lambda_k$ are the
+eigenvalues of $M = C_i^{-1/2} C_j C_i^{-1/2}$, and hence real and positive, so that the
+logarithms exist. (b) Show that $d_F(C_j, C_i) = d_F(C_i, C_j)$. (c) Show that
+$d_F(C_i, C_j) = 0$ only when $C_i = C_j$. (d) By hand: $d_F(I_2, C)$ for
+$C = \begin{bmatrix} 2 & 1\\ 1 & 2 \end{bmatrix}$, and $d_F(C, sC)$ for any symmetric
+positive definite $C$ of size $d$ and any $s > 0$; give the number for $d = 5$, $s = 2$.
+--- solution
+(a) Write $x_k = C_i^{-1/2} z_k$ and multiply eq. 6 on the left by $C_i^{-1/2}$:
+$\lambda_k z_k = C_i^{-1/2} C_j C_i^{-1/2} z_k = M z_k$. $M$ is symmetric, so its
+eigenvalues are real, and $z^T M z = (C_i^{-1/2} z)^T C_j (C_i^{-1/2} z) > 0$ for every
+$z \ne 0$, so they are positive. (This whitening is how `forstner_distance` computes them.)
+
+(b) $\lambda C_i x = C_j x$ is the same equation as $\frac1\lambda C_j x = C_i x$:
+swapping the two matrices turns every $\lambda_k$ into $1/\lambda_k$, and
+$\ln^2(1/\lambda_k) = (-\ln \lambda_k)^2 = \ln^2 \lambda_k$. The sum of eq. 5 does not
+change.
+
+(c) $d_F = 0$ forces every $\ln \lambda_k = 0$, that is every $\lambda_k = 1$. The symmetric
+$M$ is $Q \Lambda Q^T$ with $Q$ orthogonal and $\Lambda$ the diagonal of its eigenvalues;
+$\Lambda = I$ gives $M = QQ^T = I$, and then $C_j = C_i^{1/2} M C_i^{1/2} = C_i$.
+Conversely $C_i = C_j$ gives $M = I$, all $\lambda_k = 1$ and $d_F = 0$.
+
+(d) With $C_i = I_2$, $M = C$: $\det(\lambda I - C) = (\lambda - 2)^2 - 1 = 0$ gives
+$\lambda = 1$ and $\lambda = 3$, so $d_F = \sqrt{0 + \ln^2 3} = \ln 3 \approx 1.10$. For
+$sC$: $\lambda C x = s C x$ gives $\lambda = s$, $d$ times, so
+$d_F(C, sC) = \sqrt{d}\,|\ln s|$ whatever $C$ is; for $d = 5$, $s = 2$ that is
+$\sqrt 5 \ln 2 \approx 1.55$, and $d_F(C, C/2)$ is the same. The Frobenius distance
+$\lVert C - sC \rVert_F = |1 - s|\,\lVert C \rVert_F$ instead grows with the size of $C$'s
+entries.
 """

@@ -76,6 +76,31 @@ For one face, `seq[t]` is the track matched to it in frame `t` (−1: none). Wri
 than the last one it was matched to; frames without a match neither count nor reset that
 memory. By hand: `[0, 0, -1, 1, 1, -1, 1, 0]` goes 0 → 1 (one switch), stays with 1 across the
 gap (none), then 1 → 0 (one): 2. The check uses that case and five more worked by hand.
+--- solution
+Keep `last`, the track the face was last matched to (none before its first match), and walk
+through the frames: a frame without a match ($-1$) is skipped, so it neither counts nor
+forgets `last`; a match to a track other than `last` counts one switch; every match then
+becomes the new `last`.
+
+```python
+def my_switches(seq):
+    last, n = None, 0
+    for i in seq:
+        if i < 0:               # no match: no switch, and last is kept
+            continue
+        if last is not None and i != last:
+            n += 1
+        last = i
+    return n
+```
+
+The same count without a loop: drop the $-1$ entries and count the neighbours that differ,
+`m = np.asarray(seq); m = m[m >= 0]; int(np.count_nonzero(m[1:] != m[:-1]))`. The check's
+other cases, by hand: `[-1, -1]` is never matched, 0; `[2, 2, 2]` keeps its track, 0;
+`[0, 1, 0, 1]` changes three times, 3 (going back to an earlier track is a switch too);
+`[-1, 3, -1, 3]` finds the same track after each gap, 0; `[]` has nothing to count, 0.
+`identity_switches` does this for every face, after matching the tracks to the faces by IoU,
+and adds up the faces' counts.
 
 === 8.8 ★★ pen and paper | The mean-shift step from the density gradient
 The weighted kernel density at $y$ is $\hat f(y) = C \sum_i w_i\, k(\lVert (y - x_i)/h\rVert^2)$
@@ -96,4 +121,92 @@ vector $\hat y_1 - y$: it points along the gradient, and it is zero exactly wher
 is. For the Epanechnikov profile $g = 1$ inside the kernel and 0 outside, so the step is the
 weighted mean of the pixels inside. From $\hat y_0 = 1.5$ the distances over $h$ are 0.75,
 0.25 and 0.25, so $s < 1$ for all three pixels: $\hat y_1 = (0 \cdot 1 + 1 \cdot 2 + 2 \cdot 1)/4 = 1$.
+
+=== 8.9 ★★ pen and paper | Where the weights of step ② come from
+A candidate at $\hat y_0$ has the colour histogram $p(\hat y_0)$, with $p_u(\hat y_0) > 0$
+in every bin, the model is $q$, and $\rho(y) = \sum_u \sqrt{p_u(y)\, q_u}$. (a) Expand each
+term $\sqrt{p_u(y)\, q_u}$ to first order in $p_u(y)$ around $p_u(\hat y_0)$ and show that
+$\rho(y) \approx \frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u}
++ \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$. (b) Insert the candidate's
+kernel-weighted histogram $p_u(y) = f \sum_i k(r_i)\, \delta[h(x_i) - u]$ ($h(x_i)$ the bin
+of pixel $x_i$, $r_i$ its normalised distance from $y$) and show that the second term is
+$\frac f2 \sum_i w_i\, k(r_i)$ with $w_i = \sum_u \sqrt{q_u / p_u(\hat y_0)}\,
+\delta[h(x_i) - u]$, the weights of step ②. What does it mean for the climb that the first
+term does not depend on $y$? (c) Two bins, $q = (0.36, 0.64)$ and
+$p(\hat y_0) = (0.64, 0.36)$. Compute $\rho_0 = \rho(\hat y_0)$ and the weight of a pixel of
+each bin: which pixels pull the window? For a candidate $y$ with $p(y) = (0.5, 0.5)$,
+compute the linearised $\rho$ of (a) and the true $\rho$. Why can the linearised value never
+be below the true one?
+--- solution
+(a) $\frac{d}{dp}\sqrt{p\, q_u} = \frac12 \sqrt{q_u / p}$, so
+$\sqrt{p_u(y)\, q_u} \approx \sqrt{p_u(\hat y_0)\, q_u}
++ \frac12 \big(p_u(y) - p_u(\hat y_0)\big) \sqrt{q_u / p_u(\hat y_0)}$. Summed over $u$, the
+part with $-p_u(\hat y_0)$ is $-\frac12 \sum_u p_u(\hat y_0) \sqrt{q_u / p_u(\hat y_0)}
+= -\frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u} = -\frac12 \rho_0$, which leaves
+$\rho(y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$.
+
+(b) $\frac12 \sum_u \sqrt{q_u / p_u(\hat y_0)}\; f \sum_i k(r_i)\, \delta[h(x_i) - u]
+= \frac f2 \sum_i k(r_i) \sum_u \sqrt{q_u / p_u(\hat y_0)}\, \delta[h(x_i) - u]
+= \frac f2 \sum_i w_i\, k(r_i)$: each pixel lies in exactly one bin, so the inner sum picks
+that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant:
+raising the linearised $\rho$ means raising the weighted kernel density
+$\sum_i w_i\, k(r_i)$ of the pixel positions (the chapter's
+$\text{const} + \frac C2 \sum_i w_i\, k(\cdot)$ with $C = f$), and that density is what the
+mean-shift step climbs (exercise 8.8). Only $k(r_i)$ moves with $y$; the weights are frozen
+at $\hat y_0$, which is why step ② computes them again at every iteration.
+
+(c) $\rho_0 = \sqrt{0.64 \cdot 0.36} + \sqrt{0.36 \cdot 0.64} = 0.48 + 0.48 = 0.96$. A pixel
+of bin 1 weighs $\sqrt{0.36 / 0.64} = 0.75$, a pixel of bin 2 weighs
+$\sqrt{0.64 / 0.36} = 4/3 \approx 1.33$: the bin the candidate has too little of counts
+more, and its pixels pull the window towards them. At $p(y) = (0.5, 0.5)$ the linearised
+$\rho$ is $0.48 + \frac12 (0.5 \cdot 0.75 + 0.5 \cdot \frac43) = 0.48 + \frac{25}{48}
+\approx 1.001$ and the true one $\sqrt{0.18} + \sqrt{0.32} = 0.7 \sqrt 2 \approx 0.990$.
+Both are above $\rho_0$ (the move is uphill), but the linearised value even exceeds 1,
+which no Bhattacharyya coefficient can. $\rho$ is a sum of $\sqrt{q_u}\sqrt{p_u}$, a concave
+function of $p$, and a concave function lies below each of its tangent planes: the
+linearisation can only promise too much. That is why step ④ computes the true $\rho_1$ and
+step ⑤ halves the step when $\rho$ fell.
+
+=== 8.10 ★★ pen and paper | A climb by hand, and why it never goes down
+As in exercise 8.8, $\hat f(y) = C \sum_i w_i\, k(s_i)$ with
+$s_i = ((y - x_i)/h)^2$ and the Epanechnikov profile $k(s) = 1 - s$ for $s \le 1$ and 0
+beyond, so $g = -k'$ is 1 for $s_i < 1$ and 0 for $s_i > 1$, and the mean-shift step
+$y \mapsto \sum_i x_i w_i g_i / \sum_i w_i g_i$ is the weighted mean of the pixels closer
+than $h$ to $y$ (no pixel falls exactly on the border in this exercise). Four pixels lie
+at $x = 0, 2, 4, 7$ with weights $w = 3, 1, 1, 1$, and $h = 4$. (a) Start at
+$\hat y_0 = 9$ and iterate until the step is zero; list the iterates. (b) Compute
+$\hat f / C$ at each iterate. (c) Show that a step from $y$ to the weighted mean $y'$ raises
+the density by at least $\frac{C}{h^2} \big(\sum_i w_i g_i\big) (y' - y)^2$, using that $k$
+is convex: $k(s') \ge k(s) - g(s)(s' - s)$. Check the bound on your steps. (d) Start again
+at $\hat y_0 = 1$. Where does the climb stop, and which of the two end points has the
+higher density? What does this say about a tracker whose climb starts where the target was?
+--- solution
+(a) From 9 only the pixel at 7 is closer than 4: $\hat y_1 = 7$. From 7 the pixels at 4
+and 7 are inside (2 is 5 away): $\hat y_2 = (4 + 7)/2 = 5.5$. From 5.5 the pixels at 2, 4
+and 7 are inside (0 is 5.5 away): $\hat y_3 = 13/3 \approx 4.33$. From $13/3$ the same three
+pixels are inside (0 is 4.33 away), their mean is $13/3$ again, and the step is zero: the
+climb stops at $13/3$.
+
+(b) At 9: $1 - (2/4)^2 = 3/4$. At 7: $(1 - 9/16) + 1 = 23/16 \approx 1.44$. At 5.5:
+$(1 - 12.25/16) + 2\,(1 - 2.25/16) = 125/64 \approx 1.95$. At $13/3$:
+$(1 - 49/144) + (1 - 1/144) + (1 - 64/144) = 53/24 \approx 2.21$. It rises at every step.
+
+(c) Convexity gives $k(s_i') \ge k(s_i) - g_i (s_i' - s_i)$ for every pixel ($k$ is the
+larger of the two straight lines $1 - s$ and 0), so
+$\hat f(y') - \hat f(y) \ge \frac{C}{h^2} \sum_i w_i g_i \big[(y - x_i)^2 - (y' - x_i)^2\big]
+= \frac{C}{h^2} \sum_i w_i g_i\, (y - y')(y + y' - 2 x_i)$. With $G = \sum_i w_i g_i$ and
+$\sum_i w_i g_i x_i = G y'$ (the definition of $y'$) the sum is
+$(y - y')(G y + G y' - 2 G y') = G (y' - y)^2 \ge 0$: every step that moves raises
+$\hat f$. On the climb of (a), divided by $C$: $9 \to 7$, bound $1 \cdot 4/16 = 0.25$,
+rise $11/16 \approx 0.69$; $7 \to 5.5$, bound $2 \cdot 2.25/16 \approx 0.28$, rise
+$33/64 \approx 0.52$; $5.5 \to 13/3$, bound $3 \cdot (7/6)^2/16 \approx 0.255$ and the rise
+is exactly that, because the same three pixels stay inside, so $\hat f$ is one parabola over
+the step and the inequality holds with equality.
+
+(d) From 1 the pixels at 0, 2 and 4 are inside (7 is 6 away):
+$\hat y_1 = (0 \cdot 3 + 2 + 4)/5 = 1.2$, and from 1.2 the same pixels give 1.2 again: the
+climb stops there. $\hat f(1.2)/C = 3\,(1 - 1.44/16) + (1 - 0.64/16) + (1 - 7.84/16) = 4.2$,
+nearly twice the $53/24 \approx 2.21$ at $13/3$. Each climb ends on top of the hill it
+starts on; the one from 9 never sees the higher hill at 1.2. A mean-shift tracker whose
+climb starts beside a distractor ends on the distractor: the nearest peak, not the best.
 """
