@@ -35,8 +35,8 @@ two apart (ρ = 1), the signed one can.
 
 === 3.4 ★★ modify | How much colour?
 Run `color-hog-pf` on the night clip with $\alpha$ = 0, 0.02, 0.1 and 0.5
-(seeds 0–2). How does the mean AUC move, and how does that fit the chapter's measurement of
-the two features at night?
+(seeds 0–2). How does the mean AUC move, and how does that fit the measurement of the two
+features at night in the {doc}`case study <case_study_lee2012>`?
 --- solution
 The mean AUC falls as $\alpha$ grows, and most of the fall comes with the first, small weights
 on colour, below $\alpha = 0.1$; beyond it little more is lost. That fits the measurement: at night
