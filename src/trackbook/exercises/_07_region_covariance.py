@@ -182,28 +182,36 @@ costs $4 \cdot 20 = 80$ look-ups, whatever its size.
 Let $C_i$ and $C_j$ be symmetric positive definite $d \times d$ matrices and $\lambda_k$ the
 generalised eigenvalues of eq. 6, $\lambda_k C_i x_k = C_j x_k$; eq. 5 is
 $d_F(C_i, C_j) = \sqrt{\sum_k \ln^2 \lambda_k}$. (a) Show that the $\lambda_k$ are the
-eigenvalues of $M = C_i^{-1/2} C_j C_i^{-1/2}$, and hence real and positive, so that the
-logarithms exist. (b) Show that $d_F(C_j, C_i) = d_F(C_i, C_j)$. (c) Show that
-$d_F(C_i, C_j) = 0$ only when $C_i = C_j$. (d) By hand: $d_F(I_2, C)$ for
+eigenvalues of the whitened matrix $\tilde C = C_i^{-1/2} C_j C_i^{-1/2}$, and hence real
+and positive, so that the logarithms exist. (b) Show that $d_F(C_j, C_i) = d_F(C_i, C_j)$.
+(c) Show that $d_F(C_i, C_j) = 0$ only when $C_i = C_j$. (d) By hand: $d_F(I_2, C)$ for
 $C = \begin{bmatrix} 2 & 1\\ 1 & 2 \end{bmatrix}$, and $d_F(C, sC)$ for any symmetric
 positive definite $C$ of size $d$ and any $s > 0$; give the number for $d = 5$, $s = 2$.
 --- solution
-(a) Write $x_k = C_i^{-1/2} z_k$ and multiply eq. 6 on the left by $C_i^{-1/2}$:
-$\lambda_k z_k = C_i^{-1/2} C_j C_i^{-1/2} z_k = M z_k$. $M$ is symmetric, so its
-eigenvalues are real, and $z^T M z = (C_i^{-1/2} z)^T C_j (C_i^{-1/2} z) > 0$ for every
-$z \ne 0$, so they are positive. (This whitening is how `forstner_distance` computes them.)
+(a) $C_i = Q_i \Lambda_i Q_i^T$ with $Q_i$ orthogonal and the eigenvalues in $\Lambda_i$
+positive, so $C_i^{-1/2} = Q_i \Lambda_i^{-1/2} Q_i^T$ exists, is symmetric and invertible.
+Write $x_k = C_i^{-1/2} z_k$ ($z_k \ne 0$ exactly when $x_k \ne 0$) and multiply eq. 6 on the
+left by $C_i^{-1/2}$: $\lambda_k z_k = C_i^{-1/2} C_j C_i^{-1/2} z_k = \tilde C z_k$. The steps
+run backwards too, so the generalised eigenvalues are exactly the eigenvalues of
+$\tilde C$. $\tilde C$ is symmetric, so its eigenvalues are real, and
+$z^T \tilde C z = (C_i^{-1/2} z)^T C_j (C_i^{-1/2} z) > 0$ for every $z \ne 0$; for an
+eigenvector this reads $\lambda_k \lVert z_k \rVert^2 > 0$, so they are positive. (This
+whitening is how `forstner_distance` computes them.)
 
 (b) $\lambda C_i x = C_j x$ is the same equation as $\frac1\lambda C_j x = C_i x$:
-swapping the two matrices turns every $\lambda_k$ into $1/\lambda_k$, and
-$\ln^2(1/\lambda_k) = (-\ln \lambda_k)^2 = \ln^2 \lambda_k$. The sum of eq. 5 does not
-change.
+swapping the two matrices turns every $\lambda_k$ into $1/\lambda_k$, with the same
+eigenvector $x_k$. The $d$ vectors $x_k = C_i^{-1/2} z_k$, with $z_k$ the orthonormal
+eigenvectors of $\tilde C$, are linearly independent, so the $1/\lambda_k$ are all $d$
+eigenvalues of the swapped pair. $\ln^2(1/\lambda_k) = (-\ln \lambda_k)^2 = \ln^2 \lambda_k$:
+the sum of eq. 5 does not change.
 
 (c) $d_F = 0$ forces every $\ln \lambda_k = 0$, that is every $\lambda_k = 1$. The symmetric
-$M$ is $Q \Lambda Q^T$ with $Q$ orthogonal and $\Lambda$ the diagonal of its eigenvalues;
-$\Lambda = I$ gives $M = QQ^T = I$, and then $C_j = C_i^{1/2} M C_i^{1/2} = C_i$.
-Conversely $C_i = C_j$ gives $M = I$, all $\lambda_k = 1$ and $d_F = 0$.
+$\tilde C$ is $Q \Lambda Q^T$ with $Q$ orthogonal and $\Lambda$ the diagonal of its
+eigenvalues; $\Lambda = I$ gives $\tilde C = QQ^T = I$, and then
+$C_j = C_i^{1/2} \tilde C C_i^{1/2} = C_i$. Conversely $C_i = C_j$ gives $\tilde C = I$, all
+$\lambda_k = 1$ and $d_F = 0$.
 
-(d) With $C_i = I_2$, $M = C$: $\det(\lambda I - C) = (\lambda - 2)^2 - 1 = 0$ gives
+(d) With $C_i = I_2$, $\tilde C = C$: $\det(\lambda I - C) = (\lambda - 2)^2 - 1 = 0$ gives
 $\lambda = 1$ and $\lambda = 3$, so $d_F = \sqrt{0 + \ln^2 3} = \ln 3 \approx 1.10$. For
 $sC$: $\lambda C x = s C x$ gives $\lambda = s$, $d$ times, so
 $d_F(C, sC) = \sqrt{d}\,|\ln s|$ whatever $C$ is; for $d = 5$, $s = 2$ that is

@@ -148,9 +148,10 @@ $\rho(y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0
 (b) $\frac12 \sum_u \sqrt{q_u / p_u(\hat y_0)}\; f \sum_i k(r_i)\, \delta[h(x_i) - u]
 = \frac f2 \sum_i k(r_i) \sum_u \sqrt{q_u / p_u(\hat y_0)}\, \delta[h(x_i) - u]
 = \frac f2 \sum_i w_i\, k(r_i)$: each pixel lies in exactly one bin, so the inner sum picks
-that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant:
-raising the linearised $\rho$ means raising the weighted kernel density
-$\sum_i w_i\, k(r_i)$ of the pixel positions (the chapter's
+that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant, and so
+is $f$ (the chapter's normalising constant: on the pixel lattice the sum of the kernel's
+values hardly changes as the ellipse moves). Raising the linearised $\rho$ therefore means
+raising the weighted kernel density $\sum_i w_i\, k(r_i)$ of the pixel positions (the chapter's
 $\text{const} + \frac C2 \sum_i w_i\, k(\cdot)$ with $C = f$), and that density is what the
 mean-shift step climbs (exercise 8.8). Only $k(r_i)$ moves with $y$; the weights are frozen
 at $\hat y_0$, which is why step ② computes them again at every iteration.
@@ -191,22 +192,27 @@ climb stops at $13/3$.
 $(1 - 12.25/16) + 2\,(1 - 2.25/16) = 125/64 \approx 1.95$. At $13/3$:
 $(1 - 49/144) + (1 - 1/144) + (1 - 64/144) = 53/24 \approx 2.21$. It rises at every step.
 
-(c) Convexity gives $k(s_i') \ge k(s_i) - g_i (s_i' - s_i)$ for every pixel ($k$ is the
-larger of the two straight lines $1 - s$ and 0), so
+(c) Convexity gives $k(s_i') - k(s_i) \ge g_i (s_i - s_i')$ for every pixel ($k$ is the
+larger of the two straight lines $1 - s$ and 0). Multiply by $C w_i \ge 0$ (the weights here
+are positive, and those of step ② are never negative), insert
+$s_i - s_i' = [(y - x_i)^2 - (y' - x_i)^2]/h^2$ and sum over the pixels:
 $\hat f(y') - \hat f(y) \ge \frac{C}{h^2} \sum_i w_i g_i \big[(y - x_i)^2 - (y' - x_i)^2\big]
 = \frac{C}{h^2} \sum_i w_i g_i\, (y - y')(y + y' - 2 x_i)$. With $G = \sum_i w_i g_i$ and
 $\sum_i w_i g_i x_i = G y'$ (the definition of $y'$) the sum is
-$(y - y')(G y + G y' - 2 G y') = G (y' - y)^2 \ge 0$: every step that moves raises
-$\hat f$. On the climb of (a), divided by $C$: $9 \to 7$, bound $1 \cdot 4/16 = 0.25$,
-rise $11/16 \approx 0.69$; $7 \to 5.5$, bound $2 \cdot 2.25/16 \approx 0.28$, rise
-$33/64 \approx 0.52$; $5.5 \to 13/3$, bound $3 \cdot (7/6)^2/16 \approx 0.255$ and the rise
-is exactly that, because the same three pixels stay inside, so $\hat f$ is one parabola over
-the step and the inequality holds with equality.
+$(y - y')(G y + G y' - 2 G y') = G (y' - y)^2$. $G > 0$ whenever the step is defined (its
+denominator is $G$), so every step that moves raises $\hat f$. On the climb of (a), divided by
+$C$: $9 \to 7$, bound $1 \cdot 4/16 = 0.25$, rise $11/16 \approx 0.69$; $7 \to 5.5$, bound
+$2 \cdot 2.25/16 \approx 0.28$, rise $33/64 \approx 0.52$; $5.5 \to 13/3$, bound
+$3 \cdot (7/6)^2/16 \approx 0.255$ and the rise is exactly that: no pixel enters or leaves
+the kernel over this step (2, 4 and 7 stay inside, 0 outside), so $\hat f$ is one parabola
+there and the inequality holds with equality for every pixel.
 
 (d) From 1 the pixels at 0, 2 and 4 are inside (7 is 6 away):
 $\hat y_1 = (0 \cdot 3 + 2 + 4)/5 = 1.2$, and from 1.2 the same pixels give 1.2 again: the
 climb stops there. $\hat f(1.2)/C = 3\,(1 - 1.44/16) + (1 - 0.64/16) + (1 - 7.84/16) = 4.2$,
 nearly twice the $53/24 \approx 2.21$ at $13/3$. Each climb ends on top of the hill it
-starts on; the one from 9 never sees the higher hill at 1.2. A mean-shift tracker whose
-climb starts beside a distractor ends on the distractor: the nearest peak, not the best.
+starts on; the one from 9 never sees the higher hill at 1.2. A mean-shift tracker starts
+its climb where the target was in the last frame and ends on the peak of that basin: the
+target's if it is still the nearest peak, a distractor's if the target moved away or a
+distractor's hill is closer. The nearest peak, not the best.
 """
