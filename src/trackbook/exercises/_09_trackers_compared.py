@@ -206,8 +206,10 @@ draws each. Twice already gives $-0.04$ plus at least $0.06$, above 0. So $1 + 1
 draws, 5.1 %. Sorted, the 6th to 9th smallest means are $-0.005$: the lower end is
 $-0.005$. At the top, the largest is $0.05$ (sequence 2 four times, 1 draw), then $0.0475$
 (three 2s and a 1, 4 draws), then $0.045$ (three 2s and a 3, 4 draws, or two 2s and two
-1s, 6 draws): the 6th to 15th largest are $0.045$, the upper end. The interval
-$[-0.005, 0.045]$ contains 0: **inconclusive**.
+1s, 6 draws): the 6th to 15th largest are $0.045$, the upper end. (Every reading of
+"rank 6.4" lands in these runs of equal means: the library's `np.quantile` interpolates
+between the 7th and the 8th from each end.) The interval $[-0.005, 0.045]$ contains 0:
+**inconclusive**.
 
 (d) It says how far the mean difference would move if another four sequences like these
 were drawn: a range of plausible mean differences over sequences of this kind. It does not

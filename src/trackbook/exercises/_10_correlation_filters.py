@@ -47,26 +47,29 @@ point a minimum? (b) At one frequency, two training patches have $F_1 = 2$ and $
 (the imaginary unit), with $G_1 = G_2 = 1$ and $\lambda = 1$. Compute $H^*$ there. What is
 $H^*$ at a frequency where every $F_i$ is 0, and what would it be without $\lambda$?
 --- hint
-Perturb $h = H^*(\omega)$ to $h + \varepsilon$ and expand $\lvert a + b \rvert^2 =
-\lvert a \rvert^2 + 2\operatorname{Re}(a \bar b) + \lvert b \rvert^2$.
+Perturb $q = H^*(\omega)$ to $q + \varepsilon$ and expand $\lvert a + b \rvert^2 =
+\lvert a \rvert^2 + 2\operatorname{Re}(a b^*) + \lvert b \rvert^2$.
 --- solution
 (a) Each summand holds one frequency's $H(\omega)$ and no other, so $E$ is a sum of terms
-that can be minimised one at a time. At one frequency write $h = H^*(\omega)$ (then
-$\lvert H(\omega) \rvert^2 = \lvert h \rvert^2$) and
-$E_\omega(h) = \sum_i \lvert F_i h - G_i \rvert^2 + \lambda \lvert h \rvert^2$. Expanding
-with $a = F_i h - G_i$, $b = F_i \varepsilon$:
-$$E_\omega(h + \varepsilon) = E_\omega(h) + 2 \operatorname{Re}\Big[\bar\varepsilon
-\Big(\sum_i F_i^* (F_i h - G_i) + \lambda h\Big)\Big]
+that can be minimised one at a time. At one frequency write $q = H^*(\omega)$ (then
+$\lvert H(\omega) \rvert^2 = \lvert q \rvert^2$) and
+$E_\omega(q) = \sum_i \lvert F_i q - G_i \rvert^2 + \lambda \lvert q \rvert^2$. Expanding
+with $a = F_i q - G_i$, $b = F_i \varepsilon$:
+$$E_\omega(q + \varepsilon) = E_\omega(q) + 2 \operatorname{Re}\Big[\varepsilon^*
+\Big(\sum_i F_i^* (F_i q - G_i) + \lambda q\Big)\Big]
 + \Big(\sum_i F_i F_i^* + \lambda\Big) \lvert \varepsilon \rvert^2 .$$
 The linear term vanishes for every $\varepsilon$ (real and imaginary) only if
-$\sum_i F_i^* (F_i h - G_i) + \lambda h = 0$, that is
-$h \,(\sum_i F_i F_i^* + \lambda) = \sum_i G_i F_i^*$, so
+$\sum_i F_i^* (F_i q - G_i) + \lambda q = 0$, that is
+$q \,(\sum_i F_i F_i^* + \lambda) = \sum_i G_i F_i^*$, so
 $H^*(\omega) = \sum_i G_i F_i^* / (\sum_i F_i F_i^* + \lambda)$: at every frequency, the
-element-wise formula. At this $h$, $E_\omega(h + \varepsilon) - E_\omega(h) =
+element-wise formula. At this $q$, $E_\omega(q + \varepsilon) - E_\omega(q) =
 (\sum_i \lvert F_i \rvert^2 + \lambda) \lvert \varepsilon \rvert^2 > 0$ for every
-$\varepsilon \ne 0$, since $\lambda > 0$: the stationary point is the unique minimum. (By
-Parseval, with $n$ the number of pixels, $r_i$ the filter's response on $f_i$ and
-$h = \operatorname{DFT}^{-1}(H)$, $E = n\,(\sum_i \lVert r_i - g_i \rVert^2 + \lambda
+$\varepsilon \ne 0$, since $\lambda > 0$: the stationary point is the unique minimum. Each
+$H(\omega)$ was free here; for real patches and labels $F_i(-\omega) = F_i(\omega)^*$ and
+$G_i(-\omega) = G_i(\omega)^*$ give $H^*(-\omega) = H^*(\omega)^*$, so the filter
+$h = \operatorname{DFT}^{-1}(H)$ is real: the best of all filters is a real one. (By
+Parseval, with $n$ the number of pixels and $r_i$ the filter's response on $f_i$,
+$E = n\,(\sum_i \lVert r_i - g_i \rVert^2 + \lambda
 \lVert h \rVert^2)$: the same minimiser as the least squares on the patches themselves.)
 
 (b) $\sum_i G_i F_i^* = 1 \cdot 2 + 1 \cdot (-i) = 2 - i$ and
@@ -78,7 +81,8 @@ tiny $\sum_i F_i F_i^*$ would amplify noise.
 
 === 10.5 ★★ pen and paper | Correlation as a product of spectra
 In the one-dimensional setting of this chapter, row $t$ of the circulant matrix $X$ is the
-signal $x$ shifted by $t$, so the filter $w$ answers at shift $t$ with
+signal $x$ shifted by $-t$ (`np.roll(x, -t)` in the chapter's code), so the filter $w$
+answers at shift $t$ with
 $(Xw)_t = \sum_m x_{(m+t) \bmod n}\, w_m$. The DFT is
 $\hat x_k = \sum_m x_m e^{-2\pi i k m / n}$.
 (a) Show that the DFT of $Xw$ is $\hat x \odot \hat w^*$ for a real $w$. (b) For $n = 4$,
@@ -111,46 +115,53 @@ $w_{(-m) \bmod 4} = (1, 1, 0, 0)$, whose DFT is $\hat w^*$.
 
 (d) At $k = 2$: $\hat x_2 = 0$, so numerator and denominator are both 0. There
 $\widehat{Xw}_2 = \hat x_2 \hat w_2^* = 0$ whatever the filter: the part of a label at
-frequency 2, $\hat y_2$, is out of reach. With $\lambda > 0$ the filter is 0 there and
-fits the rest.
+frequency 2, the alternating part $\tfrac14 \hat y_2\,(1, -1, 1, -1)$ with
+$\hat y_2 = y_0 - y_1 + y_2 - y_3$, is out of reach. With $\lambda > 0$ the filter is 0
+there, and at every other frequency the response $\hat x_k \hat w_k^* = \hat y_k \lvert
+\hat x_k \rvert^2 / (\lvert \hat x_k \rvert^2 + \lambda)$ is the label's, shrunk a
+little.
 
 === 10.6 ★★ pen and paper | KCF's solution on a circulant kernel matrix
-KCF's kernel ridge regression over all shifts $x_j$ (the training patch $x$ shifted by $j$,
-$(x_j)_m = x_{(m+j) \bmod n}$, as the rows of $X$) solves $(K + \lambda I)\alpha = y$ with
-$K_{ij} = \kappa(x_i, x_j)$. The kernel treats every shift alike: $\kappa$ of two signals
-does not change when both are shifted by the same amount, and $\kappa(a, b) =
-\kappa(b, a)$. Let $k^{xx}_t = \kappa(x, x \text{ shifted by }
-t)$. A fact you may use: for sequences $u$ and $v$ with $v$ real, the sequence
+KCF's kernel ridge regression over all shifts $x_j$ of the training patch $x$ (the rows of
+$X$: $x_j$ is $x$ shifted by $-j$, $(x_j)_m = x_{(m+j) \bmod n}$) solves
+$(K + \lambda I)\alpha = y$ with $K_{ij} = \kappa(x_i, x_j)$. The kernel treats every shift
+alike: $\kappa$ of two signals does not change when both are shifted by the same amount,
+and $\kappa(a, b) = \kappa(b, a)$. As in the chapter, $k^{xx}_t = \kappa(x, x \text{ shifted
+by } t)$, where $x$ shifted by $t$ has the entries $x_{(m-t) \bmod n}$ (`np.roll(x, t)`).
+A fact you may use: for sequences $u$ and $v$ with $v$ real, the sequence
 $\sum_m v_m u_{(m+t) \bmod n}$ has the DFT $\hat u \odot \hat v^*$.
-(a) Show that $K_{ij} = k^{xx}_{(j-i) \bmod n}$, that $k^{xx}_{-t} = k^{xx}_t$ (so
-$\hat k^{xx}$ is real), and that $\hat\alpha = \hat y / (\hat k^{xx} + \lambda)$.
+(a) Show that $k^{xx}_{-t} = k^{xx}_t$ (so $\hat k^{xx}$ is real), that
+$K_{ij} = k^{xx}_{(j-i) \bmod n}$, and that $\hat\alpha = \hat y / (\hat k^{xx} + \lambda)$.
 (b) By hand, for $n = 4$, the linear kernel $\kappa(a, b) = a^T b$, the patch
 $x = (1, 1, 0, 0)/\sqrt 2$, labels $y = (1, 0, 0, 0)$ and $\lambda = 1$: compute
 $k^{xx}$, $\hat k^{xx}$, $\hat\alpha$ and $\alpha$, and check $(K + \lambda I)\alpha = y$
 with $K$ written out. (c) What goes wrong with $\lambda = 0$ here?
 --- solution
-(a) $x_j$ is $x_i$ shifted by $j - i$; shifting both back by $i$ does not change $\kappa$,
-so $K_{ij} = \kappa(x, x \text{ shifted by } j - i) = k^{xx}_{(j-i) \bmod n}$:
-$K$ is circulant, its first row $k^{xx}$. By the same invariance and the symmetry,
+(a) Shifting both signals by $t$ does not change $\kappa$, so with the symmetry
 $k^{xx}_{-t} = \kappa(x, x \text{ shifted by } -t) = \kappa(x \text{ shifted by } t, x) =
-k^{xx}_t$; an even real sequence has a real DFT ($\hat k^{*}_k = \sum_t k_t e^{2\pi i k t/n}
-= \sum_t k_{-t} e^{-2\pi i k t/n} = \hat k_k$). Then $(K\alpha)_i = \sum_j k^{xx}_{j-i}
-\alpha_j = \sum_m k^{xx}_m \alpha_{m+i}$, which by the fact has the DFT
+\kappa(x, x \text{ shifted by } t) = k^{xx}_t$; an even real sequence has a real DFT
+($\hat k^{*}_k = \sum_t k_t e^{2\pi i k t/n} = \sum_t k_{-t} e^{-2\pi i k t/n} = \hat k_k$).
+$x_i$ and $x_j$ are $x$ shifted by $-i$ and by $-j$; shifting both by $i$ gives
+$K_{ij} = \kappa(x, x \text{ shifted by } i - j) = k^{xx}_{(i-j) \bmod n} =
+k^{xx}_{(j-i) \bmod n}$: $K$ is circulant, its first row $k^{xx}$. Then
+$(K\alpha)_i = \sum_j k^{xx}_{j-i} \alpha_j = \sum_m k^{xx}_m \alpha_{m+i}$, which by the
+fact has the DFT
 $\hat\alpha \odot \hat k^{xx*} = \hat\alpha \odot \hat k^{xx}$. The system becomes
 $(\hat k^{xx} + \lambda) \odot \hat\alpha = \hat y$, one division per frequency:
 $\hat\alpha = \hat y / (\hat k^{xx} + \lambda)$, $n$ divisions in place of an $n \times n$
 solve.
 
-(b) $x$ shifted by $t = 0, 1, 2, 3$ is $(1,1,0,0)$, $(1,0,0,1)$, $(0,0,1,1)$, $(0,1,1,0)$, each
+(b) $x$ shifted by $t = 0, 1, 2, 3$ is $(1,1,0,0)$, $(0,1,1,0)$, $(0,0,1,1)$, $(1,0,0,1)$, each
 over $\sqrt 2$, so $k^{xx} = (1, 1/2, 0, 1/2)$. $\hat k^{xx}_k = 1 + \tfrac12 (-i)^k +
 \tfrac12 i^k$: $\hat k^{xx} = (2, 1, 0, 1)$. $\hat y = (1, 1, 1, 1)$, so
 $\hat\alpha = (1/3, 1/2, 1, 1/2)$, and
 $\alpha_t = \tfrac14 \sum_k \hat\alpha_k\, i^{kt}$:
 $\alpha = (7/12, -1/6, 1/12, -1/6)$. With $K + I$ the circulant of rows
 $(2, \tfrac12, 0, \tfrac12)$, $(\tfrac12, 2, \tfrac12, 0)$, $(0, \tfrac12, 2, \tfrac12)$,
-$(\tfrac12, 0, \tfrac12, 2)$: row 1 gives $\tfrac{14}{12} - \tfrac1{12} - \tfrac1{12} = 1$,
-row 2 $\tfrac7{24} - \tfrac8{24} + \tfrac1{24} = 0$, row 3
-$-\tfrac1{12} + \tfrac2{12} - \tfrac1{12} = 0$, row 4 $\tfrac7{24} + \tfrac1{24} -
+$(\tfrac12, 0, \tfrac12, 2)$: row $i = 0$ gives
+$\tfrac{14}{12} - \tfrac1{12} - \tfrac1{12} = 1$, row 1
+$\tfrac7{24} - \tfrac8{24} + \tfrac1{24} = 0$, row 2
+$-\tfrac1{12} + \tfrac2{12} - \tfrac1{12} = 0$, row 3 $\tfrac7{24} + \tfrac1{24} -
 \tfrac8{24} = 0$: $y$.
 
 (c) $\hat k^{xx}_2 = 0$: $K$ is singular ($K (1, -1, 1, -1)^T = 0$), and $\hat\alpha_2 =
