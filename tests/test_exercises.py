@@ -31,6 +31,19 @@ def test_every_exercise_has_a_starter_and_a_hidden_solution():
                          cell.source, re.M), cell.source
 
 
+def test_a_handed_out_appendix_keeps_no_check_of_a_worked_answer():
+    """The hand-out recipe strips the ``hide-cell`` and ``remove-cell`` cells: every cell that
+    asserts a worked answer is one of them (or a ``hide-input`` set-up cell of a section,
+    whose printed answers the teaching appendix warns about), so the asserts do not give
+    the answers away in a notebook handed to students."""
+    jupytext = pytest.importorskip("jupytext")
+    nb = jupytext.read(APPENDIX)
+    leaks = [c.source.splitlines()[0] for c in nb.cells if c.cell_type == "code"
+             and re.search(r"^\s*assert\b", c.source, re.M)
+             and not {"hide-cell", "remove-cell", "hide-input"} & set(_tags(c))]
+    assert not leaks, leaks
+
+
 @pytest.mark.slow
 def test_appendix_executes_and_every_solution_passes():
     jupytext = pytest.importorskip("jupytext")
