@@ -18,7 +18,34 @@ $(5, 5, 5, 5, 4, 3, 2, 1, 0)$.
 === 4.2 ★ use | Which setting costs most?
 Which of the paper preset's settings costs most on the day clip? Start from
 `preset="paper"` and change one of `sigma_color`/`sigma_hog` (to 0.2), `feature_map` (to
-`"sqrt"`) or `init` (to `"box"`) at a time.
+`"sqrt"`) or `init` (to `"box"`) at a time, and compare the AUC of seed 0 over the first 80
+frames: `evaluate(trackers.create("color-hog-ipca", preset="paper", seed=0, **change), clip,
+max_frames=80)`, with `change` the one setting changed (`{}` for the preset itself).
+--- solution
+The two σ. Over the first 80 frames the preset scores AUC 0.309; σ = 0.2 for both features
+raises it to 0.664, the square-root feature map to 0.513 and the start around the box to
+0.549, so the wide σ = 0.4 costs most. The mean IoU with the ground truth, frames 0–39 and
+40–79, says where each setting acts:
+
+| run | AUC | mean IoU, frames 0–39 | mean IoU, frames 40–79 |
+|---|---|---|---|
+| `preset="paper"` | 0.309 | 0.594 | 0.045 |
+| σ = 0.2 | 0.664 | 0.813 | 0.542 |
+| `feature_map="sqrt"` | 0.513 | 0.594 | 0.445 |
+| `init="box"` | 0.549 | 0.784 | 0.340 |
+
+The preset loses the target once it starts learning at $T = 40$. σ acts on every frame: before
+$T$ it sharpens the weights of eq. 10–11, after $T$ those of the subspace. The feature map acts
+only after $T$: its first 40 boxes are exactly the preset's, and after $T$ it brings the
+tracker back onto the target (exercise 4.3 explains why raw histograms leave the weights
+nearly uniform). The start around the box improves the frames before $T$ but, still learning
+raw histograms, loses the target after $T$ as well, only later (mean IoU below 0.05 on frames
+60–79).
+
+A good answer adds that this is one seed and 80 frames, of which only 40 learn. Over the whole
+clip (150 frames, 110 of them after $T$), averaged over seeds 0–2, the order changes: the
+square root lifts the mean AUC from 0.245 to 0.541, σ = 0.2 to 0.426 and the box start to
+0.310.
 
 === 4.3 ★★ modify | Raw or square-rooted histograms?
 Run `color-hog-ipca` (seed 0) on the first 80 frames of `robot-corridor-day` with `anchor=0.0`
@@ -68,4 +95,115 @@ vectors is given). Run `color-hog-ipca` with $K$ = 1, 2, 4, 8 and 16 on both sam
 of the public sequences with three seeds (`trackbook.evaluate(name, folder, seed=s, K=k)`) and
 say whether the differences exceed the seed-to-seed noise reported in the lab notes. A starting
 point (sample clips, seed 0, with the anchor):
+--- solution
+A good answer has three parts: a table of AUC and tracking rate for every $K$, with and
+without the anchor, on both clips; a measure of the seed-to-seed noise of the same runs; and a
+verdict for each comparison that weighs a difference against that noise.
+
+The sample clips, seed 0. With the anchor every $K$ tracks the whole day clip (tracking rate
+1.0) and the AUC stays between 0.797 ($K = 2$) and 0.818 ($K = 8$); at night it lies between
+0.287 ($K = 4$) and 0.353 ($K = 16$). Without the anchor the runs swing further: by day from
+0.659 ($K = 8$) to 0.814 ($K = 2$), at night from 0.287 ($K = 4$) to 0.562 ($K = 16$).
+
+The noise. Seeds 1 and 2 move one configuration as far as $K$ does: at night with the anchor
+and $K = 4$ the AUC is 0.287, 0.456 and 0.295 for seeds 0, 1 and 2, a range of 0.169, wider
+than the range over all five $K$ at seed 0 (0.066); without the anchor $K = 4$ at night gives
+0.287, 0.289 and 0.528.
+
+The public sequences. The committed runs of the lab notes (seven sequences, seeds 0–2) hold
+two of these comparisons, paired by sequence and seed: $K = 4$ minus $K = 2$ with the anchor,
+mean AUC difference −0.043, 95 % interval [−0.104, +0.005]; $K = 16$ minus $K = 2$ learning
+unchecked, −0.022 [−0.091, +0.033]. Both intervals straddle 0: inconclusive. One sequence's AUC
+moves by up to 0.44 between seeds (Jogging1, the book's default).
+
+The verdict: no $K$ from 1 to 16 is established better than another, so the book's $K = 2$
+is as good as any tested and cheaper than the larger ones. A good answer also says why more
+basis vectors need not help. For one set of learned frames the first $K + 1$ singular vectors
+span the first $K$ and one more, so a particle's reconstruction error can only fall as $K$
+grows: the background's as well as the target's, and the subspace term tells them apart less.
+Fewer vectors forget more of how the target varied. Where the balance lies depends on the
+clip, and the runs above cannot resolve it.
+
+=== 4.7 ★ pen and paper | A reconstruction error by hand
+Four-bin histograms, fed to the subspace as $z = \sqrt h$. The tracker has learned two
+appearances, $u_1 = (0.8, 0.6, 0, 0)^T$ and $u_2 = (0, 0, 0.6, 0.8)^T$, and
+$U = [u_1\ u_2]$. A particle's histogram is $h = (0.25, 0.25, 0.25, 0.25)$.
+(a) Check that $U$ has orthonormal columns. (b) Compute $U^Tz$, the reconstruction $UU^Tz$,
+the residual $z - UU^Tz$ and $D^2 = \lVert z - UU^Tz\rVert^2$. (c) Show that
+$D^2 = \lVert z\rVert^2 - \lVert U^Tz\rVert^2$ for any $z$ and any $U$ with orthonormal
+columns, and use it to check (b). (d) What is $D^2$ with $K = 1$ ($U = u_1$ alone)?
+(e) Compare the two likelihood factors $\exp(-D^2/2\sigma^2)$ for $\sigma = 0.2$.
+--- solution
+(a) $u_1^Tu_1 = 0.64 + 0.36 = 1$, $u_2^Tu_2 = 0.36 + 0.64 = 1$, and $u_1^Tu_2 = 0$ (no bin is
+non-zero in both).
+
+(b) $z = \sqrt h = (0.5, 0.5, 0.5, 0.5)^T$, so $U^Tz = (0.5 \cdot 1.4,\ 0.5 \cdot 1.4)^T =
+(0.7, 0.7)^T$ and
+
+$$UU^Tz = 0.7\,u_1 + 0.7\,u_2 = (0.56, 0.42, 0.42, 0.56)^T, \qquad
+z - UU^Tz = (-0.06, 0.08, 0.08, -0.06)^T,$$
+
+$D^2 = 0.0036 + 0.0064 + 0.0064 + 0.0036 = 0.02$.
+
+(c) $UU^T$ is an orthogonal projection ($U^TU = I$, so $(UU^T)^2 = UU^T$ and
+$(UU^T)^T = UU^T$): the residual $z - UU^Tz$ is orthogonal to $UU^Tz$, and by Pythagoras
+$\lVert z\rVert^2 = \lVert UU^Tz\rVert^2 + D^2$. Moreover
+$\lVert UU^Tz\rVert^2 = z^TUU^TUU^Tz = z^TUU^Tz = \lVert U^Tz\rVert^2$. Here
+$\lVert z\rVert^2 = 4 \cdot 0.25 = 1$ and $\lVert U^Tz\rVert^2 = 0.49 + 0.49 = 0.98$:
+$D^2 = 0.02$, as in (b).
+
+(d) With $u_1$ alone, $D^2 = 1 - 0.7^2 = 0.51$: half of this particle's appearance lies in
+the two bins that $u_1$ cannot explain. A second basis vector can only lower the error, never
+raise it.
+
+(e) $2\sigma^2 = 0.08$: $e^{-0.02/0.08} = e^{-0.25} \approx 0.78$ with $K = 2$ and
+$e^{-0.51/0.08} = e^{-6.375} \approx 0.0017$ with $K = 1$. The same particle is a good match
+for the two-vector subspace and a poor one for the one-vector subspace.
+
+=== 4.8 ★★ pen and paper | Why the small matrix is enough
+(a) With $A = U\Sigma V^T$ (thin SVD, $V^TV = I$) and one new column $b$, show that
+$[A\ b][A\ b]^T = [U\Sigma\ \ b][U\Sigma\ \ b]^T$, and conclude that $[A\ b]$ and
+$[U\Sigma\ \ b]$ have the same left singular vectors and singular values, so $V$ is never
+needed; say what changes with the forgetting factor $f$. (b) Show that
+$[U\Sigma\ \ b] = [U\ \tilde b]\,R$ with $\tilde b$ the normalised residual of $b$ and $R$ the
+middle matrix of the update, and why the SVD of $R$ gives an SVD of $[U\Sigma\ \ b]$.
+(c) By hand, in two dimensions: the tracker holds $U = (0.6, 0.8)^T$ and $\Sigma = 5$ and
+forgets with $f = 0.8$; the new column is $b = (6.8, 2.4)^T$. Compute $U^Tb$, the residual,
+$\tilde b$, $R$, $\Sigma'$ and $U'$. By how much does the first basis vector turn?
+--- solution
+(a) $[A\ b][A\ b]^T = AA^T + bb^T = U\Sigma V^TV\Sigma U^T + bb^T = U\Sigma^2U^T + bb^T =
+[U\Sigma\ \ b][U\Sigma\ \ b]^T$. The left singular vectors of a matrix $M$ are the
+eigenvectors of $MM^T$ and its singular values the square roots of the eigenvalues, so two
+matrices with the same $MM^T$ have the same of both. $V$ has dropped out. With forgetting the
+old columns enter as $fA$, whose SVD is $U(f\Sigma)V^T$: use $[fU\Sigma\ \ b]$.
+
+(b) Split $b = UU^Tb + r$ with the residual $r = b - UU^Tb$ and $\tilde b = r / \lVert r\rVert$,
+so $b = U(U^Tb) + \tilde b(\tilde b^Tb)$ with $\tilde b^Tb = \lVert r\rVert$. Then
+
+$$[U\Sigma\ \ b] = [U\ \tilde b]\begin{bmatrix}\Sigma & U^Tb\\ 0 & \tilde b^Tb\end{bmatrix}
+= [U\ \tilde b]\,R .$$
+
+With $R = \tilde U\tilde\Sigma\tilde V^T$, $[U\Sigma\ \ b] = ([U\ \tilde b]\tilde U)\,
+\tilde\Sigma\,\tilde V^T$. $[U\ \tilde b]$ has orthonormal columns ($\tilde b \perp U$) and
+$\tilde U$ is orthogonal, so $U' = [U\ \tilde b]\tilde U$ has orthonormal columns: this is an
+SVD, with $\Sigma' = \tilde\Sigma$.
+
+(c) $f\Sigma = 4$. $U^Tb = 0.6 \cdot 6.8 + 0.8 \cdot 2.4 = 4.08 + 1.92 = 6$; the residual is
+$b - 6U = (6.8 - 3.6,\ 2.4 - 4.8)^T = (3.2, -2.4)^T$ with norm 4, so
+$\tilde b = (0.8, -0.6)^T$ and $\tilde b^Tb = 4$:
+
+$$R = \begin{bmatrix} 4 & 6\\ 0 & 4\end{bmatrix}, \qquad
+RR^T = \begin{bmatrix} 52 & 24\\ 24 & 16\end{bmatrix}.$$
+
+The trace is 68 and the determinant $832 - 576 = 256$, so the eigenvalues solve
+$\lambda^2 - 68\lambda + 256 = 0$: $\lambda = 64$ and 4, and $\Sigma' = (8, 2)$. The
+eigenvectors of $RR^T$ are $(2, 1)^T/\sqrt5$ (for 64: $52 \cdot 2 + 24 = 128 = 64 \cdot 2$) and
+$(1, -2)^T/\sqrt5$. Rotating:
+
+$$u'_1 = \frac{2U + \tilde b}{\sqrt5} = \frac{(2, 1)^T}{\sqrt5}, \qquad
+u'_2 = \frac{U - 2\tilde b}{\sqrt5} = \frac{(-1, 2)^T}{\sqrt5}$$
+
+(each up to its sign). The first basis vector turns from $U$ towards $b$ by
+$\arccos(U^Tu'_1) = \arccos(2/\sqrt5) \approx 26.6°$. Check: $\sigma_1'^2 + \sigma_2'^2 = 68 =
+(f\Sigma)^2 + \lVert b\rVert^2 = 16 + 52$, the squared Frobenius norm, as it must be.
 """

@@ -115,4 +115,75 @@ $-2(1-K)\sigma_1^2 + 2K\sigma_2^2$; it is zero at $K = \sigma_1^2/(\sigma_1^2 + 
 There $1 - K = \sigma_2^2/(\sigma_1^2 + \sigma_2^2)$, and the variance is
 $\frac{\sigma_2^4\sigma_1^2 + \sigma_1^4\sigma_2^2}{(\sigma_1^2 + \sigma_2^2)^2}
 = \frac{\sigma_1^2\sigma_2^2}{\sigma_1^2 + \sigma_2^2} = (1 - K)\sigma_1^2$.
+
+=== 6.9 ★★ pen and paper | The multivariate gain from the trace
+Exercise 6.8 in matrices. The prior error $e^- = x_k - \hat x_k^-$ has covariance $P_k^-$,
+the sensor noise $v_k$ of eq. 2 has covariance $R$ and is independent of it, and the update is
+eq. 6 with an unknown gain $K$. (a) Show that the posterior error covariance is
+$P_k^+ = (I - KH)P_k^-(I - KH)^T + KRK^T$. (b) Minimise its trace (the sum of the error
+variances of all the state's entries) over $K$ and show that the minimiser is eq. 5,
+$K_k = P_k^- H^T (H P_k^- H^T + R)^{-1}$. Use $\partial \operatorname{tr}(KA)/\partial K = A^T$
+and $\partial \operatorname{tr}(KBK^T)/\partial K = 2KB$ for symmetric $B$. (c) Show that at
+this gain $P_k^+ = (I - K_kH)P_k^-$, eq. 7. (d) Check on exercise 6.2's first update, one
+axis: $P_k^- = \begin{bmatrix}3 & 1\\ 1 & 2\end{bmatrix}$, $H = [1\ \ 0]$, $R = 1$. Compute
+$K_k$ and $\operatorname{tr} P_k^+$, and compare with the gain $K = (1, 0)^T$ that takes the
+measurement as the position and leaves the velocity alone.
+--- solution
+(a) With $y_k = Hx_k + v_k$ and eq. 6, $x_k - \hat x_k^+ = e^- - K(Hx_k + v_k - H\hat x_k^-)
+= (I - KH)e^- - Kv_k$. The two terms are independent with zero mean, so their covariances
+add: $P_k^+ = (I - KH)P_k^-(I - KH)^T + KRK^T$ (the Joseph form of the chapter, true for any
+$K$).
+
+(b) Multiply out, with $S = HP_k^-H^T + R$ (symmetric):
+$P_k^+ = P_k^- - KHP_k^- - P_k^-H^TK^T + KSK^T$. A matrix and its transpose have the same
+trace, so $\operatorname{tr}P_k^+ = \operatorname{tr}P_k^- - 2\operatorname{tr}(KHP_k^-) +
+\operatorname{tr}(KSK^T)$, and its derivative in $K$ is
+$-2(HP_k^-)^T + 2KS = -2P_k^-H^T + 2KS$. It vanishes at $K = P_k^-H^TS^{-1}$, eq. 5. This is
+the minimum: $S$ is positive definite, so $\operatorname{tr}(KSK^T)$ is a convex quadratic in
+$K$, and the trace is convex.
+
+(c) At this gain $KSK^T = P_k^-H^TS^{-1}SK^T = P_k^-H^TK^T$, which cancels the third term:
+$P_k^+ = P_k^- - KHP_k^- = (I - K_kH)P_k^-$.
+
+(d) $S = 3 + 1 = 4$ and $K_k = (3, 1)^T/4 = (0.75, 0.25)^T$, as in exercise 6.2. Then
+$I - K_kH = \begin{bmatrix}0.25 & 0\\ -0.25 & 1\end{bmatrix}$ and
+$P_k^+ = \begin{bmatrix}0.75 & 0.25\\ 0.25 & 1.75\end{bmatrix}$: trace 2.5. With
+$K = (1, 0)^T$, $I - KH = \begin{bmatrix}0 & 0\\ 0 & 1\end{bmatrix}$, the first term is
+$\begin{bmatrix}0 & 0\\ 0 & 2\end{bmatrix}$ and $KRK^T = \begin{bmatrix}1 & 0\\ 0 &
+0\end{bmatrix}$: trace 3, larger. The optimal gain believes only three quarters of the
+innovation in the position (the prior is worth something) and uses the rest of it, through the
+covariance 1 of position and velocity, to correct the velocity.
+
+=== 6.10 ★ pen and paper | The steady state of a random walk
+A target does a random walk on a line: predict adds $u = 0$ to the mean and $\sigma_q^2 = 1$
+to the variance; each frame a sensor measures its position with noise variance
+$\sigma_2^2 = 2$. The filter starts from a known position (posterior variance $v_0 = 0$).
+(a) Run three steps by hand: for $k = 1, 2, 3$ the predicted variance $p_k = v_{k-1} +
+\sigma_q^2$, the gain $K_k = p_k / (p_k + \sigma_2^2)$ and the posterior variance
+$v_k = (1 - K_k)p_k$, as fractions. (b) In the steady state $p_k$ stops changing: write the
+equation it satisfies (a scalar Riccati equation) and solve it. What are the steady-state
+predicted variance, gain and posterior variance? (c) Show that the steady-state posterior
+variance is $\bigl(-\sigma_q^2 + \sqrt{\sigma_q^4 + 4\sigma_q^2\sigma_2^2}\bigr)/2$ in general.
+(d) With the steady gain, what does the update do to the mean?
+--- solution
+(a) $p_1 = 0 + 1 = 1$, $K_1 = 1/3$, $v_1 = (2/3) \cdot 1 = 2/3$. $p_2 = 5/3$,
+$K_2 = (5/3)/(11/3) = 5/11$, $v_2 = (6/11)(5/3) = 10/11 \approx 0.909$. $p_3 = 21/11$,
+$K_3 = (21/11)/(43/11) = 21/43$, $v_3 = (22/43)(21/11) = 42/43 \approx 0.977$. The variance
+rises from the known start towards a limit.
+
+(b) $v = (1 - K)p = p\,\sigma_2^2/(p + \sigma_2^2)$ and $p = v + \sigma_q^2$, so
+$p = p\,\sigma_2^2/(p + \sigma_2^2) + \sigma_q^2$. Multiplying by $p + \sigma_2^2$:
+$p^2 - \sigma_q^2\,p - \sigma_q^2\sigma_2^2 = 0$, here $p^2 - p - 2 = (p - 2)(p + 1) = 0$. The
+variance is positive: $p = 2$. Then $K = 2/(2 + 2) = 1/2$ and $v = (1 - 1/2) \cdot 2 = 1$;
+check: $v + \sigma_q^2 = 2 = p$.
+
+(c) The positive root is $p = \bigl(\sigma_q^2 + \sqrt{\sigma_q^4 +
+4\sigma_q^2\sigma_2^2}\bigr)/2$, and $v = p - \sigma_q^2 = \bigl(-\sigma_q^2 +
+\sqrt{\sigma_q^4 + 4\sigma_q^2\sigma_2^2}\bigr)/2$; here $(-1 + \sqrt{1 + 8})/2 = 1$. Only
+the ratio of $\sigma_q^2$ to $\sigma_2^2$ sets the steady gain; scaling both by $c$ scales
+$p$ and $v$ by $c$.
+
+(d) $\mu_k = \mu_k^- + \tfrac12(z_k - \mu_k^-) = \tfrac12\mu_{k-1} + \tfrac12 z_k$ (for a
+random walk $\mu_k^- = \mu_{k-1}$): in its steady state the Kalman filter is an exponential
+moving average of the measurements, with weight $K = 1/2$ on the newest one.
 """
