@@ -35,10 +35,10 @@ raises it to 0.664, the square-root feature map to 0.513 and the start around th
 | `init="box"` | 0.549 | 0.784 | 0.340 |
 
 The preset loses the target once it starts learning at $T = 40$. σ acts on every frame: before
-$T$ it sharpens the weights of eq. 10–11, after $T$ those of the subspace. The feature map acts
-only after $T$: its first 40 boxes are exactly the preset's, and after $T$ it brings the
-tracker back onto the target (exercise 4.3 explains why raw histograms leave the weights
-nearly uniform). The start around the box improves the frames before $T$ but, still learning
+$T$ it sharpens the weights of the colour and HOG likelihoods (eq. 10–11 of the
+{doc}`case study <case_study_lee2012>`), after $T$ those of the subspace. The feature map acts
+only after $T$: its first 40 boxes are exactly the preset's, and after $T$ it keeps far more
+of the target (exercise 4.3 explains why raw histograms leave the weights nearly uniform). The start around the box improves the frames before $T$ but, still learning
 raw histograms, loses the target after $T$ as well, only later (mean IoU below 0.05 on frames
 60–79).
 
@@ -110,7 +110,8 @@ and $K = 4$ the AUC is 0.287, 0.456 and 0.295 for seeds 0, 1 and 2, a range of 0
 than the range over all five $K$ at seed 0 (0.066); without the anchor $K = 4$ at night gives
 0.287, 0.289 and 0.528.
 
-The public sequences. The committed runs of the lab notes (seven sequences, seeds 0–2) hold
+The public sequences. The committed runs of the {doc}`lab notes <lab_notes_lee2012>` (seven
+sequences, seeds 0–2) hold
 two of these comparisons, paired by sequence and seed: $K = 4$ minus $K = 2$ with the anchor,
 mean AUC difference −0.043, 95 % interval [−0.104, +0.005]; $K = 16$ minus $K = 2$ learning
 unchecked, −0.022 [−0.091, +0.033]. Both intervals straddle 0: inconclusive. One sequence's AUC
