@@ -44,6 +44,44 @@ def test_a_handed_out_appendix_keeps_no_check_of_a_worked_answer():
     assert not leaks, leaks
 
 
+def _names(source: str) -> tuple[set, set]:
+    """The names a cell binds and the names it reads (line magics left out)."""
+    import ast
+    tree = ast.parse("\n".join(ln for ln in source.splitlines() if not ln.startswith("%")))
+    bound, read = set(), set()
+    for n in ast.walk(tree):
+        if isinstance(n, ast.Name):
+            (read if isinstance(n.ctx, ast.Load) else bound).add(n.id)
+        elif isinstance(n, (ast.FunctionDef, ast.ClassDef)):
+            bound.add(n.name)
+        elif isinstance(n, (ast.Import, ast.ImportFrom)):
+            bound |= {(a.asname or a.name).split(".")[0] for a in n.names}
+        elif isinstance(n, ast.arg):
+            bound.add(n.arg)
+    return bound, read
+
+
+def test_a_handed_out_appendix_needs_no_removed_cell():
+    """With the solutions and the checks stripped (the hand-out recipe), no kept cell reads a
+    name that only a stripped cell defines: the handed-out notebook runs."""
+    import builtins
+    jupytext = pytest.importorskip("jupytext")
+    nb = jupytext.read(APPENDIX)
+    kept, stripped, missing = set(dir(builtins)), set(), []
+    for c in nb.cells:
+        if c.cell_type != "code":
+            continue
+        bound, read = _names(c.source)
+        if {"hide-cell", "remove-cell"} & set(_tags(c)):
+            stripped |= bound - kept
+            continue
+        need = (read - bound - kept) & stripped
+        if need:
+            missing.append((c.source.splitlines()[0], sorted(need)))
+        kept |= bound
+    assert not missing, missing
+
+
 @pytest.mark.slow
 def test_appendix_executes_and_every_solution_passes():
     jupytext = pytest.importorskip("jupytext")
