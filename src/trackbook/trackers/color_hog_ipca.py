@@ -164,7 +164,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                           "error, as eq. 10-11 are in D; the same sigma is used before and "
                           "after T (as in the paper), but D^2 on sqrt(h) is about twice eq. "
                           "10-11's 1 - rho, so sigma is effectively sqrt(2) narrower after T "
-                          "(the case study of Lee et al. 2012)")
+                          "(the colour and HOG case study)")
     learn_threshold: float = param(0.0, 0.0, 1.0, 0.05,
                                    "gated learning: learn a frame only if its similarity >= this "
                                    "(0 = every frame, the paper preset)",
@@ -205,7 +205,7 @@ class ColorHogIPCAParams(ColorHogPFParams):
                              why="on raw histograms (norm 0.1-0.4) every squared "
                              "reconstruction error is at most ~0.15 and the particles weigh "
                              "nearly the same; sqrt(h) has unit norm "
-                             "(the case study of Lee et al. 2012)")
+                             "(the colour and HOG case study)")
 
 
 

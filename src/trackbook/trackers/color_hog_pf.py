@@ -21,7 +21,7 @@ from .registry import register
 
 #: Why the book's sigma_hog is not 0.4 (the baseline and the proposed tracker alike).
 SIGMA_HOG_WHY = ("same reason as sigma_color: at 0.4 the HOG weights are nearly flat; 0.2 "
-                 "scored higher on the seven public sequences we tuned on (the lab notes of Lee et al. 2012)")
+                 "scored higher on the seven public sequences we tuned on (the colour and HOG lab notes)")
 
 
 @dataclasses.dataclass(frozen=True)

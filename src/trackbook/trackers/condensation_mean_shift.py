@@ -129,12 +129,12 @@ class CondensationParams(EllipseColourParams):
     noise_scale: float = param(0.0, 0.0, 0.3, 0.005,
                                "std of w_a: the size changes by a = 1 + w_a (book default 0, "
                                "fixed size, for all three trackers: the colour likelihood alone "
-                               "lets the size drift, mostly smaller; the case study of Cho "
-                               "and Kang 2005)",
+                               "lets the size drift, mostly smaller; the Condensation and "
+                               "mean-shift case study)",
                                paper=NOT_PRINTED,
                                why="eq. 1 has a size change a but no spread; the book fixes the "
                                    "size (0) because the colour likelihood lets it shrink "
-                                   "(the case study of Cho and Kang 2005)")
+                                   "(the Condensation and mean-shift case study)")
     # §3.2 step ①: sample from the weighted set
     resampler: str = resampler_param("factored sampling (step ①)",
                                      reading="cho2005.condensation_sampling", paper="multinomial")

@@ -78,13 +78,13 @@ class _CovarianceModelParams:
         8, 1, 64, 1, doc="candidates' centres within ±radius px of the last position",
         paper=NOT_PRINTED,   # sec. 2.3 names a "search range" with no size
         why="the book's choice: ±8 px, 17 x 17 = 289 candidates at stride 1 (the "
-            "case study of Lee (2015) compares the search rates)")
+            "covariance case study compares the search rates)")
     threshold: float = param(
         3.0, 0.1, 20.0, 0.1, doc="d_F (eq. 5) above which the match has not converged (sec. "
         "2.3): the frame is lost (covariance then searches the whole frame, `fallback`)",
         paper=NOT_PRINTED,   # sec. 2.3 says only "if it does not converge"
         why="on RedCube the tracked cube scores d_F ≈ 0.5 and background windows above 4; 3 lies "
-            "between (the case study of Lee (2015) measures it)")
+            "between (the covariance case study measures it)")
     eps: float = param(
         1e-6, 0.0, 1.0, None, doc="ε of the regularised C + εI in eq. 6",
         paper=NOT_PRINTED,   # eq. 5-6 assume positive-definite matrices

@@ -26,7 +26,7 @@ class KalmanCovarianceManoeuvreParams(KalmanCovarianceParams):
         "frames) signals a manoeuvre; 0 = never",
         paper=NOT_PRINTED, paper_value=0.0,   # not in the paper; 0 switches it off
         why="the book's addition: a ball's bounce leaves the constant-velocity window while d_F "
-            "stays below `threshold` (the case study of Lee (2015), the bounce)")
+            "stays below `threshold` (the covariance case study, the bounce)")
     manoeuvre_sigma: float = param(
         8.0, 0.0, 30.0, 1.0, doc="σ_v (px/frame) of the velocity change allowed on a "
         "manoeuvre: the second, larger window",
