@@ -151,8 +151,9 @@ $P_k^+ = \begin{bmatrix}0.75 & 0.25\\ 0.25 & 1.75\end{bmatrix}$: trace 2.5. With
 $K = (1, 0)^T$, $I - KH = \begin{bmatrix}0 & 0\\ 0 & 1\end{bmatrix}$, the first term is
 $\begin{bmatrix}0 & 0\\ 0 & 2\end{bmatrix}$ and $KRK^T = \begin{bmatrix}1 & 0\\ 0 &
 0\end{bmatrix}$: trace 3, larger. The optimal gain believes only three quarters of the
-innovation in the position (the prior is worth something) and uses the rest of it, through the
-covariance 1 of position and velocity, to correct the velocity.
+innovation in the position (the prior is worth something) and, through the covariance 1 of
+position and velocity, also corrects the velocity by a quarter of the innovation
+($1/S = 1/4$), which $K = (1, 0)^T$ leaves alone.
 
 === 6.10 ★ pen and paper | The steady state of a random walk
 A target does a random walk on a line: predict adds $u = 0$ to the mean and $\sigma_q^2 = 1$
