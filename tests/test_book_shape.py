@@ -29,7 +29,6 @@ _HEADING = re.compile(r"^(#{1,6}) (.*)$", re.M)
 OVER = {
     "02_particle_filters": "38 code cells",
     "06_kalman": "3,223 prose words, 36 code cells",
-    "09_trackers_compared": "31 code cells",
 }
 #: chapter -> the evidence markers it still carries outside a section about a paper.
 MARKERS = {
