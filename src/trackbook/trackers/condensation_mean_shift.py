@@ -1,8 +1,7 @@
 """Cho & Kang 2005: Condensation, mean-shift, and Condensation with candidates moved by mean-shift.
 
-The case study ``case_study_cho2005`` (built on the chapter ``08_mean_shift``) and its lab notes,
-``lab_notes_cho2005``. Three registered
-trackers share one target model, an ellipse with a kernel-weighted colour distribution:
+The case study ``case_study_cho2005`` (on ``08_mean_shift``; lab notes ``lab_notes_cho2005``).
+Three trackers share one target model, an ellipse with a kernel-weighted colour distribution:
 
 - ``condensation`` (baseline, Nummiaro et al. 2003): factored sampling -> predict
   ``s_t = A s_{t-1} + w`` -> weight every candidate by its Bhattacharyya likelihood; 100 candidates.
@@ -25,8 +24,7 @@ The velocity is drawn first and the position moves by the *new*, already-noised 
 ``x_dot_t`` (not by ``x_dot_{t-1}``), so the position's spread per frame is
 ``sqrt(noise_position^2 + noise_velocity^2)`` half-axes. The size is multiplied by ``a``, the
 one non-linear step; the paper names A only as "the deterministic component"
-[quote: cho2005.candidates_eq9].
-The likelihood of a candidate is Nummiaro's ``exp(-(1 - rho) / (2 sigma^2))``.
+[quote: cho2005.candidates_eq9]. The likelihood is Nummiaro's ``exp(-(1 - rho) / (2 sigma^2))``.
 """
 
 from __future__ import annotations
