@@ -153,7 +153,7 @@ $\begin{bmatrix}0 & 0\\ 0 & 2\end{bmatrix}$ and $KRK^T = \begin{bmatrix}1 & 0\\ 
 0\end{bmatrix}$: trace 3, larger. The optimal gain believes only three quarters of the
 innovation in the position (the prior is worth something) and, through the covariance 1 of
 position and velocity, also corrects the velocity by a quarter of the innovation
-($1/S = 1/4$), which $K = (1, 0)^T$ leaves alone.
+($P_{21}/S = 1/4$, with the prior's covariance $P_{21} = 1$), which $K = (1, 0)^T$ leaves alone.
 
 === 6.10 ★ pen and paper | The steady state of a random walk
 A target does a random walk on a line: predict adds $u = 0$ to the mean and $\sigma_q^2 = 1$

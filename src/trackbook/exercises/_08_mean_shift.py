@@ -148,8 +148,8 @@ $\rho(y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0
 (b) $\frac12 \sum_u \sqrt{q_u / p_u(\hat y_0)}\; f \sum_i k(r_i)\, \delta[h(x_i) - u]
 = \frac f2 \sum_i k(r_i) \sum_u \sqrt{q_u / p_u(\hat y_0)}\, \delta[h(x_i) - u]
 = \frac f2 \sum_i w_i\, k(r_i)$: each pixel lies in exactly one bin, so the inner sum picks
-that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant, and so
-is $f$ (the chapter's normalising constant: on the pixel lattice the sum of the kernel's
+that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant, and $f$
+may be treated as one (the chapter's normalising constant: on the pixel lattice the sum of the kernel's
 values hardly changes as the ellipse moves). Raising the linearised $\rho$ therefore means
 raising the weighted kernel density $\sum_i w_i\, k(r_i)$ of the pixel positions (the chapter's
 $\text{const} + \frac C2 \sum_i w_i\, k(\cdot)$ with $C = f$), and that density is what the
@@ -212,7 +212,7 @@ $\hat y_1 = (0 \cdot 3 + 2 + 4)/5 = 1.2$, and from 1.2 the same pixels give 1.2 
 climb stops there. $\hat f(1.2)/C = 3\,(1 - 1.44/16) + (1 - 0.64/16) + (1 - 7.84/16) = 4.2$,
 nearly twice the $53/24 \approx 2.21$ at $13/3$. Each climb ends on top of the hill it
 starts on; the one from 9 never sees the higher hill at 1.2. A mean-shift tracker starts
-its climb where the target was in the last frame and ends on the peak of that basin: the
+its climb where the target was in the last frame and ends on the top of the hill it starts on: the
 target's if it is still the nearest peak, a distractor's if the target moved away or a
 distractor's hill is closer. The nearest peak, not the best.
 """

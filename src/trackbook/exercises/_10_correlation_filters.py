@@ -118,8 +118,8 @@ $\widehat{Xw}_2 = \hat x_2 \hat w_2^* = 0$ whatever the filter: the part of a la
 frequency 2, the alternating part $\tfrac14 \hat y_2\,(1, -1, 1, -1)$ with
 $\hat y_2 = y_0 - y_1 + y_2 - y_3$, is out of reach. With $\lambda > 0$ the filter is 0
 there, and at every other frequency the response $\hat x_k \hat w_k^* = \hat y_k \lvert
-\hat x_k \rvert^2 / (\lvert \hat x_k \rvert^2 + \lambda)$ is the label's, shrunk a
-little.
+\hat x_k \rvert^2 / (\lvert \hat x_k \rvert^2 + \lambda)$ is the label's, shrunk by that
+factor, below 1 (a little where $\lambda$ is small beside $\lvert \hat x_k \rvert^2$).
 
 === 10.6 ★★ pen and paper | KCF's solution on a circulant kernel matrix
 KCF's kernel ridge regression over all shifts $x_j$ of the training patch $x$ (the rows of
