@@ -507,3 +507,21 @@ def test_show_renders_several_exercises_in_order():
         "1.6", solution=False)
     with pytest.raises(ValueError, match="needs an exercise number"):
         exercises.show()
+
+
+def test_exercise_maths_survives_markdown():
+    """Markdown reads a line that starts with "+ ", "- " or "1. " as a list item and leaves
+    ``$$`` inside a paragraph as text: either breaks the maths the browser then shows raw."""
+    bad = []
+    for e in exercises.all_exercises():
+        for part in (e.statement, e.hint or "", e.solution or ""):
+            lines, dollars = part.split("\n"), 0
+            for i, line in enumerate(lines):
+                if dollars % 2 and re.match(r"\s*(?:[+*-]|\d+\.)\s", line):
+                    bad.append((e.number, "a list marker starts a line of maths", line))
+                opens = sum(ln.count("$$") for ln in lines[:i]) % 2 == 0
+                if (line.lstrip().startswith("$$") and opens and i
+                        and lines[i - 1].strip()):
+                    bad.append((e.number, "display maths without a blank line before", line))
+                dollars += len(re.findall(r"(?<!\$)\$(?!\$)", line))
+    assert not bad, bad

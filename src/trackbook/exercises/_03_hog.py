@@ -71,7 +71,8 @@ def gx_loop(P):
     out = np.zeros((h, w))
     for y in range(h):
         for x in range(w):
-            # the replicated border: I(-1, y) = I(0, y), I(w, y) = I(w - 1, y)
+            # the replicated border:
+            # I(-1, y) = I(0, y), I(w, y) = I(w - 1, y)
             right, left = P[y, min(x + 1, w - 1)], P[y, max(x - 1, 0)]
             out[y, x] = right - left
     return out

@@ -59,7 +59,8 @@ Sort each ray set, take the mean of its two middle values, divide:
 ```python
 def my_ratio(p, m):
     def mid(d):  # mean of the 4th and 5th of the 8 sorted lengths
-        return np.sort(np.asarray(d, float), axis=-1)[..., 3:5].mean(axis=-1)
+        d = np.sort(np.asarray(d, float), axis=-1)
+        return d[..., 3:5].mean(axis=-1)
     return mid(p) / mid(m)
 ```
 

@@ -167,8 +167,9 @@ $u_x = 6$; $x^2$: 15, 5, 0, 0, so $V_{xx} = 10$; $xI$: 25, 2, 0, 0, so $V_{xI} =
 $I^2$: 96, 5, 14, 1, so $V_{II} = 78$. With $MN = 4$ and $u = (6, 16)$,
 
 $$V - \tfrac14 uu^T = \begin{bmatrix} 10 - 9 & 23 - 24\\ 23 - 24 & 78 - 64 \end{bmatrix}
-= \begin{bmatrix} 1 & -1\\ -1 & 14 \end{bmatrix}, \qquad
-C_R = \begin{bmatrix} 0.25 & -0.25\\ -0.25 & 3.5 \end{bmatrix}.$$
+= \begin{bmatrix} 1 & -1\\ -1 & 14 \end{bmatrix},$$
+
+$$C_R = \begin{bmatrix} 0.25 & -0.25\\ -0.25 & 3.5 \end{bmatrix}.$$
 
 (d) The four pixels are $(x, I) = (1, 5), (2, 1), (1, 4), (2, 6)$ with mean $(1.5, 4)$; the
 deviations are $x$: $-0.5, 0.5, -0.5, 0.5$ and $I$: $1, -3, 0, 2$. Eq. 4 gives the

@@ -126,8 +126,8 @@ weighted mean of the pixels inside. From $\hat y_0 = 1.5$ the distances over $h$
 A candidate at $\hat y_0$ has the colour histogram $p(\hat y_0)$, with $p_u(\hat y_0) > 0$
 in every bin, the model is $q$, and $\rho(y) = \sum_u \sqrt{p_u(y)\, q_u}$. (a) Expand each
 term $\sqrt{p_u(y)\, q_u}$ to first order in $p_u(y)$ around $p_u(\hat y_0)$ and show that
-$\rho(y) \approx \frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u}
-+ \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$. (b) Insert the candidate's
+$\rho(y) \approx \frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u} +
+\frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$. (b) Insert the candidate's
 kernel-weighted histogram $p_u(y) = f \sum_i k(r_i)\, \delta[h(x_i) - u]$ ($h(x_i)$ the bin
 of pixel $x_i$, $r_i$ its normalised distance from $y$) and show that the second term is
 $\frac f2 \sum_i w_i\, k(r_i)$ with $w_i = \sum_u \sqrt{q_u / p_u(\hat y_0)}\,
@@ -139,8 +139,8 @@ compute the linearised $\rho$ of (a) and the true $\rho$. Why can the linearised
 be below the true one?
 --- solution
 (a) $\frac{d}{dp}\sqrt{p\, q_u} = \frac12 \sqrt{q_u / p}$, so
-$\sqrt{p_u(y)\, q_u} \approx \sqrt{p_u(\hat y_0)\, q_u}
-+ \frac12 \big(p_u(y) - p_u(\hat y_0)\big) \sqrt{q_u / p_u(\hat y_0)}$. Summed over $u$, the
+$\sqrt{p_u(y)\, q_u} \approx \sqrt{p_u(\hat y_0)\, q_u} +
+\frac12 \big(p_u(y) - p_u(\hat y_0)\big) \sqrt{q_u / p_u(\hat y_0)}$. Summed over $u$, the
 part with $-p_u(\hat y_0)$ is $-\frac12 \sum_u p_u(\hat y_0) \sqrt{q_u / p_u(\hat y_0)}
 = -\frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u} = -\frac12 \rho_0$, which leaves
 $\rho(y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$.

@@ -151,9 +151,9 @@ exceed $t$ for the fourteen thresholds $t = 0, \dots, 0.65$ (rate 0.6), two exce
 (every centre within 20 px), $B$ 3/5 = 0.6. The AUC and the precision put $A$ first, the
 tracking rate $B$: $A$ follows the target loosely in every frame, $B$ is tight or lost.
 
-(c) With $u_i$ the IoU of frame $i$ and $\mathbb 1$ the indicator,
-$\text{AUC} = \frac{1}{21}\sum_t \frac15 \sum_i \mathbb 1[u_i > t] = \frac15 \sum_i
-\frac{1}{21} \sum_t \mathbb 1[u_i > t] = \frac15 \sum_i c(u_i)/21$. Here $c = 10, 10, 10,
+(c) With $u_i$ the IoU of frame $i$ and $\mathbf 1$ the indicator,
+$\text{AUC} = \frac{1}{21}\sum_t \frac15 \sum_i \mathbf 1[u_i > t] = \frac15 \sum_i
+\frac{1}{21} \sum_t \mathbf 1[u_i > t] = \frac15 \sum_i c(u_i)/21$. Here $c = 10, 10, 10,
 10, 9$ for $A$ (sum 49, $49/105 = 9.8/21$) and $16, 15, 14, 0, 0$ for $B$ (sum 45,
 $45/105 = 9/21$). The thresholds below $u$ are $0.05k$ for $k = 0, 1, \dots$ with $k < 20u$,
 so $c(u) = \lceil 20u \rceil$ and $20u \le c(u) < 20u + 1$ for every $u$ in $[0, 1]$. Then

@@ -37,8 +37,10 @@ $k_t = \exp(-(2\lVert x\rVert^2 - 2\,x \cdot \text{shift}_t(x)) / (n\sigma^2))$.
 MOSSE trains on patches $f_i$ with desired responses $g_i$; $F_i$, $G_i$ and $H$ are their
 DFTs and the filter's, and the filter's response on $f_i$ has the DFT $F_i \odot H^*$. The
 filter minimises the output sum of squared error plus a penalty on its size,
-$$E = \sum_i \sum_\omega \lvert F_i(\omega) H^*(\omega) - G_i(\omega) \rvert^2
-+ \lambda \sum_\omega \lvert H(\omega) \rvert^2 ,$$
+
+$$E = \sum_i \sum_\omega \lvert F_i(\omega) H^*(\omega) - G_i(\omega) \rvert^2 +
+\lambda \sum_\omega \lvert H(\omega) \rvert^2 ,$$
+
 with $\omega$ running over the frequencies and $\lambda > 0$.
 (a) Show that $E$ splits into one term per frequency, and minimise each term over the
 complex number $H^*(\omega)$ to obtain
@@ -55,9 +57,13 @@ that can be minimised one at a time. At one frequency write $q = H^*(\omega)$ (t
 $\lvert H(\omega) \rvert^2 = \lvert q \rvert^2$) and
 $E_\omega(q) = \sum_i \lvert F_i q - G_i \rvert^2 + \lambda \lvert q \rvert^2$. Expanding
 with $a = F_i q - G_i$, $b = F_i \varepsilon$:
-$$E_\omega(q + \varepsilon) = E_\omega(q) + 2 \operatorname{Re}\Big[\varepsilon^*
-\Big(\sum_i F_i^* (F_i q - G_i) + \lambda q\Big)\Big]
-+ \Big(\sum_i F_i F_i^* + \lambda\Big) \lvert \varepsilon \rvert^2 .$$
+
+$$\begin{aligned}
+E_\omega(q + \varepsilon) = E_\omega(q) &+ 2 \operatorname{Re}\Big[\varepsilon^*
+\Big(\sum_i F_i^* (F_i q - G_i) + \lambda q\Big)\Big] \\
+&+ \Big(\sum_i F_i F_i^* + \lambda\Big) \lvert \varepsilon \rvert^2 .
+\end{aligned}$$
+
 The linear term vanishes for every $\varepsilon$ (real and imaginary) only if
 $\sum_i F_i^* (F_i q - G_i) + \lambda q = 0$, that is
 $q \,(\sum_i F_i F_i^* + \lambda) = \sum_i G_i F_i^*$, so
