@@ -175,8 +175,14 @@ middle matrix of the update, and why the SVD of $R$ gives an SVD of $[U\Sigma\ \
 forgets with $f = 0.8$; the new column is $b = (6.8, 2.4)^T$. Compute $U^Tb$, the residual,
 $\tilde b$, $R$, $\Sigma'$ and $U'$. By how much does the first basis vector turn?
 --- solution
-(a) $[A\ b][A\ b]^T = AA^T + bb^T = U\Sigma V^TV\Sigma U^T + bb^T = U\Sigma^2U^T + bb^T =
-[U\Sigma\ \ b][U\Sigma\ \ b]^T$. The left singular vectors of a matrix $M$ are the
+(a)
+
+$$\begin{aligned}
+[A\ b][A\ b]^T &= AA^T + bb^T = U\Sigma V^TV\Sigma U^T + bb^T \\
+&= U\Sigma^2U^T + bb^T = [U\Sigma\ \ b][U\Sigma\ \ b]^T .
+\end{aligned}$$
+
+The left singular vectors of a matrix $M$ are the
 eigenvectors of $MM^T$ and its singular values the square roots of the eigenvalues, so two
 matrices with the same $MM^T$ have the same of both (for the non-zero singular values; the
 wider matrix $[A\ b]$ merely has more zero ones). $V$ has dropped out. With forgetting the

@@ -145,9 +145,15 @@ part with $-p_u(\hat y_0)$ is $-\frac12 \sum_u p_u(\hat y_0) \sqrt{q_u / p_u(\ha
 = -\frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u} = -\frac12 \rho_0$, which leaves
 $\rho(y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$.
 
-(b) $\frac12 \sum_u \sqrt{q_u / p_u(\hat y_0)}\; f \sum_i k(r_i)\, \delta[h(x_i) - u]
-= \frac f2 \sum_i k(r_i) \sum_u \sqrt{q_u / p_u(\hat y_0)}\, \delta[h(x_i) - u]
-= \frac f2 \sum_i w_i\, k(r_i)$: each pixel lies in exactly one bin, so the inner sum picks
+(b)
+
+$$\begin{aligned}
+&\frac12 \sum_u \sqrt{q_u / p_u(\hat y_0)}\; f \sum_i k(r_i)\, \delta[h(x_i) - u] \\
+&\quad = \frac f2 \sum_i k(r_i) \sum_u \sqrt{q_u / p_u(\hat y_0)}\, \delta[h(x_i) - u] \\
+&\quad = \frac f2 \sum_i w_i\, k(r_i) :
+\end{aligned}$$
+
+each pixel lies in exactly one bin, so the inner sum picks
 that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant, and $f$
 may be treated as one (the chapter's normalising constant: on the pixel lattice the sum of the kernel's
 values hardly changes as the ellipse moves). Raising the linearised $\rho$ therefore means
