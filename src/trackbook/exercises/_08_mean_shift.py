@@ -202,8 +202,14 @@ $(1 - 49/144) + (1 - 1/144) + (1 - 64/144) = 53/24 \approx 2.21$. It rises at ev
 larger of the two straight lines $1 - s$ and 0). Multiply by $C w_i \ge 0$ (the weights here
 are positive, and those of step ② are never negative), insert
 $s_i - s_i' = [(y - x_i)^2 - (y' - x_i)^2]/h^2$ and sum over the pixels:
-$\hat f(y') - \hat f(y) \ge \frac{C}{h^2} \sum_i w_i g_i \big[(y - x_i)^2 - (y' - x_i)^2\big]
-= \frac{C}{h^2} \sum_i w_i g_i\, (y - y')(y + y' - 2 x_i)$. With $G = \sum_i w_i g_i$ and
+
+$$\begin{aligned}
+\hat f(y') - \hat f(y) &\ge \frac{C}{h^2} \sum_i w_i g_i \big[(y - x_i)^2 - (y' - x_i)^2\big]
+\\
+&= \frac{C}{h^2} \sum_i w_i g_i\, (y - y')(y + y' - 2 x_i) .
+\end{aligned}$$
+
+With $G = \sum_i w_i g_i$ and
 $\sum_i w_i g_i x_i = G y'$ (the definition of $y'$) the sum is
 $(y - y')(G y + G y' - 2 G y') = G (y' - y)^2$. $G > 0$ whenever the step is defined (its
 denominator is $G$), so every step that moves raises $\hat f$. On the climb of (a), divided by
