@@ -8,8 +8,6 @@ truth's.
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
 
 import matplotlib
 import numpy as np
@@ -22,9 +20,7 @@ from matplotlib.patches import Patch, Rectangle  # noqa: E402
 from trackbook import trackers  # noqa: E402
 from trackbook.style import GT_COLOR, TRACKER_COLORS, tracker_color  # noqa: E402
 
-EXT = Path(__file__).resolve().parents[1] / "book" / "_ext"
-sys.path.insert(0, str(EXT))
-import figure_check  # noqa: E402
+import figure_check  # noqa: E402  (book/_ext, put on the path by tests/conftest.py)
 
 
 @pytest.fixture

@@ -9,7 +9,6 @@ from 255 to 254 -- the sentence's 1275 no longer true -- it fails, naming the as
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import pytest
@@ -35,8 +34,7 @@ def _page_up_to_the_guard(tmp_path: Path, broken: bool) -> Path:
 @pytest.mark.parametrize("broken", [False, True], ids=["as written", "broken value"])
 def test_a_guard_fails_the_page_on_a_broken_value(tmp_path, broken):
     pytest.importorskip("jupyter_cache")
-    sys.path.insert(0, str(ROOT / "book" / "_ext"))
-    import execute_pages
+    import execute_pages  # from book/_ext, which tests/conftest.py puts on the path
 
     _, _, error = execute_pages.execute(str(_page_up_to_the_guard(tmp_path, broken)))
     if broken:
