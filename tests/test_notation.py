@@ -1,45 +1,57 @@
-"""The notation page holds the chapters to one symbol, one meaning.
+"""The notation page holds the concept chapters to one symbol, one meaning.
 
 What is read
 ------------
-* **The page** (``book/appendix_notation.md``): every Markdown table row whose first cell holds
-  maths (``$…$``) or an upright name (``AUC``, ``NEES``) lists symbols; each symbol of that
-  first cell is one *entry* of the page. Rows of tables whose header's first cell is not
-  ``symbol`` (the papers' table) are not read.
-* **A chapter** (``book/[0-9][0-9]_*.md`` and ``book/case_study_*.md``): its prose maths, i.e.
-  ``$…$``, ``$$…$$`` and ``{math}`` blocks and roles, with code cells, code blocks and inline
-  code removed first. Figure labels inside code cells are not read (they are code).
+* **The page** (``book/appendix_notation.md``): the rows of every table whose header's first
+  cell is ``symbol``. The first cell of a row holds the row's symbol(s): maths (``$…$``), or an
+  upright name written as text (``AUC``). Other tables (the local uses of a letter, the papers'
+  letters, the papers) are not read.
+* **A chapter** (``book/[0-9][0-9]_*.md``, the concept chapters): its prose maths, i.e.
+  ``$…$`` (which may wrap a line), ``$$…$$`` and ``{math}`` blocks and roles, with front
+  matter, code cells, code blocks and inline code removed first (a figure label is code).
+  Inline maths in a clause that says a paper *writes* it ("Isard and Blake write the samples
+  $s^{(i)}$") is that paper's spelling, not the book's, and is left out; a clause ends at a
+  semicolon, a bracket, a full stop or a blank line.
 
 What a symbol is (the normalisation)
 ------------------------------------
-A piece of maths is cut into symbols; each symbol is a key ``(font, base, label)``:
+A piece of maths is cut into symbols; each is a key ``(font, base, label, decoration)``:
 
-* ``base`` is one Latin letter or one Greek letter command (``\\lambda``, ``\\Phi``; ``\\phi`` and
-  ``\\varphi``, ``\\epsilon`` and ``\\varepsilon``, ``\\theta`` and ``\\vartheta`` are the same
-  letter), or, for an upright multi-letter name (``\\mathrm{IoU}``, ``\\text{NEES}``), the name;
-* ``font`` is how the letter is set: italic (nothing), ``bf`` (``\\mathbf``, ``\\boldsymbol``),
-  ``rm`` (a single upright letter, ``\\mathrm{P}``), ``cal``, ``bb``. ``\\mathbf{x}`` is not ``x``
-  and ``\\mathrm{P}`` is not ``P``;
-* ``label`` is an **upright** subscript or superscript (``\\lambda_{\\mathrm{UT}}``,
-  ``\\eta_\\text{tmpl}``, ``q^\\mathrm{O}``): part of the name, so ``\\lambda_{\\mathrm{UT}}`` is not
-  ``\\lambda``. An **italic** subscript or superscript is an index or an exponent: it is dropped
-  (``x_k`` is ``x``, ``\\mu_j`` is ``\\mu``, ``M_{00}`` is ``M``, ``x^{(i)}`` is ``x``) and its own
-  letters are symbols of the maths in their turn. ``^T``, ``^\\top`` (transpose), ``^*``, ``^+``,
-  ``^-`` and numbers are never symbols;
-* decorations ``\\hat``, ``\\bar``, ``\\tilde``, ``\\check``, ``\\dot``, ``\\ddot``, ``\\overline``,
-  ``\\widehat``, ``\\widetilde`` and primes are kept as a fourth part of the key but fall back to
-  the bare letter: a decorated symbol is on the page if the page lists it decorated, or else if
-  it lists the bare letter (``\\hat x_k`` is covered by ``x``; the page lists ``\\hat y`` on its own
-  row only where the hat means something else than the letter's meaning). Two page rows clash
-  when they list the same full key (decoration included).
+* ``base`` is one Latin letter or one Greek letter command (``\\lambda``, ``\\Phi``, ``\\ell``;
+  ``\\phi``/``\\varphi``, ``\\epsilon``/``\\varepsilon``, ``\\theta``/``\\vartheta`` are one
+  letter), or, for an upright name of two or more letters (``\\mathrm{IoU}``), the name.
+  A run of italic letters is one symbol per letter (``KHP`` is ``K``, ``H``, ``P``);
+* ``font``: italic (``""``), ``bf`` (``\\mathbf``, ``\\boldsymbol``), ``rm`` (an upright
+  letter, ``\\mathrm{P}``), ``cal``, ``bb``. ``\\mathbf{x}``, ``\\mathrm{x}``,
+  ``\\mathcal{X}`` are not ``x``;
+* ``label``: an **upright** subscript or superscript (``\\lambda_{\\mathrm{UT}}``,
+  ``\\eta_\\text{tmpl}``, ``q^\\mathrm{O}``), or an italic one that is a word of three or more
+  letters (``h_{ref}``), is part of the name: ``\\lambda_{\\mathrm{UT}}`` is not ``\\lambda``.
+  Any other script is an index or an exponent: it is dropped (``x_k`` is ``x``, ``M_{00}`` is
+  ``M``, ``x^{(i)}`` is ``x``), and its letters are symbols of the chapter in their turn (the
+  page's own first cells do not count them). ``^T``, ``^\\top``, ``^*``, ``^H``, ``^+``, ``^-``
+  and numbers are not symbols. An upright script on a bracket labels the expression
+  (``p(z \\mid x)_\\mathrm{color}``) and is not a symbol;
+* ``decoration``: ``\\hat``, ``\\bar``, ``\\tilde``, ``\\check``, ``\\dot``, ``\\ddot`` (with
+  ``\\widehat``, ``\\overline``, ``\\widetilde``) and a prime. A decorated symbol is on the page
+  if the page lists it decorated or lists its bare letter (``\\hat x_k`` is covered by ``x``);
+  two rows clash when they list the same full key, decoration included.
+
+Text inside ``\\text{…}`` at the top level (a word in a formula), environment names, tags, the
+functions of ``FUNCTIONS`` and every command that is not a letter (operators, spacing,
+delimiters) are not symbols.
 
 The checks
 ----------
-(a) no key appears in two rows of the page (within a row a symbol may repeat);
-(b) every symbol of every chapter's maths is on the page, except the short allow-list
-    ``FREE`` below (bound indices, dummies, universal constants);
-(c) a hand-made page with a clash, and a chapter with a symbol the page lacks, make (a) and (b)
-    fail, so the checks are seen to bite.
+(a) no key is the symbol of two rows of the page;
+(b) every symbol of a concept chapter's maths is on the page, but for the short allow-list
+    ``FREE`` (running indices and counts, universal constants) and the functions of
+    ``FUNCTIONS``;
+(c) the checks' own checks: a hand-made page with a clash fails (a), a hand-made chapter with
+    a symbol that page lacks fails (b), and the normalisation is pinned on hand-worked cases.
+
+What it cannot see: a letter used in a chapter with a meaning other than its row's. Those
+uses are the page's table of letters with local uses, kept by hand.
 
 Only text is read; nothing is executed.
 """
@@ -56,22 +68,27 @@ PAGE = BOOK / "appendix_notation.md"
 
 
 def chapters() -> list[pathlib.Path]:
-    """The concept chapters and case studies whose maths the page must cover."""
-    return sorted(BOOK.glob("[0-9][0-9]_*.md")) + sorted(BOOK.glob("case_study_*.md"))
+    """The concept chapters, whose maths the page must cover.
+
+    The case studies are not among them: they print the papers' numbered equations in the
+    papers' own letters (the page's last tables give the book's letter for each), and the
+    book's letters in their prose are the concept chapters'.
+    """
+    return sorted(BOOK.glob("[0-9][0-9]_*.md"))
 
 
-#: Letters free in every chapter, with why. Bound indices and dummies: a sum's or a product's
-#: running index and a pixel's or a frame's counter, whose range the sentence gives
-#: (i, j, k, n, t, u as the brief of the page states; m, l are the same kind); e, the base of
-#: the natural logarithm; and the letter d of a differential (\mathrm{d}x).
+#: Letters free in every chapter, with why: running indices and counts whose range the
+#: sentence gives, and universal constants. The page's opening says the same in words.
 FREE = {
     ("", "i", "", ""): "running index (particle, pixel, sample)",
     ("", "j", "", ""): "second running index",
     ("", "k", "", ""): "time step or running index",
+    ("", "l", "", ""): "third running index",
     ("", "n", "", ""): "a count or running index, given where it is used",
     ("", "t", "", ""): "frame number, time",
     ("", "u", "", ""): "histogram bin",
     ("", "e", "", ""): "Euler's number, base of exp",
+    ("", "pi", "", ""): "the constant 3.14159 (an indexed pi is a probability: the page's local letters)",
     ("rm", "d", "", ""): "differential",
     ("rm", "e", "", ""): "Euler's number, upright",
     ("rm", "i", "", ""): "the imaginary unit",
@@ -79,24 +96,7 @@ FREE = {
 }
 
 #: Standard functions written upright, which the page need not list.
-FUNCTIONS = {"atan2", "diag", "tr", "Var", "mean", "median", "DFT", "const", "rank"}
-
-# Commands that are not symbols: operators, functions, spacing, delimiters, relations.
-_NOT_SYMBOLS = set("""
-sum prod int oint sqrt frac tfrac dfrac cfrac binom log ln exp sin cos tan arctan arccos arcsin
-atan2 sinh cosh tanh min max arg argmin argmax det dim sup inf lim mod bmod pmod gcd Pr
-left right big Big bigg Bigg bigl bigr Bigl Bigr biggl biggr middle
-quad qquad textstyle displaystyle scriptstyle limits nolimits
-cdot cdots ldots dots vdots ddots times div pm mp ast star circ bullet odot otimes oplus
-le leq ge geq ne neq approx sim simeq cong equiv propto ll gg in notin subset subseteq cup cap
-setminus emptyset forall exists to mapsto leftarrow rightarrow Leftarrow Rightarrow
-Longrightarrow longrightarrow iff implies gets mid parallel perp nabla partial infty
-lVert rVert lvert rvert Vert vert langle rangle lfloor rfloor lceil rceil
-begin end tag label nonumber notag hline text textrm textit texttt mathrm mathit mathbf
-boldsymbol mathcal mathbb operatorname mathsf hspace vspace
-hat bar tilde check dot ddot overline widehat widetilde underbrace overbrace
-top intercal prime colon lbrace rbrace backslash
-""".split())
+FUNCTIONS = {"atan2", "diag", "tr", "Var", "mean", "median", "DFT", "IDFT", "const", "rank"}
 
 _GREEK = set("""alpha beta gamma delta epsilon varepsilon zeta eta theta vartheta iota kappa
 lambda mu nu xi pi varpi rho varrho sigma varsigma tau upsilon phi varphi chi psi omega
@@ -188,9 +188,10 @@ def symbols(tex: str, scripts: bool = True) -> list[Key]:
             out.append(("", c, "", ""))
             i = _labels(tex, scripts, i + 1, out, len(out) - 1)
         elif c in "_^":
-            # a script after a group or a bracket: its letters are symbols, no key to label
+            # a script after a group or a bracket: an upright one labels the expression
+            # (p(z \mid x)_\mathrm{color}), an italic one holds symbols
             arg, i = _group(tex, i + 1)
-            if scripts:
+            if scripts and not re.match(r"\s*\\(mathrm|text|textrm|operatorname)\b", arg):
                 out += _script_symbols(arg, c)
         else:
             i += 1
@@ -283,7 +284,8 @@ def prose_maths(text: str, papers: bool = False) -> list[str]:
     maths += re.findall(r"\$\$(.+?)\$\$", prose, flags=re.S)
     prose = re.sub(r"\$\$(.+?)\$\$", " ", prose, flags=re.S)
     for m in re.finditer(r"\$((?:[^$\n]|\n(?!\s*\n))+?)\$", prose):   # may wrap a line
-        if papers or not _PAPER_SPELLING.search(_CLAUSE.split(prose[:m.start()])[-1]):
+        before = _CLAUSE.split(prose[max(0, m.start() - 400):m.start()])[-1]
+        if papers or not _PAPER_SPELLING.search(before):
             maths.append(m.group(1))
     return maths
 
@@ -297,16 +299,18 @@ def chapter_symbols(text: str) -> dict[Key, str]:
     return found
 
 
-def page_rows(text: str) -> list[tuple[int, set[Key], str]]:
-    """The page's symbol rows: (line number, the keys of the first cell, the line)."""
+def page_rows(text: str, header: str = "symbol") -> list[tuple[int, set[Key], str]]:
+    """The page's rows under a first header cell ``header``: (line number, the keys of the
+    first cell, the line)."""
     rows, reading = [], False
-    for n, line in enumerate(text.splitlines(), 1):
+    lines = text.splitlines()
+    for n, line in enumerate(lines, 1):
         if not line.startswith("|"):
             reading = False
             continue
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if cells[0].lower() == "symbol":
-            reading = True
+        if n < len(lines) and re.fullmatch(r"\|[-:| ]+\|?", lines[n].strip()):   # a header
+            reading = cells[0].lower() == header
             continue
         if not reading or re.fullmatch(r"[-: ]*", cells[0]):
             continue
@@ -326,7 +330,7 @@ def clashes(text: str) -> list[str]:
     """Check (a): the keys listed in more than one row of the page."""
     seen: dict[Key, int] = {}
     bad = []
-    for n, keys, line in page_rows(text):
+    for n, keys, _line in page_rows(text):
         for key in keys:
             if key in seen:
                 bad.append(f"{_show(key)} on lines {seen[key]} and {n}")
@@ -371,6 +375,15 @@ def test_no_symbol_in_two_rows():
 def test_every_symbol_of_a_chapter_is_on_the_page(path):
     gaps = missing(PAGE.read_text(encoding="utf-8"), path.read_text(encoding="utf-8"))
     assert not gaps, "\n".join(f"{_show(k)}   in ${w}$" for k, w in sorted(gaps.items()))
+
+
+def test_every_letter_with_local_uses_has_its_row():
+    """The table of local uses names letters the page defines: no use hides behind it."""
+    page = PAGE.read_text(encoding="utf-8")
+    local = page_rows(page, "letter")
+    rows = set().union(*(keys for _, keys, _ in page_rows(page)))
+    assert local, "the page has no table of letters with local uses"
+    assert [line for _, keys, line in local if not keys <= rows | set(FREE)] == []
 
 
 # --------------------------------------------------------------------------------------------
@@ -433,6 +446,10 @@ def test_a_missing_symbol_is_caught():
     gaps = missing(_PAGE, chapter)
     # Gamma is on no row; the bar over x falls back to x; kappa is only in a code cell
     assert set(gaps) == {("", "Gamma", "", "")}
+    # a paper's spelling, in a clause that says the paper writes it, is not the book's symbol
+    assert missing(_PAGE, "The state $x$ (Lee et al. write $\\Gamma$; the book $x$).") == {}
+    assert set(missing(_PAGE, "Lee et al. use it; here $\\Gamma$ is new.")) == {
+        ("", "Gamma", "", "")}
     # a bold letter is not the italic one; an upright label makes a new symbol
     assert missing(_PAGE, "$\\mathbf{y}$ and $\\lambda_{\\mathrm{reg}}$") == {
         ("bf", "y", "", ""): "\\mathbf{y}",
