@@ -7,7 +7,7 @@ TEXT = r"""
 Resample the target's ground-truth box on frame 0 and on frame 25 of `robot-corridor-day` to
 16 × 24 patches (`sample_patches(frame, box[None], (16, 24))`). Give each pixel its 8×8×4 HSV
 bin (`hsv_bin_index`), and build the 256-bin histograms of both patches twice: once weighted
-by the kernel $k(r) = 1 - r^2$ (`kernel_weights(24, 16)`), once with every weight 1. Give the
+by the kernel $k(r^2) = 1 - r^2$ (`kernel_weights(24, 16)`), once with every weight 1. Give the
 Bhattacharyya coefficient ρ between frame 0 and frame 25 for both, as
 `(rho_kernel, rho_flat)`. Which of the two matches better, and why?
 --- solution

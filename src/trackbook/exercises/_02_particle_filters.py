@@ -76,32 +76,32 @@ $(0, 2, 2, 3)$.
 
 === 2.6 ★★ pen and paper | Importance weights under a proposal
 Factored sampling draws its samples from the prior $p(x)$. Suppose
-they come from another density, a *proposal* $g(x)$, instead. Show that the weights
+they come from another density, a *proposal* $q(x)$, instead. Show that the weights
 
-$$\pi^{(i)} \propto \frac{p(z \mid s^{(i)})\, p(s^{(i)})}{g(s^{(i)})}$$
+$$w^{(i)} \propto \frac{p(z \mid x^{(i)})\, p(x^{(i)})}{q(x^{(i)})}$$
 
-make the weighted set stand for the posterior, and that they reduce to factored sampling's weights when $g = p$. Then, by hand:
-prior $N(0, 1)$, proposal $N(1, 1)$, a likelihood that is the same everywhere, and the two
-samples $s^{(1)} = 0$, $s^{(2)} = 1$. What are their normalised weights?
+make the weighted set stand for the posterior, and that they reduce to factored sampling's weights when $q = p$. Then, by hand:
+prior $\mathcal{N}(0, 1)$, proposal $\mathcal{N}(1, 1)$, a likelihood that is the same everywhere, and the two
+samples $x^{(1)} = 0$, $x^{(2)} = 1$. What are their normalised weights?
 --- solution
-For any function $f$,
+For any function $\varphi$,
 
-$$\begin{aligned} & E_{p(x \mid z)}[f] \\
-&\quad = \int f(x)\, \frac{p(z \mid x)\, p(x)}{p(z)}\, dx \\
-&\quad = \int f(x)\, \frac{p(z \mid x)\, p(x)}{p(z)\, g(x)}\, g(x)\, dx \\
-&\quad = \frac{1}{p(z)}\, E_g\!\left[f(x)\, \frac{p(z \mid x)\, p(x)}{g(x)}\right], \end{aligned}$$
+$$\begin{aligned} & E_{p(x \mid z)}[\varphi] \\
+&\quad = \int \varphi(x)\, \frac{p(z \mid x)\, p(x)}{p(z)}\, dx \\
+&\quad = \int \varphi(x)\, \frac{p(z \mid x)\, p(x)}{p(z)\, q(x)}\, q(x)\, dx \\
+&\quad = \frac{1}{p(z)}\, E_q\!\left[\varphi(x)\, \frac{p(z \mid x)\, p(x)}{q(x)}\right], \end{aligned}$$
 
-so averaging $f$ over samples of $g$ with weights proportional to $p(z \mid x) p(x) / g(x)$,
+so averaging $\varphi$ over samples of $q$ with weights proportional to $p(z \mid x) p(x) / q(x)$,
 normalised to sum 1, estimates the posterior average (the weights' mean before normalising
-estimates $p(z)$). With $g = p$ the ratio
-$p/g$ is 1 and the weight is the likelihood alone, $\pi^{(i)} \propto p(z \mid s^{(i)})$. In the
+estimates $p(z)$). With $q = p$ the ratio
+$p/q$ is 1 and the weight is the likelihood alone, $w^{(i)} \propto p(z \mid x^{(i)})$. In the
 hand case the likelihood cancels in the normalisation and
-$p(x)/g(x) = e^{-x^2/2} / e^{-(x-1)^2/2}$ $= e^{1/2 - x}$: $e^{1/2}$ for $s^{(1)}$, $e^{-1/2}$ for $s^{(2)}$, so the
+$p(x)/q(x) = e^{-x^2/2} / e^{-(x-1)^2/2}$ $= e^{1/2 - x}$: $e^{1/2}$ for $x^{(1)}$, $e^{-1/2}$ for $x^{(2)}$, so the
 normalised weights are $1/(1 + e^{-1}) \approx 0.731$ and $e^{-1}/(1 + e^{-1}) \approx 0.269$.
 The sample the proposal over-produces ($x = 1$, its mean) is weighed down.
 
 === 2.7 ★★ modify | Systematic resampling is tight
-Systematic resampling uses one random offset $u \sim U[0, 1/N)$ and the $N$ evenly spaced
+Systematic resampling uses one random offset $u \sim \mathcal{U}[0, 1/N)$ and the $N$ evenly spaced
 pointers $u + k/N$. Write `bounds(w, N)` returning, for each particle, the smallest and the
 largest number of copies it can get (two integer arrays), and verify on 300 random weight
 vectors that the copies of `systematic_resample` always lie within your bounds and that the

@@ -7,11 +7,11 @@ TEXT = r"""
 Fit an `IncrementalSVD(K=12, forgetting=0.8)` on the first 4 columns of a 12 × 9 matrix `A4`
 (`np.random.default_rng(1).normal(size=(12, 9))`) with `fit`, then add the remaining 5
 columns one at a time with `partial_fit`. Show that its singular values `S` equal those of
-`A4` with column $j$ multiplied by $f^{\text{age}_j}$, and answer the vector of the 9 ages.
+`A4` with column $j$ multiplied by $\xi^{\text{age}_j}$, and answer the vector of the 9 ages.
 --- solution
-Every `partial_fit` multiplies what is already learned by $f$ once: scaling $\Sigma$ by $f$
-before adding a column scales every older column of $AV$ by $f$, so the SVD of $[fA, b]$ has
-the singular values of $f\Sigma$ augmented by $b$, and so on recursively. The first 4 columns
+Every `partial_fit` multiplies what is already learned by $\xi$ once: scaling $\Sigma$ by $\xi$
+before adding a column scales every older column of $AV$ by $\xi$, so the SVD of $[\xi A, b]$ has
+the singular values of $\xi\Sigma$ augmented by $b$, and so on recursively. The first 4 columns
 saw 5 updates after the fit; column 4 saw 4, …, the last column 0: ages
 $(5, 5, 5, 5, 4, 3, 2, 1, 0)$.
 
@@ -89,40 +89,40 @@ case $U^Tb = 0$ and $\tilde b^Tb = 3$: the middle matrix is diag(2, 3).
 
 === 4.6 ★★★ project | Learn with a different K and measure it
 Lee et al. (2012) print no
-$K$ (their matrices have $n = 40$ columns {quote}`lee2012.window40`, but no number of basis
-vectors is given). Run `color-hog-ipca` with $K$ = 1, 2, 4, 8 and 16 on both sample clips, with the anchor
+$n_\mathrm{b}$ (their matrices have $n = 40$ columns {quote}`lee2012.window40`, but no number of basis
+vectors is given). Run `color-hog-ipca` with $n_\mathrm{b}$ = 1, 2, 4, 8 and 16 on both sample clips, with the anchor
 (the default) and without it (`anchor=0`). Report AUC and tracking rate; then repeat on a few
 of the public sequences with three seeds (`trackbook.evaluate(name, folder, seed=s, K=k)`) and
 say whether the differences exceed the seed-to-seed noise reported in the lab notes. A starting
 point (sample clips, seed 0, with the anchor):
 --- solution
-A good answer has three parts: a table of AUC and tracking rate for every $K$, with and
+A good answer has three parts: a table of AUC and tracking rate for every $n_\mathrm{b}$, with and
 without the anchor, on both clips; a measure of the seed-to-seed noise of the same runs; and a
 verdict for each comparison that weighs a difference against that noise.
 
-The sample clips, seed 0. With the anchor every $K$ tracks the whole day clip (tracking rate
-1.0) and the AUC stays between 0.797 ($K = 2$) and 0.818 ($K = 8$); at night it lies between
-0.287 ($K = 4$) and 0.353 ($K = 16$). Without the anchor the runs swing further: by day from
-0.659 ($K = 8$) to 0.814 ($K = 2$), at night from 0.287 ($K = 4$) to 0.562 ($K = 16$).
+The sample clips, seed 0. With the anchor every $n_\mathrm{b}$ tracks the whole day clip (tracking rate
+1.0) and the AUC stays between 0.797 ($n_\mathrm{b} = 2$) and 0.818 ($n_\mathrm{b} = 8$); at night it lies between
+0.287 ($n_\mathrm{b} = 4$) and 0.353 ($n_\mathrm{b} = 16$). Without the anchor the runs swing further: by day from
+0.659 ($n_\mathrm{b} = 8$) to 0.814 ($n_\mathrm{b} = 2$), at night from 0.287 ($n_\mathrm{b} = 4$) to 0.562 ($n_\mathrm{b} = 16$).
 
-The noise. Seeds 1 and 2 move one configuration as far as $K$ does: at night with the anchor
-and $K = 4$ the AUC is 0.287, 0.456 and 0.295 for seeds 0, 1 and 2, a range of 0.169, wider
-than the range over all five $K$ at seed 0 (0.066); without the anchor $K = 4$ at night gives
+The noise. Seeds 1 and 2 move one configuration as far as $n_\mathrm{b}$ does: at night with the anchor
+and $n_\mathrm{b} = 4$ the AUC is 0.287, 0.456 and 0.295 for seeds 0, 1 and 2, a range of 0.169, wider
+than the range over all five $n_\mathrm{b}$ at seed 0 (0.066); without the anchor $n_\mathrm{b} = 4$ at night gives
 0.287, 0.289 and 0.528.
 
 The public sequences. The committed runs of the {doc}`lab notes <lab_notes_lee2012>` (seven
 sequences, seeds 0–2) hold
-two of these comparisons, paired by sequence and seed: $K = 4$ minus $K = 2$ with the anchor,
-mean AUC difference −0.043, 95 % interval [−0.104, +0.005]; $K = 16$ minus $K = 2$ learning
+two of these comparisons, paired by sequence and seed: $n_\mathrm{b} = 4$ minus $n_\mathrm{b} = 2$ with the anchor,
+mean AUC difference −0.043, 95 % interval [−0.104, +0.005]; $n_\mathrm{b} = 16$ minus $n_\mathrm{b} = 2$ learning
 unchecked, −0.022 [−0.091, +0.033]. Both intervals straddle 0: inconclusive. One sequence's AUC
-moves by up to 0.44 between seeds (Jogging1, with the library's default: anchor 0.7, $K = 2$).
+moves by up to 0.44 between seeds (Jogging1, with the library's default: anchor 0.7, $n_\mathrm{b} = 2$).
 
-The verdict: no $K$ from 1 to 16 is established better than another. The two comparisons
-with a confidence interval are both inconclusive, and $K$ = 1 and 8 were run on the sample
-clips with one seed only, so nothing here shows a better $K$ than the library's $K = 2$, which
-is also cheaper than the larger ones; nor does it show $K = 2$ is the best. A good answer also says why more
-basis vectors need not help. For one set of learned frames the first $K + 1$ singular vectors
-span the first $K$ and one more, so a particle's reconstruction error can only fall as $K$
+The verdict: no $n_\mathrm{b}$ from 1 to 16 is established better than another. The two comparisons
+with a confidence interval are both inconclusive, and $n_\mathrm{b}$ = 1 and 8 were run on the sample
+clips with one seed only, so nothing here shows a better $n_\mathrm{b}$ than the library's $n_\mathrm{b} = 2$, which
+is also cheaper than the larger ones; nor does it show $n_\mathrm{b} = 2$ is the best. A good answer also says why more
+basis vectors need not help. For one set of learned frames the first $n_\mathrm{b} + 1$ singular vectors
+span the first $n_\mathrm{b}$ and one more, so a particle's reconstruction error can only fall as $n_\mathrm{b}$
 grows: the background's as well as the target's, and the subspace term tells them apart less.
 Fewer vectors forget more of how the target varied. Where the balance lies depends on the
 clip, and the runs above cannot resolve it.
@@ -134,7 +134,7 @@ $U = [u_1\ u_2]$. A particle's histogram is $h = (0.25, 0.25, 0.25, 0.25)$.
 (a) Check that $U$ has orthonormal columns. (b) Compute $U^Tz$, the reconstruction $UU^Tz$,
 the residual $z - UU^Tz$ and $D^2 = \lVert z - UU^Tz\rVert^2$. (c) Show that
 $D^2 = \lVert z\rVert^2 - \lVert U^Tz\rVert^2$ for any $z$ and any $U$ with orthonormal
-columns, and use it to check (b). (d) What is $D^2$ with $K = 1$ ($U = u_1$ alone)?
+columns, and use it to check (b). (d) What is $D^2$ with $n_\mathrm{b} = 1$ ($U = u_1$ alone)?
 (e) Compare the two likelihood factors $\exp(-D^2/2\sigma^2)$ for $\sigma = 0.2$.
 --- solution
 (a) $u_1^Tu_1 = 0.64 + 0.36 = 1$, $u_2^Tu_2 = 0.36 + 0.64 = 1$, and $u_1^Tu_2 = 0$ (no bin is
@@ -160,19 +160,19 @@ $D^2 = 0.02$, as in (b).
 the two bins that $u_1$ cannot explain. A second basis vector can only lower the error, never
 raise it.
 
-(e) $2\sigma^2 = 0.08$: $e^{-0.02/0.08} = e^{-0.25} \approx 0.78$ with $K = 2$ and
-$e^{-0.51/0.08} = e^{-6.375} \approx 0.0017$ with $K = 1$. The same particle is a good match
+(e) $2\sigma^2 = 0.08$: $e^{-0.02/0.08} = e^{-0.25} \approx 0.78$ with $n_\mathrm{b} = 2$ and
+$e^{-0.51/0.08} = e^{-6.375} \approx 0.0017$ with $n_\mathrm{b} = 1$. The same particle is a good match
 for the two-vector subspace and a poor one for the one-vector subspace.
 
 === 4.8 ★★ pen and paper | Why the small matrix is enough
 (a) With $A = U\Sigma V^T$ (thin SVD, $V^TV = I$) and one new column $b$, show that
 $[A\ b][A\ b]^T = [U\Sigma\ \ b][U\Sigma\ \ b]^T$, and conclude that $[A\ b]$ and
 $[U\Sigma\ \ b]$ have the same non-zero singular values and their left singular vectors, so
-$V$ is never needed; say what changes with the forgetting factor $f$. (b) Show that
+$V$ is never needed; say what changes with the forgetting factor $\xi$. (b) Show that
 $[U\Sigma\ \ b] = [U\ \tilde b]\,R$ with $\tilde b$ the normalised residual of $b$ and $R$ the
 middle matrix of the update, and why the SVD of $R$ gives an SVD of $[U\Sigma\ \ b]$.
 (c) By hand, in two dimensions: the tracker holds $U = (0.6, 0.8)^T$ and $\Sigma = 5$ and
-forgets with $f = 0.8$; the new column is $b = (6.8, 2.4)^T$. Compute $U^Tb$, the residual,
+forgets with $\xi = 0.8$; the new column is $b = (6.8, 2.4)^T$. Compute $U^Tb$, the residual,
 $\tilde b$, $R$, $\Sigma'$ and $U'$. By how much does the first basis vector turn?
 --- solution
 (a)
@@ -186,7 +186,7 @@ The left singular vectors of a matrix $M$ are the
 eigenvectors of $MM^T$ and its singular values the square roots of the eigenvalues, so two
 matrices with the same $MM^T$ have the same of both (for the non-zero singular values; the
 wider matrix $[A\ b]$ merely has more zero ones). $V$ has dropped out. With forgetting the
-old columns enter as $fA$, whose SVD is $U(f\Sigma)V^T$: use $[fU\Sigma\ \ b]$.
+old columns enter as $\xi A$, whose SVD is $U(\xi\Sigma)V^T$: use $[\xi U\Sigma\ \ b]$.
 
 (b) Split $b = UU^Tb + r$ with the residual $r = b - UU^Tb$ and $\tilde b = r / \lVert r\rVert$,
 so $b = U(U^Tb) + \tilde b(\tilde b^Tb)$ with $\tilde b^Tb = \lVert r\rVert$. Then
@@ -199,7 +199,7 @@ With $R = \tilde U\tilde\Sigma\tilde V^T$, $[U\Sigma\ \ b] = ([U\ \tilde b]\tild
 $\tilde U$ is orthogonal, so $U' = [U\ \tilde b]\tilde U$ has orthonormal columns: this is an
 SVD, with $\Sigma' = \tilde\Sigma$.
 
-(c) $f\Sigma = 4$. $U^Tb = 0.6 \cdot 6.8 + 0.8 \cdot 2.4 = 4.08 + 1.92 = 6$; the residual is
+(c) $\xi\Sigma = 4$. $U^Tb = 0.6 \cdot 6.8 + 0.8 \cdot 2.4 = 4.08 + 1.92 = 6$; the residual is
 $b - 6U = (6.8 - 3.6,\ 2.4 - 4.8)^T = (3.2, -2.4)^T$ with norm 4, so
 $\tilde b = (0.8, -0.6)^T$ and $\tilde b^Tb = 4$:
 

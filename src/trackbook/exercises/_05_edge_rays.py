@@ -83,10 +83,10 @@ same call without the option. Expect no gain: the Ratio mixes size with edge den
 texture changes. The lab notes report the same on the seven sequences.
 
 === 5.7 ★ pen and paper | Condensation's contour likelihood
-Condensation's likelihood with $\sigma = 3$ and the cap $\mu = 10$: hypothesis A has four
-normals, three with the nearest edge at 1, 2 and 4 px and one with no edge within $\mu$;
+Condensation's likelihood with $\sigma = 3$ and the cap $\nu_{\max} = 10$: hypothesis A has four
+normals, three with the nearest edge at 1, 2 and 4 px and one with no edge within $\nu_{\max}$;
 hypothesis B has all four at 3 px. Compute both log-likelihoods (up to the common constant).
-Which is more likely, and what would A's missing edge do without the cap $\mu$?
+Which is more likely, and what would A's missing edge do without the cap $\nu_{\max}$?
 --- solution
 A: $-(1 + 4 + 16 + 100)/18 = -121/18 \approx -6.72$; B: $-(4 \cdot 9)/18 = -2$. B is
 $e^{85/18} \approx e^{4.7}$, about 110 times more likely: one missing edge costs A more than its three close
@@ -158,11 +158,11 @@ has $M = 4$ points on its left and right sides, whose normals are horizontal; th
 $x$ is the box shifted sideways by $d$ pixels, which moves every point by $d$ along its normal.
 Measured from the unshifted points, the nearest edge on each normal lies at the offsets
 $e = (1, 2, -1, 2)$ px, and for every shift considered ($|d| \le 3$) it stays the nearest edge
-and within $\mu$, so $\nu_m = |e_m - d|$. (a) Write $\log p(z \mid x)$ as a function of $d$
+and within $\nu_{\max}$, so $\nu_m = |e_m - d|$. (a) Write $\log p(z \mid x)$ as a function of $d$
 and show that it is largest at the mean offset $\bar e$. (b) Show that $p(z \mid x)$, as a
 function of $d$, is a Gaussian bell with variance $\sigma^2/M$: what are its centre and its
 standard deviation? (c) Three particles sit at $d = 0, 1, 2$: compute their normalised
-weights. (d) If the third normal had no edge within $\mu$ of any of these shifts, where would
+weights. (d) If the third normal had no edge within $\nu_{\max}$ of any of these shifts, where would
 the likelihood peak, and how wide would it be?
 --- solution
 (a) $\log p = -\frac{1}{18}\sum_m (e_m - d)^2 + \text{const}$. Writing
@@ -184,7 +184,7 @@ the largest, the weights are proportional to $e^{-4/18} \approx 0.801$, 1 and 0.
 normalised $0.801/2.601 \approx 0.308$, $1/2.601 \approx 0.384$ and 0.308. The weighted mean
 of the three is $d = 1$ by symmetry.
 
-(d) The third normal contributes $\min(\nu_3^2, \mu^2) = \mu^2 = 100$ for every $d$: a
+(d) The third normal contributes $\min(\nu_3^2, \nu_{\max}^2) = \nu_{\max}^2 = 100$ for every $d$: a
 constant factor $e^{-100/18}$ that lowers every hypothesis alike and drops out of the normalised
 weights. The other three normals decide: the peak moves to their mean, $(1 + 2 + 2)/3 = 5/3
 \approx 1.67$ px, and the variance grows to $\sigma^2/3 = 3$ (standard deviation

@@ -4,13 +4,13 @@ STEM = "07_region_covariance"
 
 TEXT = r"""
 === 7.1 ★ use | Förstner's distance by hand
-Compute $d_F(C_1, C_2) = \sqrt{\sum_i \ln^2 \lambda_i(C_1, C_2)}$ (eq. 5 of Lee 2015) for
+Compute $d_\mathrm{F}(C_1, C_2) = \sqrt{\sum_i \ln^2 \lambda_i(C_1, C_2)}$ (eq. 5 of Lee 2015) for
 $C_1 = \mathrm{diag}(1, 4)$ and $C_2 = \mathrm{diag}(4, 1)$, where $\lambda_i$ are the
 generalised eigenvalues ($\det(\lambda C_1 - C_2) = 0$, eq. 6), then check it with
 `forstner_distance`. Answer the number.
 --- solution
 $C_1^{-1} C_2 = \mathrm{diag}(4, 1/4)$: $\lambda = 4$ and $1/4$, $\ln^2\lambda = (\ln 4)^2$
-twice, so $d_F = \sqrt 2 \ln 4 \approx 1.96$.
+twice, so $d_\mathrm{F} = \sqrt 2 \ln 4 \approx 1.96$.
 
 === 7.2 ★ use | Counting windows
 How many 24 × 24 windows does a 320 × 240 frame hold at stride 1, and at stride 4 (windows
@@ -24,23 +24,23 @@ $(\lfloor 296/4 \rfloor + 1)(\lfloor 216/4 \rfloor + 1) = 75 \cdot 55 = 4125$.
 Convert frame 0 of `red-cube` to grey floats
 (`cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(float)`, no clipping at 255) and take the
 covariance of the ground-truth box (`covariance_of_box(g, box)`, features
-$x, y, I, |I_x|, |I_y|$). Give $d_F$ (`forstner_distance(..., eps=0)`) between it and the same
+$x, y, I, |I_x|, |I_y|$). Give $d_\mathrm{F}$ (`forstner_distance(..., eps=0)`) between it and the same
 box after a brightness shift $I \mapsto I + 40$, and after a contrast change
 $I \mapsto 1.5\,I$. Answer `(d_shift, d_contrast)`. Why is one of them 0 and the other not,
-although $d_F$ is invariant to any congruence $C \mapsto A C A^T$? What happens with real uint8
+although $d_\mathrm{F}$ is invariant to any congruence $C \mapsto A C A^T$? What happens with real uint8
 frames, where bright pixels clip at 255?
 --- hint
 Which matrix $A$ turns $C$ into the contrast-changed covariance $A C A^T$? What does the
-congruence invariance of $d_F$ say, and what does it not say?
+congruence invariance of $d_\mathrm{F}$ say, and what does it not say?
 --- solution
 The shift cancels in the covariance (eq. 4 subtracts the mean) and the gradients do not see
-it: $d_F = 0$. The contrast change multiplies $I, |I_x|, |I_y|$ by 1.5, i.e.
-$C \mapsto ACA^T$ with $A = \mathrm{diag}(1, 1, 1.5, 1.5, 1.5)$. $d_F$ is invariant when both
+it: $d_\mathrm{F} = 0$. The contrast change multiplies $I, |I_x|, |I_y|$ by 1.5, i.e.
+$C \mapsto ACA^T$ with $A = \mathrm{diag}(1, 1, 1.5, 1.5, 1.5)$. $d_\mathrm{F}$ is invariant when both
 matrices get the same $A$ (two windows of the same changed frame keep their distance,
-exercise 7.8), but $d_F(C, ACA^T)$ is not 0: a model stored before the change does not match
+exercise 7.8), but $d_\mathrm{F}(C, ACA^T)$ is not 0: a model stored before the change does not match
 the changed target exactly, because the $x, y$ rows did not scale while the others did. With
 uint8 frames the pixels that clip at 255 do not move with the rest: the shift no longer
-cancels (on this box $d_F$ is about 0.3 instead of 0), and a contrast change is no longer a
+cancels (on this box $d_\mathrm{F}$ is about 0.3 instead of 0), and a contrast change is no longer a
 congruence, so two windows of the changed frame no longer keep their distance.
 
 === 7.4 ★★ modify | Small q or large q?
@@ -54,7 +54,7 @@ never does, but pays in every frame: how many candidate windows does it evaluate
 by hand)? Answer `(q, first_frame, candidates)`.
 --- solution
 $q = 0.01$: a tiny window (±4 px, 81 candidates) and a confident velocity; the acceleration at
-frame 139 leaves it, $d_F$ jumps, and the manoeuvre window is searched. $q = 100$: a ±48 px
+frame 139 leaves it, $d_\mathrm{F}$ jumps, and the manoeuvre window is searched. $q = 100$: a ±48 px
 window in every frame, $(2 \cdot 48 + 1)^2 = 9409$ candidates, never a second search.
 
 === 7.5 ★★ modify | The manoeuvre window
@@ -77,7 +77,7 @@ $3\sqrt{69.61} \approx 25.0$ px, the position gain $68.61/69.61 \approx 0.986$ a
 velocity gain $66.37/69.61 \approx 0.953$: the update moves the velocity estimate almost all
 the way to what the measurement implies. On `yellow-ball` the tracker uses the manoeuvre
 window at frames 24, 66 and 105, once per bounce, one or two frames after the true ball turns
-(23, 64 and 103). The second window is searched only when the best $d_F$ of the ordinary
+(23, 64 and 103). The second window is searched only when the best $d_\mathrm{F}$ of the ordinary
 window exceeds three times its recent median; after the second and third turns the first
 frame predicted into the ground stays just under that gate, and the jump comes a frame later.
 
@@ -101,7 +101,7 @@ numbers. The appendix's solution cell writes it out.
 Neither covariance tracker changes the size of its window; David and MotorRolling, the two
 public sequences on which both score lowest (the {doc}`case study <case_study_lee2015>`),
 are annotated with scale variation (among much else). Around each frame's best window,
-evaluate the same centre at scales 0.9, 1.0 and 1.1 and keep the smallest $d_F$. Beware: the
+evaluate the same centre at scales 0.9, 1.0 and 1.1 and keep the smallest $d_\mathrm{F}$. Beware: the
 $x, y$ features are pixel coordinates, so a larger window has a larger $x$-variance even for
 the same object — divide the $x, y$ rows and columns of $C$ by the scale (a congruence
 $A C A^T$ with $A = \mathrm{diag}(1/s, 1/s, 1, 1, 1)$) before comparing. Measure the IoU with
@@ -115,19 +115,19 @@ neither: the targets there keep their size, and a free choice in every frame let
 drift (each choice starts from the last one). On `red-cube` the mean IoU falls from about
 0.92 to below 0.6, on `yellow-ball` it stays close to its fixed-size value (about 0.83). A
 useful version needs a prior that keeps the size (penalise changes, or accept a new scale
-only when $d_F$ improves clearly) and sequences that do change scale, such as David; the
+only when $d_\mathrm{F}$ improves clearly) and sequences that do change scale, such as David; the
 chapter's hidden solution cell is the code.
 
 === 7.8 ★★ pen and paper | Why d_F ignores a common change of coordinates
-Show that $d_F(AC_1A^T, AC_2A^T) = d_F(C_1, C_2)$ for every invertible $A$, from the
+Show that $d_\mathrm{F}(AC_1A^T, AC_2A^T) = d_\mathrm{F}(C_1, C_2)$ for every invertible $A$, from the
 definition of the generalised eigenvalues (eq. 6). Then say why it does not follow that
-$d_F(C, ACA^T) = 0$, and compute $d_F(C, ACA^T)$ by hand for $C = I_2$ and
+$d_\mathrm{F}(C, ACA^T) = 0$, and compute $d_\mathrm{F}(C, ACA^T)$ by hand for $C = I_2$ and
 $A = \mathrm{diag}(1, 2)$.
 --- solution
 $\det(\lambda AC_1A^T - AC_2A^T)$ $= \det(A)\det(\lambda C_1 - C_2)\det(A^T)$
 $= \det(A)^2\det(\lambda C_1 - C_2)$, and $\det(A) \ne 0$: both matrix pairs have the same
-generalised eigenvalues, hence the same $d_F$. The invariance needs the same $A$ on both
-sides; $d_F(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
+generalised eigenvalues, hence the same $d_\mathrm{F}$. The invariance needs the same $A$ on both
+sides; $d_\mathrm{F}(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
 $ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_F = \sqrt{0 + \ln^2 4} = \ln 4 \approx
 1.39$.
 
@@ -182,11 +182,11 @@ costs $4 \cdot 20 = 80$ look-ups, whatever its size.
 === 7.10 ★★ pen and paper | Symmetric, and zero only for equal matrices
 Let $C_i$ and $C_j$ be symmetric positive definite $d \times d$ matrices and $\lambda_k$ the
 generalised eigenvalues of eq. 6, $\lambda_k C_i x_k = C_j x_k$; eq. 5 is
-$d_F(C_i, C_j) = \sqrt{\sum_k \ln^2 \lambda_k}$. (a) Show that the $\lambda_k$ are the
+$d_\mathrm{F}(C_i, C_j) = \sqrt{\sum_k \ln^2 \lambda_k}$. (a) Show that the $\lambda_k$ are the
 eigenvalues of the whitened matrix $\tilde C = C_i^{-1/2} C_j C_i^{-1/2}$, and hence real
-and positive, so that the logarithms exist. (b) Show that $d_F(C_j, C_i) = d_F(C_i, C_j)$.
-(c) Show that $d_F(C_i, C_j) = 0$ only when $C_i = C_j$. (d) By hand: $d_F(I_2, C)$ for
-$C = \begin{bmatrix} 2 & 1\\ 1 & 2 \end{bmatrix}$, and $d_F(C, sC)$ for any symmetric
+and positive, so that the logarithms exist. (b) Show that $d_\mathrm{F}(C_j, C_i) = d_\mathrm{F}(C_i, C_j)$.
+(c) Show that $d_\mathrm{F}(C_i, C_j) = 0$ only when $C_i = C_j$. (d) By hand: $d_\mathrm{F}(I_2, C)$ for
+$C = \begin{bmatrix} 2 & 1\\ 1 & 2 \end{bmatrix}$, and $d_\mathrm{F}(C, sC)$ for any symmetric
 positive definite $C$ of size $d$ and any $s > 0$; give the number for $d = 5$, $s = 2$.
 --- solution
 (a) $C_i = Q_i \Lambda_i Q_i^T$ with $Q_i$ orthogonal and the eigenvalues in $\Lambda_i$
@@ -206,17 +206,17 @@ eigenvectors of $\tilde C$, are linearly independent, so the $1/\lambda_k$ are a
 eigenvalues of the swapped pair. $\ln^2(1/\lambda_k) = (-\ln \lambda_k)^2 = \ln^2 \lambda_k$:
 the sum of eq. 5 does not change.
 
-(c) $d_F = 0$ forces every $\ln \lambda_k = 0$, that is every $\lambda_k = 1$. The symmetric
+(c) $d_\mathrm{F} = 0$ forces every $\ln \lambda_k = 0$, that is every $\lambda_k = 1$. The symmetric
 $\tilde C$ is $Q \Lambda Q^T$ with $Q$ orthogonal and $\Lambda$ the diagonal of its
 eigenvalues; $\Lambda = I$ gives $\tilde C = QQ^T = I$, and then
 $C_j = C_i^{1/2} \tilde C C_i^{1/2} = C_i$. Conversely $C_i = C_j$ gives $\tilde C = I$, all
-$\lambda_k = 1$ and $d_F = 0$.
+$\lambda_k = 1$ and $d_\mathrm{F} = 0$.
 
 (d) With $C_i = I_2$, $\tilde C = C$: $\det(\lambda I - C) = (\lambda - 2)^2 - 1 = 0$ gives
-$\lambda = 1$ and $\lambda = 3$, so $d_F = \sqrt{0 + \ln^2 3} = \ln 3 \approx 1.10$. For
+$\lambda = 1$ and $\lambda = 3$, so $d_\mathrm{F} = \sqrt{0 + \ln^2 3} = \ln 3 \approx 1.10$. For
 $sC$: $\lambda C x = s C x$ gives $\lambda = s$, $d$ times, so
-$d_F(C, sC) = \sqrt{d}\,|\ln s|$ whatever $C$ is; for $d = 5$, $s = 2$ that is
-$\sqrt 5 \ln 2 \approx 1.55$, and $d_F(C, C/2)$ is the same. The Frobenius distance
+$d_\mathrm{F}(C, sC) = \sqrt{d}\,|\ln s|$ whatever $C$ is; for $d = 5$, $s = 2$ that is
+$\sqrt 5 \ln 2 \approx 1.55$, and $d_\mathrm{F}(C, C/2)$ is the same. The Frobenius distance
 $\lVert C - sC \rVert_F = |1 - s|\,\lVert C \rVert_F$ instead grows with the size of $C$'s
 entries.
 """

@@ -42,13 +42,13 @@ no orientation, and the angle CamShift reports for it is whatever the noise make
 
 === 13.3 ★ pen and paper | The window's side from $M_{00}$
 A square target of side $d$ px sits inside the search window. (a) Every one of its pixels has
-$b = 255$: what side $L = 2\sqrt{M_{00}/256}$ does the next window get, for $d = 20$?
+$b = 255$: what side $w_\mathrm{win} = 2\sqrt{M_{00}/256}$ does the next window get, for $d = 20$?
 (b) The light changes and the target's pixels now fall in a bin of the histogram worth 128:
 what side now? (c) What does (b) say about a target whose colours are only partly in the
 histogram?
 --- solution
-(a) $M_{00} = 255\,d^2$, so $L = 2\sqrt{255/256}\,d \approx 2d$: $L = 39.9 \approx 40$ px for
-$d = 20$, twice the target's side. (b) $M_{00} = 128\,d^2$ and $L = 2\sqrt{128/256}\,d =
+(a) $M_{00} = 255\,d^2$, so $w_\mathrm{win} = 2\sqrt{255/256}\,d \approx 2d$: $w_\mathrm{win} = 39.9 \approx 40$ px for
+$d = 20$, twice the target's side. (b) $M_{00} = 128\,d^2$ and $w_\mathrm{win} = 2\sqrt{128/256}\,d =
 \sqrt 2\, d = 28.3$ px. (c) The rule reads $M_{00}$ as a count of "full" pixels: a target
 whose back-projection is weak looks smaller than it is, and the window shrinks around it (a
 target whose colours are common in the background looks larger, and the window grows).

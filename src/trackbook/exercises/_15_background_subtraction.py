@@ -8,7 +8,7 @@ STEM = "15_background_subtraction"
 TEXT = r"""
 === 15.1 ★ pen and paper | When does a stopped object become background?
 A pixel has seen only the floor: one component of weight 1. A box is put down on it and stays.
-With the learning rate $\eta = 0.005$, $c_f = 0.1$ and no complexity prior ($c_T = 0$), for
+With the learning rate $\eta = 0.005$, $c_\mathrm{f} = 0.1$ and no complexity prior ($c_\mathrm{T} = 0$), for
 how many frames, counting the frame the box arrives, is the pixel foreground? And with
 $\eta = 1/500$, the rate OpenCV settles on with its default `history` of 500 frames?
 --- hint
@@ -18,29 +18,29 @@ test, which looks at the weight in front of the box's component.
 --- solution
 On the $k$-th frame after the arrival ($k = 0$ the arrival) the floor's weight in front of the
 box's component is $(1 - \eta)^{k + 1}$, and the box's value is background once it is below
-$1 - c_f = 0.9$. The pixel is foreground for the frames $k$ with $(1 - \eta)^{k + 1} \ge 0.9$,
+$1 - c_\mathrm{f} = 0.9$. The pixel is foreground for the frames $k$ with $(1 - \eta)^{k + 1} \ge 0.9$,
 that is $k + 1 \le \ln 0.9 / \ln(1 - \eta)$. For $\eta = 0.005$:
 $\ln 0.9 / \ln 0.995 = 0.10536 / 0.0050125 = 21.02$, so $k = 0, \dots, 20$: **21 frames**,
-close to $c_f / \eta = 20$. For $\eta = 0.002$: $0.10536 / 0.0020020 = 52.6$, **52 frames**
+close to $c_\mathrm{f} / \eta = 20$. For $\eta = 0.002$: $0.10536 / 0.0020020 = 52.6$, **52 frames**
 (about two seconds at 25 frames a second).
 
 === 15.2 ★ pen and paper | The match test on given numbers
 One grey pixel has three components, sorted by weight: $(\pi, \mu, \sigma^2) = (0.7, 100, 16)$,
-$(0.25, 125, 16)$ and $(0.05, 200, 50)$. The new value is $I_t = 120$. With $T_g = 9$,
-$T_b = 16$, $c_f = 0.1$, $c_T = 0$ and $\eta = 0.01$: which component owns the value, is the
+$(0.25, 125, 16)$ and $(0.05, 200, 50)$. The new value is $I_t = 120$. With $T_\mathrm{g} = 9$,
+$T_\mathrm{b} = 16$, $c_\mathrm{f} = 0.1$, $c_\mathrm{T} = 0$ and $\eta = 0.01$: which component owns the value, is the
 pixel background, and what are the three weights and the owner's mean and variance after the
 update?
 --- solution
 The squared distances are $d^2 = 20^2 / 16 = 25$, $5^2 / 16 = 1.5625$ and $80^2 / 50 = 128$.
-Ownership needs $d^2 < T_g = 9$: the first component fails (25), the second owns the value.
+Ownership needs $d^2 < T_\mathrm{g} = 9$: the first component fails (25), the second owns the value.
 The weights decay to $0.693, 0.2475, 0.0495$. The background test checks the components up
-to the owner: the first is in front of nothing but $d^2 = 25 > T_b = 16$; the second has
+to the owner: the first is in front of nothing but $d^2 = 25 > T_\mathrm{b} = 16$; the second has
 $0.693 < 0.9$ in front of it and $1.5625 < 16$: **background**. The owner gains $\eta$:
 $\pi_2 = 0.2575$, so its step is $\eta / \pi_2 = 0.038835$;
 $\mu_2 = 125 + 0.038835 \cdot (120 - 125) = 124.806$ and
 $\sigma_2^2 = 16 + 0.038835 \cdot (\lVert \delta_2 \rVert^2 - 16)
 = 16 + 0.038835 \cdot (5^2 - 16) = 16.350$. The weights $0.693, 0.2575, 0.0495$
-already sum to 1, as they must with $c_T = 0$.
+already sum to 1, as they must with $c_\mathrm{T} = 0$.
 
 === 15.3 ★ pen and paper | The running average's memory
 The running mean $\mu_t = (1 - \eta)\,\mu_{t-1} + \eta\, I_t$ is a weighted sum of the past
@@ -59,12 +59,12 @@ $2 / \eta$ frames.
 === 15.4 ★★★ implement | One update of one pixel's mixture
 Write `mog_step(x, w, mu, var, eta)` for one grey pixel: `w`, `mu`, `var` are arrays of the
 components in use, sorted by weight (heaviest first); return `(background, w, mu, var)` after
-one frame, sorted by weight again. Use $T_g = 9$, $T_b = 16$, $c_f = 0.1$, $c_T = 0$, at most
+one frame, sorted by weight again. Use $T_\mathrm{g} = 9$, $T_\mathrm{b} = 16$, $c_\mathrm{f} = 0.1$, $c_\mathrm{T} = 0$, at most
 $M = 5$ components, $\sigma_0^2 = 15$ for a new one and variances clamped to $[4, 75]$. The
 order: decay every weight, $\pi_m \leftarrow (1 - \eta)\pi_m$; the owner is the first
-component with $d_m^2 < T_g$; the value is background if one of the components up to the
-owner (all of them when none owns it) has $d_m^2 < T_b$ and the decayed weights in front of
-it sum to less than $1 - c_f$; the owner gains $\eta$ and moves its mean and variance with
+component with $d_m^2 < T_\mathrm{g}$; the value is background if one of the components up to the
+owner (all of them when none owns it) has $d_m^2 < T_\mathrm{b}$ and the decayed weights in front of
+it sum to less than $1 - c_\mathrm{f}$; the owner gains $\eta$ and moves its mean and variance with
 the step $\eta / \pi_m$ (its new weight); the weights are divided by their sum. With no owner,
 a new component $(\eta, I_t, \sigma_0^2)$ is added (over the lightest when all $M$ are in use)
 after the others are scaled by $(1 - \eta)$. The check uses the numbers of exercise 15.2
@@ -77,7 +77,7 @@ the first index with `d2 < 9`, test the background on the cumulative decayed wei
 each one's own (the weight in front of it), update the owner, normalise, append or replace,
 and sort with `np.argsort(-w, kind="stable")`.
 
-=== 15.5 ★ use | The threshold $T_b$ and the false alarms
+=== 15.5 ★ use | The threshold $T_\mathrm{b}$ and the false alarms
 Make 60 frames of a static 60 × 80 colour image with Gaussian noise of standard deviation
 $s = 3$ on every channel, run `MixtureOfGaussians(learning_rate=0.02, var_threshold=T)` for
 $T$ = 4, 9, 16 and 25, and measure the share of pixels marked foreground in the last 20
@@ -93,7 +93,7 @@ the measured frames it still adds between a tenth and a quarter of $s^2$ to the 
 $I_t - \mu_m$ on every channel, and the tail of that wider distribution is heavier. Run the
 same model for 150 frames and the share over the last 20 falls to the predicted 0.007. At
 $T = 9$ about four pixel-frames in $10^5$ are flagged (above the tail too, for the same
-reason); from $T = 16$ on none. OpenCV's default $T_b = 16$ leaves a wide margin on clean noise; real cameras add
+reason); from $T = 16$ on none. OpenCV's default $T_\mathrm{b} = 16$ leaves a wide margin on clean noise; real cameras add
 compression artefacts and flicker, hence the floor $\sigma^2_{\min}$ on every variance.
 
 === 15.6 ★★ modify | The minimum area and the shadow

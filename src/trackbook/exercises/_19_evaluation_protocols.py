@@ -47,7 +47,7 @@ bottom-right $(40, 30, 22, 11)$. Scalings keep the centre: 0.8 gives $(42, 31, 1
 gives $(41, 30.5, 18, 9)$, 1.1 gives $(39, 29.5, 22, 11)$, 1.2 gives $(38, 29, 24, 12)$.
 
 === 19.4 ★ pen and paper | Where TRE starts
-A clip has $L = 50$ frames, every ground-truth box known. With $M = 5$ starts and segments of
+A clip has $T_\mathrm{clip} = 50$ frames, every ground-truth box known. With $M = 5$ starts and segments of
 at least 20 frames, which frames does TRE start on? Use the rule of `protocols.tre_starts`
 and check your answer with it.
 --- solution

@@ -7,26 +7,26 @@ STEM = "20_correlation_filters_ii"
 
 TEXT = r"""
 === 20.1 ★ pen and paper | The scale filter from its ridge regression
-The scale filter sees one training sample: $C$ feature channels $f^c$, each a signal of $S$
+The scale filter sees one training sample: $n_\mathrm{c}$ feature channels $x^c$, each a signal of $n_\mathrm{s}$
 values over the scales, and the desired output $g$ over the scales. Its filter $h$ minimises
-$E(h) = \lVert \sum_c h^c \star f^c - g \rVert^2 + \lambda \sum_c \lVert h^c \rVert^2$
+$\mathcal{E}(h) = \lVert \sum_c h^c \star x^c - g \rVert^2 + \lambda_\mathrm{r} \sum_c \lVert h^c \rVert^2$
 over all cyclic shifts along the scale axis. Show that, frequency by frequency,
-$H^c = \bar G F^c / (\sum_k \bar F^k F^k + \lambda)$. Then: with DSST's $S = 33$ and
+$\hat h^c = \hat g^* \hat x^c / (\sum_k \hat x^{k*} \hat x^k + \lambda_\mathrm{r})$. Then: with DSST's $n_\mathrm{s} = 33$ and
 $a = 1.02$, what are the smallest and largest relative sizes one frame can test?
 --- hint
-By Parseval, $E(h)$ splits into one small problem per frequency. In each, the data are
-the single row $\mathbf f = (F^1, \dots, F^C)$; invert $\mathbf f^H \mathbf f + \lambda I$ with
+By Parseval, $\mathcal{E}(h)$ splits into one small problem per frequency. In each, the data are
+the single row $\hat{\mathbf x} = (\hat x^1, \dots, \hat x^{n_\mathrm{c}})$; invert $\hat{\mathbf x}^H \hat{\mathbf x} + \lambda_\mathrm{r} I$ with
 Sherman–Morrison.
 --- solution
-The correlation $h^c \star f^c$ has the DFT $\bar H^c F^c$, so by Parseval (unnormalised
-DFTs, a factor $1/S$ on both terms, which does not move the minimiser) each frequency
-contributes $|\sum_c \bar H^c F^c - G|^2 + \lambda \sum_c |H^c|^2$ on its own. Write
-$\mathbf u = (\bar H^1, \dots, \bar H^C)^T$ and $\mathbf f = (F^1, \dots, F^C)$, a row: the term
-is $|\mathbf f \mathbf u - G|^2 + \lambda \lVert \mathbf u \rVert^2$, a ridge regression with
-one equation, whose minimiser solves $(\mathbf f^H \mathbf f + \lambda I)\mathbf u =
-\mathbf f^H G$. Sherman–Morrison gives $(\mathbf f^H \mathbf f + \lambda I)^{-1}\mathbf f^H =
-\mathbf f^H / (\mathbf f \mathbf f^H + \lambda)$, so $\bar H^c = \bar F^c G / (\sum_k |F^k|^2 +
-\lambda)$; conjugating, $H^c = \bar G F^c / (\sum_k \bar F^k F^k + \lambda)$. One division per
+The correlation $h^c \star x^c$ has the DFT $\hat h^{c*} \hat x^c$, so by Parseval (unnormalised
+DFTs, a factor $1/n_\mathrm{s}$ on both terms, which does not move the minimiser) each frequency
+contributes $|\sum_c \hat h^{c*} \hat x^c - \hat g|^2 + \lambda_\mathrm{r} \sum_c |\hat h^c|^2$ on its own. Write
+$\hat{\mathbf h}^* = (\hat h^{1*}, \dots, \hat h^{n_\mathrm{c}*})^T$ and $\hat{\mathbf x} = (\hat x^1, \dots, \hat x^{n_\mathrm{c}})$, a row: the term
+is $|\hat{\mathbf x} \hat{\mathbf h}^* - \hat g|^2 + \lambda_\mathrm{r} \lVert \hat{\mathbf h}^* \rVert^2$, a ridge regression with
+one equation, whose minimiser solves $(\hat{\mathbf x}^H \hat{\mathbf x} + \lambda_\mathrm{r} I)\hat{\mathbf h}^* =
+\hat{\mathbf x}^H \hat g$. Sherman–Morrison gives $(\hat{\mathbf x}^H \hat{\mathbf x} + \lambda_\mathrm{r} I)^{-1}\hat{\mathbf x}^H =
+\hat{\mathbf x}^H / (\hat{\mathbf x} \hat{\mathbf x}^H + \lambda_\mathrm{r})$, so $\hat h^{c*} = \hat x^{c*} \hat g / (\sum_k |\hat x^k|^2 +
+\lambda_\mathrm{r})$; conjugating, $\hat h^c = \hat g^* \hat x^c / (\sum_k \hat x^{k*} \hat x^k + \lambda_\mathrm{r})$. One division per
 frequency and channel, and one denominator shared by all channels.
 
 The exponents run from $-16$ to $16$: the sizes are $1.02^{-16} \approx 0.728$ to
@@ -34,9 +34,9 @@ $1.02^{16} \approx 1.373$ times the current one.
 
 === 20.2 ★ pen and paper | Merging two responses by hand
 Along one row of the search area, Staple's template response is
-$f_\text{tmpl} = (0.2, 0.9, 0.4, 0.1)$ and its histogram response
-$f_\text{hist} = (0.3, 0.4, 0.8, 0.9)$. Where is the peak of the merged response
-$(1 - \gamma_\text{hist}) f_\text{tmpl} + \gamma_\text{hist} f_\text{hist}$ for Staple's
+$g_\text{tmpl} = (0.2, 0.9, 0.4, 0.1)$ and its histogram response
+$g_\text{hist} = (0.3, 0.4, 0.8, 0.9)$. Where is the peak of the merged response
+$(1 - \gamma_\text{hist}) g_\text{tmpl} + \gamma_\text{hist} g_\text{hist}$ for Staple's
 $\gamma_\text{hist} = 0.3$? For which values of $\gamma_\text{hist}$ does each position hold
 the peak?
 --- solution
@@ -50,30 +50,30 @@ $\gamma > 3/4$. In between, the merge picks position 2, which neither learner ra
 compromise, where both scores are fairly high.
 
 === 20.3 ★ pen and paper | One Sherman–Morrison step
-BACF's $\hat g$-step solves, at each frequency ($n$ the window's cells), $(\mathbf x \mathbf x^H + n\mu I)\,\mathbf g =
-\mathbf b$ for a $C$-vector $\mathbf g$. Show that $\mathbf g = \bigl(\mathbf b - \mathbf x\,
-(\mathbf x^H \mathbf b)/(n\mu + \mathbf x^H \mathbf x)\bigr)/(n\mu)$. Then compute $\mathbf g$
-for $C = 2$, $\mathbf x = (1, 2)^T$, $n\mu = 1$ and $\mathbf b = (1, 0)^T$, once by this formula
+BACF's $\hat h_\mathrm{pad}$-step solves, at each frequency ($n$ the window's cells), $(\mathbf x \mathbf x^H + n\mu I)\,\mathbf h_\mathrm{pad} =
+\mathbf b$ for an $n_\mathrm{c}$-vector $\mathbf h_\mathrm{pad}$. Show that $\mathbf h_\mathrm{pad} = \bigl(\mathbf b - \mathbf x\,
+(\mathbf x^H \mathbf b)/(n\mu + \mathbf x^H \mathbf x)\bigr)/(n\mu)$. Then compute $\mathbf h_\mathrm{pad}$
+for $n_\mathrm{c} = 2$, $\mathbf x = (1, 2)^T$, $n\mu = 1$ and $\mathbf b = (1, 0)^T$, once by this formula
 and once by inverting the $2 \times 2$ matrix.
 --- solution
 Sherman–Morrison: $(A + \mathbf u \mathbf v^H)^{-1} = A^{-1} - A^{-1}\mathbf u \mathbf v^H
 A^{-1} / (1 + \mathbf v^H A^{-1} \mathbf u)$. With $A = n\mu I$ and $\mathbf u = \mathbf v =
 \mathbf x$: $(\mathbf x \mathbf x^H + n\mu I)^{-1} = \frac{1}{n\mu}\bigl(I - \mathbf x
 \mathbf x^H / (n\mu + \mathbf x^H \mathbf x)\bigr)$; apply it to $\mathbf b$. Here
-$\mathbf x^H \mathbf b = 1$ and $\mathbf x^H \mathbf x = 5$, so $\mathbf g = (1, 0) -
+$\mathbf x^H \mathbf b = 1$ and $\mathbf x^H \mathbf x = 5$, so $\mathbf h_\mathrm{pad} = (1, 0) -
 (1, 2)/6 = (5/6, -1/3)$. Directly: $\mathbf x \mathbf x^T + I = \begin{pmatrix} 2 & 2 \\ 2 & 5
 \end{pmatrix}$, whose inverse is $\frac16 \begin{pmatrix} 5 & -2 \\ -2 & 2 \end{pmatrix}$; its
-first column is $(5/6, -1/3)$. The formula costs $O(C)$ per frequency instead of a $C \times C$
+first column is $(5/6, -1/3)$. The formula costs $O(n_\mathrm{c})$ per frequency instead of an $n_\mathrm{c} \times n_\mathrm{c}$
 solve.
 
 === 20.4 ★★★ implement | Staple's histogram response and the merge
 Write `merged(tmpl, beta, box, gamma)`. `beta` is an $H \times W$ map of per-pixel object
 scores, `box = (h, w)` the target's size in pixels, `tmpl` the template response on the
 $(H - h + 1) \times (W - w + 1)$ placements of the box. Return
-$(1 - \gamma)\,f_\text{tmpl} + \gamma\, f_\text{hist}$, where $f_\text{hist}[i, j]$ is the mean of
+$(1 - \gamma_\text{hist})\,g_\text{tmpl} + \gamma_\text{hist}\, g_\text{hist}$, where $g_\text{hist}[i, j]$ is the mean of
 `beta` over rows $i \dots i + h - 1$ and columns $j \dots j + w - 1$, computed from an integral
 image (no loop over placements). Worked by hand: for `beta` the $3 \times 3$ identity,
-`box = (2, 2)`, `tmpl = [[0, 1], [0, 0]]` and $\gamma = 0.5$ the box means are
+`box = (2, 2)`, `tmpl = [[0, 1], [0, 0]]` and $\gamma_\text{hist} = 0.5$ the box means are
 $\begin{pmatrix} 0.5 & 0.25 \\ 0.25 & 0.5 \end{pmatrix}$ and the answer is
 `[[0.25, 0.625], [0.125, 0.25]]`.
 --- hint
