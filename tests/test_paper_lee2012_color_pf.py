@@ -46,7 +46,7 @@ def test_paper_preset_builds_the_printed_method():
 def test_departures_table_lists_exactly_the_departures():
     table = viz.departures_table("color-pf")
     lines = table.splitlines()
-    assert lines[0] == "| param | paper | book | why |"
+    assert lines[0] == "| parameter | paper | book | why |"
     rows = {line.split("|")[1].strip() for line in lines[2:]}
     assert rows == {r["param"] for r in trackers.departures("color-pf")}
     assert {"sigma_color", "init", "min_size"} <= rows

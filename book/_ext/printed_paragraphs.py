@@ -41,7 +41,8 @@ def numbers(text: str) -> int:
 def _is_array(block: str) -> bool:
     """An array's repr or a Markdown table: not running text."""
     lines = [ln for ln in block.splitlines() if ln.strip()]
-    return bool(lines) and (all(_ARRAY_LINE.match(ln) for ln in lines)
+    # an array's repr has brackets; a bare line of numbers (print(a, b, c, d)) is text
+    return bool(lines) and ((all(_ARRAY_LINE.match(ln) for ln in lines) and "[" in block)
                             or all(ln.lstrip().startswith("|") for ln in lines))
 
 
@@ -51,10 +52,15 @@ def paragraphs(cell) -> list[str]:
     source = "".join(cell.get("source", ""))
     if tags & HIDDEN or "exercises.show(" in source:
         return []
-    found = []
+    found, streams = [], {}
     for out in cell.get("outputs", []):
         if out.get("output_type") == "stream":
-            texts = [out.get("text", "")]
+            # one text per stream: a log line on stderr between two prints must not split
+            # what stdout prints into separate paragraphs
+            text = out.get("text", "")
+            streams[out.get("name")] = streams.get(out.get("name"), "") + (
+                "".join(text) if isinstance(text, list) else text)
+            continue
         elif out.get("output_type") in ("execute_result", "display_data"):
             data = out.get("data", {})
             if "text/html" in data or "image/png" in data or "image/svg+xml" in data:
@@ -64,9 +70,14 @@ def paragraphs(cell) -> list[str]:
             continue
         for text in texts:
             text = _ANSI.sub("", "".join(text) if isinstance(text, list) else text)
-            found += [b.strip() for b in re.split(r"\n\s*\n", text)
-                      if b.strip() and not _is_array(b)]
+            found += _blocks(text)
+    for text in streams.values():
+        found += _blocks(_ANSI.sub("", text))
     return found
+
+
+def _blocks(text: str) -> list[str]:
+    return [b.strip() for b in re.split(r"\n\s*\n", text) if b.strip() and not _is_array(b)]
 
 
 def offenders(notebook) -> list[tuple[int, str]]:

@@ -6,7 +6,8 @@ TEXT = r"""
 === 9.1 ★ use | Another measure
 Run `compare.check_claims(rows, metric="precision20")` on the book
 defaults (`rows = [r for r in results.load("claims") if
-r["preset"] == "book"]`). Which verdicts change compared with the AUC? In what is the
+r["preset"] == "book"]`). Which verdicts change compared with the AUC's (on the page
+{doc}`The four papers' claims, checked <case_studies_compared>`)? In what is the
 precision at 20 px closer to the AUC than to the tracking rate?
 --- solution
 Two of the seven change, both from inconclusive: Kim et al.'s `hog-pf > hsi-color-pf` fails and
@@ -39,7 +40,8 @@ ranking can flip with the seed. Compare particle filters over several seeds (and
 report the spread, before calling one better.
 
 === 9.4 ★★ modify | Which interval?
-Re-run the claims check with a 90 % and a 99 % interval
+Re-run the claims check of {doc}`The four papers' claims, checked <case_studies_compared>`
+with a 90 % and a 99 % interval
 (`level=0.90`, `level=0.99`). Which verdicts move? Why is a wider interval "more cautious"?
 --- solution
 With the book's defaults and the AUC all seven verdicts are inconclusive at 95 %. At 90 % two
@@ -87,7 +89,8 @@ $rN$ frames are successes, one of them frame 1: $(rN - 1)/(N - 1)$.
 Download a handful of OTB sequences, point the
 library at them (`clips.load_dataset`), run the trackers of
 one paper with both presets over three seeds, and write up its claim with intervals as
-this chapter does. Does it hold on sequences neither the paper nor this book was tuned on?
+{doc}`The four papers' claims, checked <case_studies_compared>` does. Does it hold on
+sequences neither the paper nor this book was tuned on?
 --- solution
 No single number is right here: the answer depends on the sequences chosen. A good write-up
 has five parts; the model below takes the claim the book tests for Lee et al. (2012),
@@ -110,7 +113,7 @@ way.
 3. **The verdicts.** `compare.check_claims(rows, metric=m,
    papers={"lee2012": PAPERS["lee2012"]})` for each preset and each measure (`"auc"`,
    `"tracking_rate"`): a table of the mean paired difference, its 95 % interval over
-   sequences and the verdict, as this chapter's, with the per-sequence paired differences
+   sequences and the verdict, as on that page, with the per-sequence paired differences
    drawn (one dot per seed) so that a reader sees whether one sequence makes the mean.
 4. **The comparison with the development sequences.** There, `color-hog-pf > color-pf` by AUC
    is $+0.04$ $[-0.05, +0.14]$, inconclusive, with the book's defaults and $-0.10$

@@ -10,7 +10,7 @@ from .._markdown import table
 def departures_table(name, params=None) -> str:
     """The book's departures from the paper for tracker ``name``, as a Markdown table.
 
-    Columns param | paper | book | why, one row per field whose default is the book's choice
+    Columns parameter | paper | book | why, one row per field whose default is the book's choice
     (``trackers.departures(name)``): the printed value (or "not printed"), the book's default
     and one line on why (without the quote references it carries in the source). A printed value that is the
     book's reading of an ambiguous passage (``trackbook.quotes.fields``) is marked "(a
@@ -29,7 +29,7 @@ def departures_table(name, params=None) -> str:
     # shows the passages themselves
     drop = re.compile(r"\s*" + TEXT_REFERENCE.pattern)
     rows = [{**r, "why": drop.sub("", str(r["why"]))} for r in rows]
-    lines = [table(rows, ["param", "paper", "book", "why"])]
+    lines = [table(rows, ["param", "paper", "book", "why"], labels={"param": "parameter"})]
     if not rows:
         lines.append(f"| – | – | – | every default of `{name}` is the printed value |")
     return "\n".join(lines)
