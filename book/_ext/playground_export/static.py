@@ -7,7 +7,8 @@ knob values: seed ``s0``'s boxes and state, and the spread over the seeds) and e
 clip's frames is one file ``tbpg-<hash>.js`` that calls ``window.tbPlaygroundRegister(name,
 data)``. A ``<script>`` tag loads it, which works from ``file://`` and over http alike (a
 ``fetch`` of a local file does not). The files are written to :func:`store` (``files/``), and
-The book's ``sphinx_playground`` extension (``book/_ext``) copies those a page names into the book's ``_static``.
+the book's ``sphinx_playground`` extension copies those a page names into the book's
+``_static``.
 
 The runs go to worker processes (two, spawned) and are kept on disk under :func:`store`
 (``runs/``), keyed by the tracker's code (:func:`trackbook.evaluation.runs.code_fingerprint`),

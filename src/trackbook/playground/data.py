@@ -306,8 +306,8 @@ _PAIR_SAMPLES = [(0.95, 1.05), (0.9, 1.1), (0.8, 1.2), (0.7, 1.4), (0.5, 2.0)]
 
 
 def sample_values(spec: dict, k: int = 5) -> list:
-    """A few values of a knob around its default, within the field's range: what the HTML
-    book precomputes (Jupyter takes any value)."""
+    """A few values of a knob around its default, within the field's range: the stops the
+    knob offers (the HTML book's pages precompute a few of them; Jupyter takes any value)."""
     d = spec["default"]
     kind = spec["kind"]
     if kind == "choice":
