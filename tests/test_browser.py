@@ -244,8 +244,8 @@ def test_korean_quote_drawn_with_the_shipped_font(browser, server, scheme):
 def static_page(tmp_path_factory):
     """One small playground's static page (as the book shows it: its run and frame files
     copied beside it by the Sphinx extension), without a book build."""
-    from trackbook.playground.export import STATIC_BASE, static_html
-    from trackbook.playground.static import OUT_ENV
+    from playground_export.export import STATIC_BASE, static_html
+    from playground_export.static import OUT_ENV
     from sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
@@ -313,8 +313,8 @@ def test_static_playground_ships_the_widget_module(static_page):
 def cf_page(tmp_path_factory):
     """A correlation filter's playground (and mean-shift's, which has no response) as the book
     shows it, without a book build."""
-    from trackbook.playground.export import STATIC_BASE, static_html
-    from trackbook.playground.static import OUT_ENV
+    from playground_export.export import STATIC_BASE, static_html
+    from playground_export.static import OUT_ENV
     from sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
@@ -459,17 +459,16 @@ window.__setRun = (r) => { run = r; v.update(); };
 def test_book_animation_loads_its_frames_and_runs_from_files(browser, tmp_path, monkeypatch):
     """In the book build an animation's inline runs and frames become files beside the page
     (its HTML stays small), and the viewer draws and steps through them as before."""
-    from trackbook.playground import BOOK_ENV
-    from trackbook.playground.animations import kalman_ball
-    from trackbook.playground.export import STATIC_BASE
-    from trackbook.playground.static import OUT_ENV
+    from playground_export import page_bundle
+    from playground_export.export import STATIC_BASE
+    from playground_export.static import OUT_ENV
     from sphinx_playground import STATIC_DIR, copy_files
+    from trackbook.playground.animations import kalman_ball
 
     monkeypatch.setenv(OUT_ENV, str(tmp_path / "store"))
-    monkeypatch.setenv(BOOK_ENV, "1")
     a = kalman_ball(n_frames=40)
     inline = len(json.dumps(a.static_data))
-    body = a._repr_mimebundle_()["text/html"]
+    body = page_bundle(a)[0]["text/html"]       # as a chapter's kernel in the build shows it
     assert '"runs"' not in body and "data:image/png" not in body
     assert len(body) < inline / 3 and len(body) < 60_000
     site = tmp_path / "site"

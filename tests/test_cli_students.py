@@ -325,7 +325,9 @@ def test_install_story_in_pyproject_and_readme():
     meta = tomllib.loads((root / "pyproject.toml").read_text())
     assert any(d.replace(" ", "").startswith("jupyterlab>=4")
                for d in meta["project"]["optional-dependencies"]["book"])
-    assert "_book/*.md" in meta["tool"]["setuptools"]["package-data"]["trackbook"]
+    # the chapters ship inside the package: book/ installed as the package trackbook._book
+    assert meta["tool"]["setuptools"]["package-data"]["trackbook._book"] == ["*.md"]
+    assert '"trackbook._book": "book"' in (root / "setup.py").read_text()
     readme = (root / "README.md").read_text()
     plain = readme.index("pip install -e .  ")
     assert plain < readme.index('pip install -e ".[book]"')

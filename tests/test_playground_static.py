@@ -1,5 +1,5 @@
 """The HTML book's playgrounds: which knob values are precomputed, the spread over seeds, the
-run files the page loads on demand (trackbook.playground.static)."""
+run files the page loads on demand (``book/_ext/playground_export``)."""
 import dataclasses
 import json
 import math
@@ -10,10 +10,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from playground_export import export as E  # from book/_ext (tests/conftest.py)
+from playground_export import static as S
+
 from trackbook import params as P
 from trackbook import trackers
 from trackbook.playground import data as D
-from trackbook.playground import static as S
 
 #: every playground of the book: tracker -> the knobs its chapter declares
 BOOK_KNOBS = {
@@ -49,8 +51,8 @@ def test_samples_hold_the_default_and_the_paper_value(tracker):
     preset = trackers.create(tracker, preset="paper").params
     for name in BOOK_KNOBS[tracker]:
         spec = D.knob_spec(cls, name)
-        paper = D.paper_sample(cls, name)
-        s = D.static_samples(spec, paper)
+        paper = E.paper_sample(cls, name)
+        s = E.static_samples(spec, paper)
         assert spec["default"] in s, f"{tracker}.{name}: default {spec['default']} not in {s}"
         printed = _printed(cls, name)
         if printed is not None:       # what the paper prints is what its preset runs
@@ -67,24 +69,24 @@ def test_the_chapters_central_values_are_stops():
     'off' (0: kalman-covariance, the paper's method) that the case study of Lee (2015) asks the
     reader to set on the book's variant."""
     pf = trackers.get("color-pf")
-    assert {0.2, 0.4} <= set(D.static_samples(D.knob_spec(pf, "sigma_color"),
-                                              D.paper_sample(pf, "sigma_color")))
+    assert {0.2, 0.4} <= set(E.static_samples(D.knob_spec(pf, "sigma_color"),
+                                              E.paper_sample(pf, "sigma_color")))
     kc = trackers.get("kalman-covariance-manoeuvre")
-    assert D.paper_sample(kc, "manoeuvre_gate") == 0.0
-    assert 0.0 in D.static_samples(D.knob_spec(kc, "manoeuvre_gate"), 0.0)
+    assert E.paper_sample(kc, "manoeuvre_gate") == 0.0
+    assert 0.0 in E.static_samples(D.knob_spec(kc, "manoeuvre_gate"), 0.0)
     # a particle count the paper does not print (a reading) is not "the paper's value"
-    assert D.paper_sample(trackers.get("hsi-color-pf"), "n_particles") is None
+    assert E.paper_sample(trackers.get("hsi-color-pf"), "n_particles") is None
 
 
 def test_static_samples_by_hand():
     spec = {"name": "q", "kind": "float", "lo": 0.0, "hi": 8.0, "step": 0.5, "default": 4.0}
-    assert D.static_samples(spec) == [2.0, 4.0, 6.0]          # nearest below and above
-    assert D.static_samples(spec, paper=8.0) == [2.0, 4.0, 8.0]   # paper + one other
-    assert D.static_samples(spec, paper=4.0) == [2.0, 4.0, 6.0]
+    assert E.static_samples(spec) == [2.0, 4.0, 6.0]          # nearest below and above
+    assert E.static_samples(spec, paper=8.0) == [2.0, 4.0, 8.0]   # paper + one other
+    assert E.static_samples(spec, paper=4.0) == [2.0, 4.0, 6.0]
     edge = {**spec, "default": 0.0}
-    assert D.static_samples(edge) == [0.0, 2.0, 4.0]          # nothing below: two above
+    assert E.static_samples(edge) == [0.0, 2.0, 4.0]          # nothing below: two above
     choice = {"name": "m", "kind": "choice", "choices": ["a", "b", "c"], "default": "b"}
-    assert D.static_samples(choice, "c") == ["a", "b", "c"]
+    assert E.static_samples(choice, "c") == ["a", "b", "c"]
 
 
 def _slow_band(ious):
@@ -103,7 +105,7 @@ def _slow_band(ious):
        st.booleans())
 def test_seed_band_is_min_and_max_over_seeds(ious, det):
     aucs = [float(np.mean([v for v in i if v is not None] or [0])) for i in ious]
-    s = D.seed_summary(list(range(len(ious))), ious, aucs, det)
+    s = S.seed_summary(list(range(len(ious))), ious, aucs, det)
     lo, hi = _slow_band(ious)
     r = lambda v: None if v is None else round(v, 3)   # noqa: E731  the payload's rounding
     assert s["iou_lo"] == [r(v) for v in lo] and s["iou_hi"] == [r(v) for v in hi]
@@ -113,7 +115,7 @@ def test_seed_band_is_min_and_max_over_seeds(ious, det):
 
 def test_seed_summary_refuses_mismatched_lists():
     with pytest.raises(ValueError, match="one IoU list and one AUC per seed"):
-        D.seed_summary([0, 1], [[0.5]], [0.5, 0.4], False)
+        S.seed_summary([0, 1], [[0.5]], [0.5, 0.4], False)
 
 
 def test_spread_line():

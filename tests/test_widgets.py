@@ -7,10 +7,11 @@ import shutil
 
 import numpy as np
 import pytest
+from playground_export import export, page_bundle, static  # book/_ext (tests/conftest.py)
+from playground_export.static import OUT_ENV
 
 from trackbook.params import param
-from trackbook.playground import VIEWER_JS, export, static
-from trackbook.playground.static import OUT_ENV
+from trackbook.playground import VIEWER_JS
 from trackbook.playground.data import MAX_PARTICLES, knob_spec, sample_values
 from trackbook.trackers import registry
 from trackbook.trackers.base import Tracker
@@ -140,9 +141,8 @@ def test_widget_module_is_the_file_the_book_ships(registered, tiny_folder, monke
                     samples={"speed": [0.0, 8.0]})
     assert pg._esm == VIEWER_JS.read_text(encoding="utf-8")
     assert "application/vnd.jupyter.widget-view+json" in pg._repr_mimebundle_()[0]
-    pg.static_page = True               # as a chapter of the book's build makes it
     monkeypatch.setattr(static, "WORKERS", 1)
-    bundle = pg._repr_mimebundle_()
+    bundle, _ = page_bundle(pg)         # as a chapter's kernel in the book's build shows it
     html = bundle["text/html"]
     assert html.startswith('<div class="tb-playground"') and "<noscript><img" in html
     assert pg._esm.replace("</script", "<\\/script") in html
@@ -210,7 +210,7 @@ def test_playground_rejects_unknown_tracker(tiny_folder):  # noqa: F811
 
 @pytest.mark.parametrize("make", ["sir_cycle", "kalman_ball", "mean_shift_climb",
                                   "subspace_drift"])
-def test_animations_use_the_viewer(make, monkeypatch):
+def test_animations_use_the_viewer(make, monkeypatch, tmp_path):
     from trackbook.playground import animations
 
     kw = {"kalman_ball": {"n_frames": 8}, "subspace_drift": {"n_frames": 12},
@@ -231,8 +231,8 @@ def test_animations_use_the_viewer(make, monkeypatch):
     if make == "mean_shift_climb":   # an accepted mean-shift step never lowers rho (eq. 13)
         rho = run["curve"]["values"]
         assert all(b >= a - 1e-4 for a, b in zip(rho, rho[1:])) and rho[-1] > rho[0]
-    a.static_page = True
-    assert a._repr_mimebundle_()["text/html"].startswith('<div class="tb-playground"')
+    monkeypatch.setenv(OUT_ENV, str(tmp_path))
+    assert page_bundle(a)[0]["text/html"].startswith('<div class="tb-playground"')
 
 
 def test_the_viewer_takes_its_colours_from_python(monkeypatch, tmp_path):

@@ -61,19 +61,20 @@ def execute(page: str):
 
 def book_environment() -> None:
     """What the book's Sphinx extension sets for the kernels it starts (``sphinx_playground``):
-    the playgrounds display as the HTML book's pages and write their run files where the
-    build copies them from. Their runs are computed in the page's own kernel here (the
-    pages already run one per core). Each kernel also checks every figure it shows
-    (``figure_check.py``: tracker colours, legends clear of the data)."""
-    from trackbook.playground.export import BOOK_ENV
-    from trackbook.playground.static import BACKGROUND_ENV, OUT_ENV
-
-    os.environ[BOOK_ENV] = "1"
-    # every figure of every page is checked as it is shown (figure_check.py)
+    the playgrounds display as the HTML book's pages (``playground_export``) and write their
+    run files where the build copies them from. Their runs are computed in the page's own
+    kernel here (the pages already run one per core). Each kernel also checks every figure it
+    shows (``figure_check.py``: tracker colours, legends clear of the data)."""
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     import figure_check
+    from playground_export import add_startup
+    from playground_export.static import BACKGROUND_ENV, OUT_ENV
     from sphinx_playground import store_dir
-    os.environ["IPYTHONDIR"] = str(figure_check.ipython_dir(ROOT / "_build" / ".kernel"))
+
+    # every figure of every page is checked as it is shown (figure_check.py), and every
+    # playground and animation is shown as the book's page (playground_export)
+    os.environ["IPYTHONDIR"] = str(add_startup(
+        figure_check.ipython_dir(ROOT / "_build" / ".kernel")))
     os.environ[figure_check.ALTS_ENV] = str(ROOT / "_build" / ".figure_alts")
     os.environ[OUT_ENV] = str(store_dir(ROOT / "_build" / "html"))
     os.environ.pop(BACKGROUND_ENV, None)

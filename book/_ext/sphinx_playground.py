@@ -1,15 +1,15 @@
 """Sphinx extension: the HTML book's playgrounds live, with no kernel and no network.
 
-* Sets ``TRACKBOOK_BOOK_BUILD=1`` before the chapters execute (the kernels inherit the
-  environment, the one way to reach them), so a :class:`trackbook.playground.Playground` or
-  animation made there defaults to ``static_page=True`` and displays the page
-  :mod:`trackbook.playground.export` writes, and
-  ``TRACKBOOK_PLAYGROUND_DIR`` to ``<build dir>/.playground``: there the chapters' kernels
-  write the playgrounds' run files and frame files (``files/``) and keep computed runs
-  (``runs/``), so a rebuild reuses every run whose tracker code, clip and values did not change
-  (:mod:`trackbook.playground.static`). With ``TRACKBOOK_PLAYGROUND_BACKGROUND=1`` a page's
-  runs are computed by a background process while the next pages execute (one such process
-  at a time, two workers); the extension waits for them when the build ends.
+* Points ``IPYTHONDIR`` at a folder whose startup file installs :mod:`playground_export` in
+  every kernel that executes a chapter (the kernels inherit the environment, the one way to
+  reach them), so a :class:`trackbook.playground.Playground` or animation displayed there is
+  the page :mod:`playground_export.export` writes; and sets ``TRACKBOOK_PLAYGROUND_DIR`` to
+  ``<build dir>/.playground``: there the chapters' kernels write the playgrounds' run files and
+  frame files (``files/``) and keep computed runs (``runs/``), so a rebuild reuses every run
+  whose tracker code, clip and values did not change (:mod:`playground_export.static`). With
+  ``TRACKBOOK_PLAYGROUND_BACKGROUND=1`` a page's runs are computed by a background process
+  while the next pages execute (one such process at a time, two workers); the extension waits
+  for them when the build ends.
 * Writes, into each page, the page's path to ``_static/playground/`` (where the viewer finds
   the files), and at the end copies there every file a page names; figures get
   ``loading="lazy"`` (they load as the reader scrolls to them).
@@ -29,9 +29,10 @@ import re
 import shutil
 from pathlib import Path
 
+from playground_export import add_startup
+from playground_export.export import STATIC_BASE
+from playground_export.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 from trackbook.playground.data import VIEWER_CSS, VIEWER_JS
-from trackbook.playground.export import BOOK_ENV, STATIC_BASE
-from trackbook.playground.static import BACKGROUND_ENV, OUT_ENV, PREFIX, wait_background
 
 #: the folder of the built book that holds the playgrounds' files
 STATIC_DIR = "_static/playground"
@@ -104,7 +105,8 @@ def _finished(app, exception):
 
 
 def setup(app):
-    os.environ[BOOK_ENV] = "1"
+    # every kernel Jupyter Book starts for a chapter displays the playgrounds as pages
+    os.environ["IPYTHONDIR"] = str(add_startup(store_dir(app.outdir) / "ipython"))
     os.environ.setdefault(OUT_ENV, str(store_dir(app.outdir)))
     os.environ[BACKGROUND_ENV] = "1"   # a page's runs compute while the next pages execute
     app.connect("config-inited", _configure, priority=900)

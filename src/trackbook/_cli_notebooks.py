@@ -20,8 +20,9 @@ def _chapters(book: Path) -> list[Path]:
 
 def find_book(book=None) -> Path:
     """The folder of the book's chapters: ``--book`` if given; else ``./book``; else the
-    chapters installed with the package (``trackbook/_book``, or the repository's ``book/``
-    beside ``src/`` in an editable install)."""
+    chapters installed with the package (``trackbook/_book``, where an installed copy holds
+    the repository's ``book/``, or that ``book/`` itself beside ``src/`` in an editable
+    install)."""
     if book is not None:
         return Path(book)
     here = Path(__file__).resolve().parent

@@ -18,7 +18,6 @@ from ..style import EST_COLOR, GT_COLOR, bgr
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
 from .data import VIEWER_CSS, VIEWER_JS
-from .export import book_build, page_html
 
 GT_BGR = bgr(GT_COLOR)
 EST_BGR = bgr(EST_COLOR)
@@ -63,19 +62,17 @@ def run_entry(label, boxes, *, captions=None, curve=None, curve_label="", curve_
 class Animation(anywidget.AnyWidget):
     """A step-by-step view: ``images`` (BGR arrays), ``index`` (step -> image), ``runs``
     (``{label: run_entry(...)}``, a choice when several), ``gt`` per step (optional);
-    ``static_page`` displays it as the HTML book's page (default: whether this is a chapter of
-    the book's build, :func:`~trackbook.playground.export.book_build`); ``still`` is the step
-    drawn as the still picture for print and pages without JavaScript (default: the middle)."""
+    ``still`` is the step drawn as the still picture (:meth:`still_png`) for print and pages
+    without JavaScript (default: the middle)."""
 
     _esm = T.Unicode(VIEWER_JS.read_text(encoding="utf-8")).tag(sync=True)
     _css = T.Unicode(VIEWER_CSS.read_text(encoding="utf-8")).tag(sync=True)
     static_data = T.Dict().tag(sync=True)
 
     def __init__(self, name, images, runs: dict, index=None, gt=None, note="",
-                 static_page: bool | None = None, still: int | None = None, **kwargs):
+                 still: int | None = None, **kwargs):
         super().__init__(**kwargs)
         self._still = None if still is None else int(still)   # the step of the still picture
-        self.static_page = book_build() if static_page is None else bool(static_page)
         h, w = np.asarray(images[0]).shape[:2]
         n = len(next(iter(runs.values()))["boxes"])
         clip = {"name": name, "w": int(w), "h": int(h), "frames": [D.jpeg(i) for i in images],
@@ -94,9 +91,10 @@ class Animation(anywidget.AnyWidget):
             "runs": {f"{name}|{k}|": {**v, "clip": name} for k, v in runs.items()},
             "initial": {"clip": name, "tracker": labels[0]}, "note": note}
 
-    def _png(self) -> bytes:
-        """The middle step as a still picture (print / no JavaScript), with its particles
-        drawn as the viewer draws them (a dot per particle, larger the heavier)."""
+    def still_png(self) -> bytes:
+        """Step ``still`` (default: the middle one) as a PNG picture for print and pages
+        without JavaScript, its particles drawn as the viewer draws them (a dot per
+        particle, larger the heavier)."""
         images, index, gt, run = self._png_src
         i = len(run["boxes"]) // 2 if self._still is None else self._still
         img = np.array(images[index[i] if index is not None else i])
@@ -114,16 +112,6 @@ class Animation(anywidget.AnyWidget):
                 x, y, w, h = (int(round(v)) for v in b)
                 cv2.rectangle(img, (x, y), (x + w, y + h), col, 2)
         return cv2.imencode(".png", img)[1].tobytes()
-
-    def static_html(self, files: bool = False) -> str:
-        """The animation as a page fragment (``files``: its runs and frames as files beside
-        the page, as the book's pages have them)."""
-        return page_html(self.static_data, self._png(), "one step of the animation", files)
-
-    def _repr_mimebundle_(self, **kwargs):
-        if self.static_page:
-            return {"text/plain": "Animation", "text/html": self.static_html(files=True)}
-        return super()._repr_mimebundle_(**kwargs)
 
     def show(self):
         from IPython.display import display

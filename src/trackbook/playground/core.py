@@ -10,7 +10,8 @@ In Jupyter the panel is an `anywidget <https://anywidget.dev>`_ widget: a knob c
 the tracker in the kernel and sends only boxes and state, first up to the frame on screen, then
 the rest of the clip in chunks that leave the kernel free (``live.py``); the frames travel
 once as JPEG, so a frame step costs no Python. The HTML book shows the same panel as a page
-with every run precomputed: :mod:`trackbook.playground.export`.
+with every run precomputed; the book's build makes that page from the panel
+(``book/_ext/playground_export``), so this class holds no page code.
 """
 
 from __future__ import annotations
@@ -26,7 +27,6 @@ from .. import clips as _clips
 from .. import trackers as _trackers
 from ..style import VIEWER as VIEWER_COLORS
 from . import data as D
-from . import export
 from .data import VIEWER_CSS, VIEWER_JS
 from .live import LiveRun, running_loop, stream
 
@@ -81,9 +81,6 @@ class Playground(anywidget.AnyWidget):
     samples : ``{knob: [values]}``, the values the HTML book precomputes (default: a few around
         the default within the field's range, see :func:`trackbook.playground.data.sample_values`)
     box : (x, y, w, h) on the first frame, for a clip without ground truth
-    static_page : display as the HTML book's page (every run precomputed,
-        :mod:`trackbook.playground.export`) instead of the live widget; default: whether
-        this is a chapter of the book's build (:func:`~trackbook.playground.export.book_build`)
 
     Examples
     --------
@@ -108,7 +105,7 @@ class Playground(anywidget.AnyWidget):
     frame = T.Int(0).tag(sync=True)
 
     def __init__(self, clips, trackers, params=(), n_frames=None, seed=0, values=None,
-                 samples=None, box=None, static_page: bool | None = None, **kwargs):
+                 samples=None, box=None, **kwargs):
         clips = [clips] if isinstance(clips, (str, os.PathLike)) else list(clips)
         trackers = [trackers] if isinstance(trackers, str) else list(trackers)
         if not clips or not trackers:
@@ -134,7 +131,6 @@ class Playground(anywidget.AnyWidget):
             D.parse_values(t, {k: v for k, v in (values or {}).items() if k in fields})
         self.n_frames = n_frames
         self.seed = seed
-        self.static_page = export.book_build() if static_page is None else bool(static_page)
         self._initial = dict(values or {})
         self.samples = dict(samples or {})
         self.clip_objects = {}
@@ -362,12 +358,6 @@ class Playground(anywidget.AnyWidget):
         """Display the panel (the live widget in Jupyter, the precomputed page in the book)."""
         from IPython.display import display
         display(self)
-
-    def _repr_mimebundle_(self, **kwargs):
-        if self.static_page:
-            return {"text/plain": f"Playground({self.tracker} on {self.clip})",
-                    "text/html": export.static_html(self, files=True)}
-        return super()._repr_mimebundle_(**kwargs)
 
     # -- what the HTML book's exporter reads ---------------------------------------------
     def reuse(self, runs: dict) -> "Playground":

@@ -268,29 +268,6 @@ def result_payload(r, clip, values: dict, states: list, n: int | None = None,
                    states[:nb] if len(states) >= nb else [{}] + states, n_total)
 
 
-def seed_summary(seeds, ious, aucs, deterministic: bool) -> dict:
-    """The ``seeds`` entry of a run payload: per frame the least and the greatest IoU over
-    the seeds' runs (``None`` where no seed has one), and each seed's AUC.
-
-    ``ious`` holds one IoU list per seed (``None`` entries for frames without ground truth);
-    ``deterministic`` says the boxes were found identical for two seeds, so one run stands
-    for every seed."""
-    seeds, aucs = [int(s) for s in seeds], [float(a) for a in aucs]
-    if not (len(seeds) == len(ious) == len(aucs)) or not seeds:
-        raise ValueError(f"seed_summary needs one IoU list and one AUC per seed; got "
-                         f"{len(seeds)} seeds, {len(ious)} IoU lists, {len(aucs)} AUCs.")
-    n = max(len(i) for i in ious)
-    a = np.full((len(ious), n), np.nan)
-    for k, v in enumerate(ious):
-        a[k, :len(v)] = [np.nan if x is None else x for x in v]
-    seen = np.isfinite(a).any(axis=0)
-    lo = np.where(seen, np.nanmin(np.where(np.isfinite(a), a, np.inf), axis=0), np.nan)
-    hi = np.where(seen, np.nanmax(np.where(np.isfinite(a), a, -np.inf), axis=0), np.nan)
-    band = lambda b: [None if not math.isfinite(x) else round(float(x), 3) for x in b]  # noqa: E731
-    return {"seeds": seeds, "iou_lo": band(lo), "iou_hi": band(hi),
-            "auc": [round(x, 4) for x in aucs], "deterministic": bool(deterministic)}
-
-
 def knob_spec(cls, name: str, value=None) -> dict | None:
     """The viewer's description of one knob, from the params field's metadata."""
     fields = {f.name: f for f in dataclasses.fields(cls.Params)}
@@ -329,8 +306,8 @@ _PAIR_SAMPLES = [(0.95, 1.05), (0.9, 1.1), (0.8, 1.2), (0.7, 1.4), (0.5, 2.0)]
 
 
 def sample_values(spec: dict, k: int = 5) -> list:
-    """A few values of a knob around its default, within the field's range: what the HTML
-    book precomputes (Jupyter takes any value)."""
+    """A few values of a knob around its default, within the field's range: the stops the
+    knob offers (the HTML book's pages precompute a few of them; Jupyter takes any value)."""
     d = spec["default"]
     kind = spec["kind"]
     if kind == "choice":
@@ -364,55 +341,6 @@ def sample_values(spec: dict, k: int = 5) -> list:
         if v not in out:
             out.append(v)
     return out
-
-
-def paper_sample(cls, name: str):
-    """The paper preset's value of knob ``name`` of a tracker class, as ``preset="paper"``
-    sets it (:func:`trackbook.params.paper_value`): the printed value, or for an addition of
-    the book the setting that switches it off (0 or False); ``None`` for a field whose value
-    is not printed."""
-    fields = {f.name: f for f in dataclasses.fields(cls.Params)} if cls else {}
-    f = fields.get(name)
-    if f is None or not _params.has_paper(f):
-        return None
-    v = _params.paper_value(f)
-    if f.metadata.get("paper") is _params.NOT_PRINTED and (
-            f.metadata.get("paper_value", _params._UNSET) is _params._UNSET
-            or isinstance(v, str) or bool(v)):
-        # not printed: only an addition's "off" (0, False) counts as the preset's value;
-        # a reading of a value that is not printed does not
-        return None
-    return list(v) if isinstance(v, tuple) else v
-
-
-def static_samples(spec: dict, paper=None, others: int = 2) -> list:
-    """The values of one knob the HTML book precomputes: the book's default, the preset value
-    ``paper`` (where there is one; the caller checks the params take it) and ``others``
-    more from :func:`sample_values` (one fewer when ``paper`` is a stop of its own) --
-    the nearest below and above the default, then the next ones out -- sorted; a choice or a
-    switch keeps all its values. Each run costs build time, hence so few stops."""
-    d = spec["default"]
-    if spec["kind"] in ("choice", "bool", "text"):
-        vals = sample_values(spec)
-        if paper is not None and paper not in vals:
-            vals.append(paper)
-        return vals if spec["kind"] != "choice" else [v for v in spec["choices"] if v in vals]
-    keep = [d]
-    if paper is not None and paper != d:      # outside the slider's range too: the preset's
-        keep.append(paper)
-    if len(keep) > 1:          # the preset value is one of the "others": three stops in all
-        others = max(1, others - 1)
-    rest = [v for v in sample_values(spec) if v not in keep]
-    key = (lambda v: max(v)) if spec["kind"] == "pair" else (lambda v: v)
-    dk = key(d)
-    below = sorted((v for v in rest if key(v) < dk), key=key, reverse=True)
-    above = sorted((v for v in rest if key(v) > dk), key=key)
-    picks = []
-    while len(picks) < others and (below or above):
-        for side in (below, above):
-            if side and len(picks) < others:
-                picks.append(side.pop(0))
-    return sorted(keep + picks, key=key)
 
 
 def params_class(name):

@@ -3,36 +3,29 @@ fragment that runs with no kernel and no network.
 
 For every clip and tracker of a playground, the runs at the defaults and for a few values of
 each knob (one knob at a time) over whole clips and several seeds are computed
-(:mod:`trackbook.playground.static`) and written as small files the page loads when the reader
-picks them. The book's build (its Sphinx extension ``book/_ext/sphinx_playground.py``) sets :data:`BOOK_ENV` for
-the chapters' kernels, so a playground displayed there is this page; in Jupyter it is the
-live widget.
+(:mod:`playground_export.static`) and written as small files the page loads when the reader
+picks them. In the book's build every chapter's kernel displays a playground or an animation
+as this page (:func:`playground_export.install`); in Jupyter it is the live widget.
 """
 
 from __future__ import annotations
 
 import base64
+import dataclasses
 import html
 import io
 import json
-import os
 
 import numpy as np
 
-from . import data as D
-from . import static as S
-from .data import VIEWER_CSS, VIEWER_JS
+from trackbook import params as _params
+from trackbook.playground import data as D
+from trackbook.playground.data import VIEWER_CSS, VIEWER_JS, sample_values
 
-#: the environment variable the book's build sets for the chapters' kernels (the one way to
-#: reach them): it is the default of a panel's ``static_page=`` argument (:func:`book_build`)
-BOOK_ENV = "TRACKBOOK_BOOK_BUILD"
+from . import static as S
+
 #: what the Sphinx extension replaces with the page's path to ``_static/playground/``
 STATIC_BASE = "@@tb-static-playground@@"
-
-
-def book_build() -> bool:
-    """Whether this process runs a chapter of the HTML book's build (:data:`BOOK_ENV` set)."""
-    return bool(os.environ.get(BOOK_ENV))
 
 
 def refuse_unknown_keywords(where: str, kwargs: dict) -> None:
@@ -49,7 +42,7 @@ def page_html(payload: dict, png: bytes, alt: str, files: bool = False) -> str:
     (print, no JavaScript). Files the data names (``payload["files"]``) are loaded from
     ``data-tb-base``, the path the book's ``sphinx_playground`` extension writes there. With
     ``files`` (the book's pages) inline runs and frames (an animation's) and the picture
-    become files too (:func:`trackbook.playground.static.to_files`): the page stays light."""
+    become files too (:func:`playground_export.static.to_files`): the page stays light."""
     if files:
         payload = S.to_files(payload)
         src = STATIC_BASE + S.write_png(png)
@@ -64,10 +57,59 @@ def page_html(payload: dict, png: bytes, alt: str, files: bool = False) -> str:
             f'</noscript></div><style>{css}</style><script type="module">{js}</script>')
 
 
+def paper_sample(cls, name: str):
+    """The paper preset's value of knob ``name`` of a tracker class, as ``preset="paper"``
+    sets it (:func:`trackbook.params.paper_value`): the printed value, or for an addition of
+    the book the setting that switches it off (0 or False); ``None`` for a field whose value
+    is not printed."""
+    fields = {f.name: f for f in dataclasses.fields(cls.Params)} if cls else {}
+    f = fields.get(name)
+    if f is None or not _params.has_paper(f):
+        return None
+    v = _params.paper_value(f)
+    if f.metadata.get("paper") is _params.NOT_PRINTED and (
+            f.metadata.get("paper_value", _params._UNSET) is _params._UNSET
+            or isinstance(v, str) or bool(v)):
+        # not printed: only an addition's "off" (0, False) counts as the preset's value;
+        # a reading of a value that is not printed does not
+        return None
+    return list(v) if isinstance(v, tuple) else v
+
+
+def static_samples(spec: dict, paper=None, others: int = 2) -> list:
+    """The values of one knob the HTML book precomputes: the book's default, the preset value
+    ``paper`` (where there is one; the caller checks the params take it) and ``others``
+    more from :func:`sample_values` (one fewer when ``paper`` is a stop of its own) --
+    the nearest below and above the default, then the next ones out -- sorted; a choice or a
+    switch keeps all its values. Each run costs build time, hence so few stops."""
+    d = spec["default"]
+    if spec["kind"] in ("choice", "bool", "text"):
+        vals = sample_values(spec)
+        if paper is not None and paper not in vals:
+            vals.append(paper)
+        return vals if spec["kind"] != "choice" else [v for v in spec["choices"] if v in vals]
+    keep = [d]
+    if paper is not None and paper != d:      # outside the slider's range too: the preset's
+        keep.append(paper)
+    if len(keep) > 1:          # the preset value is one of the "others": three stops in all
+        others = max(1, others - 1)
+    rest = [v for v in sample_values(spec) if v not in keep]
+    key = (lambda v: max(v)) if spec["kind"] == "pair" else (lambda v: v)
+    dk = key(d)
+    below = sorted((v for v in rest if key(v) < dk), key=key, reverse=True)
+    above = sorted((v for v in rest if key(v) > dk), key=key)
+    picks = []
+    while len(picks) < others and (below or above):
+        for side in (below, above):
+            if side and len(picks) < others:
+                picks.append(side.pop(0))
+    return sorted(keep + picks, key=key)
+
+
 def static_knobs(pg, tracker) -> list:
     """The knobs of ``tracker`` as the HTML book offers them: each knob's default, the
-    printed value where there is one (:func:`~trackbook.playground.data.paper_sample`)
-    and about two others (:func:`~trackbook.playground.data.static_samples`), or the
+    printed value where there is one (:func:`paper_sample`)
+    and about two others (:func:`static_samples`), or the
     values given in ``samples=``."""
     cls = D.params_class(tracker)
     out = []
@@ -75,19 +117,19 @@ def static_knobs(pg, tracker) -> list:
         if k["name"] in pg.samples:
             out.append({**k, "samples": list(k["samples"])})
             continue
-        paper = D.paper_sample(cls, k["name"])
+        paper = paper_sample(cls, k["name"])
         try:
             if paper is not None:
                 D.parse_values(tracker, {k["name"]: paper})
         except (ValueError, TypeError):
             paper = None
-        out.append({**k, "samples": D.static_samples(k, paper), "paper": paper})
+        out.append({**k, "samples": static_samples(k, paper), "paper": paper})
     return out
 
 
 def static_runs(pg, workers: int | None = None, **kwargs) -> dict:
     """``{run key: file name}`` of every run the HTML book offers (see
-    :func:`trackbook.playground.static.book_files`): every clip x tracker at its defaults
+    :func:`playground_export.static.book_files`): every clip x tracker at its defaults
     and each knob at each of its :func:`static_knobs` samples, over the seeds."""
     refuse_unknown_keywords("static_runs", kwargs)
     known = {}
@@ -118,7 +160,7 @@ def static_runs(pg, workers: int | None = None, **kwargs) -> dict:
 def static_payload(pg, workers: int | None = None, **kwargs) -> dict:
     """What the page holds: the configuration, each clip's ground truth and the names of
     its frame files, the name of every run file; the files themselves are written to
-    :func:`trackbook.playground.static.store`."""
+    :func:`playground_export.static.store`."""
     refuse_unknown_keywords("static_payload", kwargs)
     runs = static_runs(pg, workers)
     clips = {}
@@ -161,8 +203,8 @@ def static_figure(pg, frames=None):
     fallback for print and browsers without JavaScript."""
     import matplotlib.pyplot as plt
 
-    from ..evaluation import metrics
-    from ..viz.core import EST_COLOR, draw_box, draw_particles, show_frame
+    from trackbook.evaluation import metrics
+    from trackbook.viz.core import EST_COLOR, draw_box, draw_particles, show_frame
 
     clip = pg.clip_objects[pg.clip]
     r = pg.result
@@ -190,3 +232,10 @@ def static_figure(pg, frames=None):
     fig.suptitle(html.unescape(D.scores_text(r)), fontsize=9)
     fig.tight_layout()
     return fig
+
+
+def animation_html(anim, files: bool = False) -> str:
+    """An :class:`~trackbook.playground.animation.Animation` as a page fragment (``files``:
+    its runs and frames as files beside the page, as the book's pages have them), with the
+    animation's still picture for print and pages without JavaScript."""
+    return page_html(anim.static_data, anim.still_png(), "one step of the animation", files)

@@ -7,7 +7,8 @@ knob values: seed ``s0``'s boxes and state, and the spread over the seeds) and e
 clip's frames is one file ``tbpg-<hash>.js`` that calls ``window.tbPlaygroundRegister(name,
 data)``. A ``<script>`` tag loads it, which works from ``file://`` and over http alike (a
 ``fetch`` of a local file does not). The files are written to :func:`store` (``files/``), and
-The book's ``sphinx_playground`` extension (``book/_ext``) copies those a page names into the book's ``_static``.
+the book's ``sphinx_playground`` extension copies those a page names into the book's
+``_static``.
 
 The runs go to worker processes (two, spawned) and are kept on disk under :func:`store`
 (``runs/``), keyed by the tracker's code (:func:`trackbook.evaluation.runs.code_fingerprint`),
@@ -22,17 +23,20 @@ import functools
 import hashlib
 import importlib.util
 import json
+import math
 import multiprocessing
 import os
 import sys
 import tempfile
 from pathlib import Path
 
-from .. import clips as _clips
-from .. import trackers as _trackers
-from ..evaluation import runs as _runs
-from ..evaluation.runner import evaluate_many
-from . import data as D
+import numpy as np
+
+from trackbook import clips as _clips
+from trackbook import trackers as _trackers
+from trackbook.evaluation import runs as _runs
+from trackbook.evaluation.runner import evaluate_many
+from trackbook.playground import data as D
 
 #: the environment variable naming the directory of run files and cached runs (the Sphinx
 #: extension sets it under the build output before the chapters execute)
@@ -214,7 +218,7 @@ def _job(args):
 
 def _worker_init(path):
     sys.path[:0] = [p for p in path if p not in sys.path]
-    from ..evaluation.parallel import one_thread_per_worker
+    from trackbook.evaluation.parallel import one_thread_per_worker
 
     one_thread_per_worker()
 
@@ -527,9 +531,32 @@ def wait_background(folder=None, poll: float = 0.5) -> None:
         time.sleep(poll)
 
 
+def seed_summary(seeds, ious, aucs, deterministic: bool) -> dict:
+    """The ``seeds`` entry of a run payload: per frame the least and the greatest IoU over
+    the seeds' runs (``None`` where no seed has one), and each seed's AUC.
+
+    ``ious`` holds one IoU list per seed (``None`` entries for frames without ground truth);
+    ``deterministic`` says the boxes were found identical for two seeds, so one run stands
+    for every seed."""
+    seeds, aucs = [int(s) for s in seeds], [float(a) for a in aucs]
+    if not (len(seeds) == len(ious) == len(aucs)) or not seeds:
+        raise ValueError(f"seed_summary needs one IoU list and one AUC per seed; got "
+                         f"{len(seeds)} seeds, {len(ious)} IoU lists, {len(aucs)} AUCs.")
+    n = max(len(i) for i in ious)
+    a = np.full((len(ious), n), np.nan)
+    for k, v in enumerate(ious):
+        a[k, :len(v)] = [np.nan if x is None else x for x in v]
+    seen = np.isfinite(a).any(axis=0)
+    lo = np.where(seen, np.nanmin(np.where(np.isfinite(a), a, np.inf), axis=0), np.nan)
+    hi = np.where(seen, np.nanmax(np.where(np.isfinite(a), a, -np.inf), axis=0), np.nan)
+    band = lambda b: [None if not math.isfinite(x) else round(float(x), 3) for x in b]  # noqa: E731
+    return {"seeds": seeds, "iou_lo": band(lo), "iou_hi": band(hi),
+            "auc": [round(x, 4) for x in aucs], "deterministic": bool(deterministic)}
+
+
 def seeds_entry(results: list, deterministic: bool) -> dict:
     """The run payload's ``seeds`` entry from :meth:`Runner.run`'s per-seed dicts."""
-    return D.seed_summary([r["seed"] for r in results],
+    return seed_summary([r["seed"] for r in results],
                           [r["iou"] or [] for r in results],
                           [r["auc"] for r in results], deterministic)
 
@@ -547,8 +574,8 @@ def spread_text(seeds: dict) -> str:
 
 __all__ = ["BACKGROUND_ENV", "CHUNK_FRAMES", "MAX_RUN_BYTES", "N_SEEDS", "OUT_ENV", "PREFIX",
            "Runner", "book_files", "book_runs", "plan_names", "run_seeds", "to_files",
-           "wait_background", "write_png", "script_text", "seeds_entry", "spread_text", "store",
-           "write_frames", "write_run", "write_script"]
+           "wait_background", "write_png", "script_text", "seed_summary", "seeds_entry",
+           "spread_text", "store", "write_frames", "write_run", "write_script"]
 
 
 if __name__ == "__main__":
