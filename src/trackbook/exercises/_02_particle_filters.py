@@ -28,8 +28,8 @@ the machine and on what else runs on it).
 paper preset, then the paper preset with only `sigma_color=0.2`, then with only `init="box"`.
 --- solution
 σ. With the paper preset's other settings, σ = 0.2 lifts the AUC of seed 0 on the day clip
-far more than starting the particles around the given box does (the cell prints the three
-AUCs): at σ = 0.4 the weights hardly separate good particles from poor ones. One clip and
+far more than starting the particles around the given box does (the exercises appendix prints
+the three AUCs below the exercise): at σ = 0.4 the weights hardly separate good particles from poor ones. One clip and
 one seed are a hint, not a measurement; the case study's mean over seven sequences and three
 seeds puts the book's defaults ahead of each section V value.
 
@@ -42,12 +42,14 @@ look-alike be (same prediction) before the posterior has a second peak?
 At 45 m the two likelihood bumps (width 3 m each, 5 m apart) overlap so much that their sum
 has a single peak: two Gaussians of equal width σ apart by less than 2σ add up to one hump.
 The prediction then multiplies one hump by another, and the posterior has **one** peak, just
-below 40 m (the cell prints it), not two. The look-alike is not vetoed but absorbed: it pulls
+below 40 m, not two (the exercises appendix prints the peaks, means and spreads below the
+exercise). The look-alike is not vetoed but absorbed: it pulls
 the mean a little towards 45 m and widens the posterior compared with the look-alike at 60 m,
 whose bump the prediction suppresses (only a faint second maximum is left of it). A single
 Gaussian describes the 45 m posterior well; the belief a Gaussian cannot hold is the one with
-two separated peaks, which needs the look-alike farther away (the last line of the cell) —
-that is where particles, which keep every hump, pay off.
+two separated peaks, which needs the look-alike farther away: on the grid, in steps of 0.5 m,
+a second peak appears first with the look-alike at 54 m, 14 m from the target. That is where
+particles, which keep every hump, pay off.
 
 === 2.5 ★★★ implement | Stratified resampling from scratch
 Write `my_stratified(w, rng)`: stratified resampling with one pointer $(k + u_k)/N$ in each
@@ -173,18 +175,18 @@ $\sum_i (w^{(i)})^2 = \tfrac14 + \tfrac1{16} + \tfrac1{64} + \tfrac1{64}
 
 === 2.10 ★★ pen and paper | Weigh and resample four particles by hand
 Four particles have the squared Bhattacharyya distances $D^2 = (0, 0.08, 0.16, 0.24)$ to the
-reference histogram. (a) With the likelihood of eq. 10 and $\sigma_{color} = 0.2$, give their
+reference histogram. (a) With the likelihood of eq. 10 and $\sigma_\mathrm{color} = 0.2$, give their
 normalised weights $w^{(i)}$ and $N_{\mathrm{eff}}$; why does the factor
-$1/\sqrt{2\pi\sigma_{color}^2}$ not matter? (b) Resample them systematically with the offset
+$1/\sqrt{2\pi\sigma_\mathrm{color}^2}$ not matter? (b) Resample them systematically with the offset
 $u = 0.05$: the pointers are $u + k/4$, $k = 0, \dots, 3$, and each picks the smallest $i$
 with $c_i \ge$ pointer, $c_i$ the cumulative weights (particles counted from 0). How many
 copies does each particle get, and does each count lie between $\lfloor N w^{(i)} \rfloor$
-and $\lceil N w^{(i)} \rceil$? (c) Repeat (a) and (b) with $\sigma_{color} = 0.4$. What does
+and $\lceil N w^{(i)} \rceil$? (c) Repeat (a) and (b) with $\sigma_\mathrm{color} = 0.4$. What does
 the larger σ do to the weights and to the copies? (Use a calculator for the exponentials.)
 --- solution
-(a) The factor $1/\sqrt{2\pi\sigma_{color}^2}$ is the same for every particle and cancels when
-the weights are divided by their sum. With $2\sigma_{color}^2 = 0.08$ the exponents
-$D^2 / 2\sigma_{color}^2$ are $(0, 1, 2, 3)$, so the likelihoods are proportional to
+(a) The factor $1/\sqrt{2\pi\sigma_\mathrm{color}^2}$ is the same for every particle and cancels when
+the weights are divided by their sum. With $2\sigma_\mathrm{color}^2 = 0.08$ the exponents
+$D^2 / 2\sigma_\mathrm{color}^2$ are $(0, 1, 2, 3)$, so the likelihoods are proportional to
 $(1, e^{-1}, e^{-2}, e^{-3}) \approx (1, 0.368, 0.135, 0.050)$, of sum $\approx 1.553$:
 $w \approx (0.644, 0.237, 0.087, 0.032)$. Then
 $\sum_i (w^{(i)})^2 \approx 0.4146 + 0.0561 + 0.0076 + 0.0010 \approx 0.479$ and
@@ -196,7 +198,7 @@ $c_0$ and below $c_1$ and picks particle 1: indices $(0, 0, 0, 1)$, copies $(3, 
 $N w \approx (2.58, 0.95, 0.35, 0.13)$, so every count is the floor or the ceiling of its
 $N w^{(i)}$, as systematic resampling guarantees (exercise 2.7).
 
-(c) With $2\sigma_{color}^2 = 0.32$ the exponents are $(0, 0.25, 0.5, 0.75)$ and the
+(c) With $2\sigma_\mathrm{color}^2 = 0.32$ the exponents are $(0, 0.25, 0.5, 0.75)$ and the
 likelihoods are proportional to $(1, 0.779, 0.607, 0.472)$, of sum $\approx 2.858$:
 $w \approx (0.350, 0.273, 0.212, 0.165)$, $\sum_i (w^{(i)})^2 \approx 0.269$ and
 $N_{\mathrm{eff}} \approx 3.72$. Now $c \approx (0.350, 0.622, 0.835, 1)$: 0.05 and 0.30 pick
