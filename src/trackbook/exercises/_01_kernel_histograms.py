@@ -86,7 +86,7 @@ $(1, 2 + 3, 4, 0) / 10$. The check uses that case and a one-pixel patch.
 --- solution
 Start from `q = np.zeros(n_bins)`; for each pixel add its kernel weight to the bin of its
 label, `q[u] += k` over the pairs of `labels.ravel()` and `kernel.ravel()` (the δ of eq. 1
-picks the one bin $u = c(x_i)$); then divide by `q.sum()`. Without a loop,
+picks the one bin $u = b(x_i)$); then divide by `q.sum()`. Without a loop,
 `np.bincount(labels.ravel(), weights=kernel.ravel(), minlength=n_bins)` is the same sum. For
 the hand case the sums are $1$, $2 + 3$, $4$ and $0$, out of $10$. The exercises appendix runs
 this solution through the check.

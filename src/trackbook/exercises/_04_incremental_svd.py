@@ -87,7 +87,7 @@ middle matrix of eq. 6 is $\begin{bmatrix}\Sigma & U^Tb\\ 0 & \tilde b^Tb\end{bm
 eq. 7 rotates $[U, \tilde b]$ by the left singular vectors of that small matrix. In the hand
 case $U^Tb = 0$ and $\tilde b^Tb = 3$: the middle matrix is diag(2, 3).
 
-=== 4.6 ★★★ project | Learn with a different K and measure it
+=== 4.6 ★★★ project | Learn with a different number of basis vectors and measure it
 Lee et al. (2012) print no
 $n_\mathrm{b}$ (their matrices have $n = 40$ columns {quote}`lee2012.window40`, but no number of basis
 vectors is given). Run `color-hog-ipca` with $n_\mathrm{b}$ = 1, 2, 4, 8 and 16 on both sample clips, with the anchor
@@ -216,5 +216,5 @@ u'_2 = \frac{U - 2\tilde b}{\sqrt5} = \frac{(-1, 2)^T}{\sqrt5}$$
 
 (each up to its sign). The first basis vector turns from $U$ towards $b$ by
 $\arccos(U^Tu'_1) = \arccos(2/\sqrt5) \approx 26.6°$. Check: $\sigma_1'^2 + \sigma_2'^2 = 68 =
-(f\Sigma)^2 + \lVert b\rVert^2 = 16 + 52$, the squared Frobenius norm, as it must be.
+(\xi\Sigma)^2 + \lVert b\rVert^2 = 16 + 52$, the squared Frobenius norm, as it must be.
 """
