@@ -11,16 +11,16 @@ A probability image is $b = 255$ on an axis-aligned block of $w$ columns and $h$
 pixels ($w > h$) and 0 elsewhere. Work out $M_{00}$, the centroid, and the normalised
 central moments $\bar\mu_{20}, \bar\mu_{11}, \bar\mu_{02}$ (the sum
 $\sum_{k=0}^{n-1} (k - \tfrac{n-1}{2})^2 = n(n^2 - 1)/12$ helps). What are $\theta$,
-$\sigma_l$ and $\sigma_w$, and how long is OpenCV's rectangle of side $4\sigma_l$ against the
+$\sigma_\mathrm{l}$ and $\sigma_\mathrm{w}$, and how long is OpenCV's rectangle of side $4\sigma_\mathrm{l}$ against the
 block's $w$ when $w$ is large?
 --- solution
 $M_{00} = 255\,wh$ and the centroid is the block's centre. Every row is the same, so
 $\bar\mu_{20}$ is the variance of the column index over $w$ equally weighted columns,
 $(w^2 - 1)/12$; likewise $\bar\mu_{02} = (h^2 - 1)/12$, and $\bar\mu_{11} = 0$ because the
 deviations in $x$ and $y$ are independent and each sums to zero. So $\theta = \tfrac12
-\operatorname{atan2}(0, \bar\mu_{20} - \bar\mu_{02}) = 0$, $\sigma_l = \sqrt{(w^2 - 1)/12}$ and
-$\sigma_w = \sqrt{(h^2 - 1)/12}$. For large $w$, $\sigma_l \approx w/\sqrt{12}$ and
-$4\sigma_l \approx 4w/\sqrt{12} = 1.155\,w$: OpenCV's rectangle is 15 % longer than a uniform
+\operatorname{atan2}(0, \bar\mu_{20} - \bar\mu_{02}) = 0$, $\sigma_\mathrm{l} = \sqrt{(w^2 - 1)/12}$ and
+$\sigma_\mathrm{w} = \sqrt{(h^2 - 1)/12}$. For large $w$, $\sigma_\mathrm{l} \approx w/\sqrt{12}$ and
+$4\sigma_\mathrm{l} \approx 4w/\sqrt{12} = 1.155\,w$: OpenCV's rectangle is 15 % longer than a uniform
 block (the side of a uniform block is $\sqrt{12}\,\sigma \approx 3.46\,\sigma$, not $4\sigma$).
 For $w = 30$, $h = 10$: $\bar\mu_{20} = 899/12 = 74.92$, $\bar\mu_{02} = 99/12 = 8.25$.
 
@@ -57,12 +57,12 @@ target whose colours are common in the background looks larger, and the window g
 Write `axes(prob)` that returns `(theta, sigma_l, sigma_w)` for a whole 2-D probability image
 (pixel $(i, j)$ at $x = j$, $y = i$, $y$ pointing down): $\theta$ in degrees, the angle of the
 long axis from the $x$ axis, $\tfrac12\operatorname{atan2}(2\bar\mu_{11}, \bar\mu_{20} -
-\bar\mu_{02})$, and $\sigma_l \ge \sigma_w$ the standard deviations along and across it (the
+\bar\mu_{02})$, and $\sigma_\mathrm{l} \ge \sigma_\mathrm{w}$ the standard deviations along and across it (the
 square roots of the eigenvalues of
 $\begin{pmatrix}\bar\mu_{20} & \bar\mu_{11}\\ \bar\mu_{11} & \bar\mu_{02}\end{pmatrix}$).
 Use numpy only. By hand first: five pixels of 255 on the diagonal of a $5 \times 5$ image
 have centroid $(2, 2)$ and $\bar\mu_{20} = \bar\mu_{02} = \bar\mu_{11} = (4 + 1 + 0 + 1 +
-4)/5 = 2$, so $\theta = 45°$, $\sigma_l = 2$, $\sigma_w = 0$. The check uses that case, the
+4)/5 = 2$, so $\theta = 45°$, $\sigma_\mathrm{l} = 2$, $\sigma_\mathrm{w} = 0$. The check uses that case, the
 other diagonal ($-45°$), a row of five pixels ($0°$, $\sqrt 2$, 0) and a $2 \times 4$ block
 ($0°$, $\sqrt{1.25}$, $0.5$); angles are compared modulo 180°.
 --- solution
@@ -90,7 +90,7 @@ Draw a filled bar of $60 \times 12$ pixels of value 255 in a $120 \times 160$ im
 `cv2.CamShift` on it from a window around it, and compare the returned rectangle's long side
 with 60. Explain the ratio with exercise 13.1.
 --- solution
-OpenCV returns sides $4\sigma$; for a uniform bar $\sigma_l = \sqrt{(60^2 - 1)/12} = 17.31$,
+OpenCV returns sides $4\sigma$; for a uniform bar $\sigma_\mathrm{l} = \sqrt{(60^2 - 1)/12} = 17.31$,
 so the long side is $69.3$ px, $1.155$ times the bar's length, and the short side
 $4\sqrt{(12^2 - 1)/12} = 13.8$ px. To get the block's sides back, multiply by
 $\sqrt{12}/4 = 0.866$.

@@ -50,8 +50,8 @@ its 3 frames on target 2 count as IDFP although they are correct frame by frame.
 === 16.3 ★★ pen and paper | One SORT frame by hand
 Three tracks predict boxes of height 20 at $x = 0, 20, 40$, each 20 px wide (all at $y = 0$).
 The detector returns three boxes of the same height and width at $x = 5, 28, 70$. Write the
-$3 \times 3$ IoU matrix (detections × tracks; boxes of one height overlap by a width $o$ and
-have IoU $o / (2 \cdot 20 - o)$) and assign in SORT's order by hand: the matching with the
+$3 \times 3$ IoU matrix (detections × tracks; boxes of one height overlap by a width $w_\mathrm{o}$ and
+have IoU $w_\mathrm{o} / (2 \cdot 20 - w_\mathrm{o})$) and assign in SORT's order by hand: the matching with the
 largest total IoU, then every pair below 0.3 rejected. Would gating first change the answer
 here? Which track coasts, which detection starts a track? With SORT's reference defaults (a
 track is deleted after more than one frame without a detection), what happens to the

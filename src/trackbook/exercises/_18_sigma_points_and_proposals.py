@@ -23,7 +23,7 @@ $w_1 = 1/6$. With $\gamma_{\mathrm{UT}}^2 = n + \lambda_{\mathrm{UT}}$ and $n = 
 from $\alpha_{\mathrm{UT}}^2 (1 + \kappa_{\mathrm{UT}}) = 3$, e.g. $\alpha_{\mathrm{UT}} = 1$,
 $\kappa_{\mathrm{UT}} = 2 = 3 - n$.
 
-=== 18.2 ★★ pen and paper | The points carry the mean and covariance for any λ
+=== 18.2 ★★ pen and paper | The points carry the mean and covariance for any scaling
 Show, for Van der Merwe's scaled sigma points in $n$ dimensions, that
 $\sum_i W^m_i = 1$, $\sum_i W^m_i \mathcal{X}_i = m$ and
 $\sum_i W^c_i (\mathcal{X}_i - m)(\mathcal{X}_i - m)^T = P$ for every $\lambda_{\mathrm{UT}} > -n$ and every
