@@ -13,6 +13,8 @@ from ..style import GREY, OKABE_ITO
 
 #: Colour per preset in the claims plots.
 PRESET_COLORS = {"paper": OKABE_ITO[1], "book": OKABE_ITO[5]}
+# the words the book's text uses for the two settings
+PRESET_LABELS = {"paper": "paper preset", "book": "book defaults"}
 VERDICT_MARKERS = {"holds": "o", "fails": "X", "inconclusive": "o"}
 
 
@@ -64,11 +66,12 @@ def claims_forest(results: dict, metrics=("auc", "tracking_rate"), labels=None):
             for i, r in enumerate(rows):
                 y = len(comps) - 1 - i + (0.15 if k == 0 else -0.15)
                 c = PRESET_COLORS.get(preset, OKABE_ITO[0])
-                ax.plot([r["ci_low"], r["ci_high"]], [y, y], color=c, lw=2)
+                # the legend shows the interval's line: a marker there would look like a verdict
+                ax.plot([r["ci_low"], r["ci_high"]], [y, y], color=c, lw=2,
+                        label=PRESET_LABELS.get(preset, preset) if i == 0 else None)
                 filled = r["verdict"] != "inconclusive"
                 ax.plot(r["mean_diff"], y, VERDICT_MARKERS[r["verdict"]], ms=7, color=c,
-                        mfc=c if filled else "white", mew=1.5,
-                        label=f"{preset} preset" if i == 0 else None)
+                        mfc=c if filled else "white", mew=1.5)
         ax.axvline(0, color="k", lw=0.8)
         ax.set_xlabel(labels.get(m, m))
         ax.grid(axis="x", alpha=0.3)
