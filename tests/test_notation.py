@@ -48,10 +48,17 @@ The checks
     ``FREE`` (running indices and counts, universal constants) and the functions of
     ``FUNCTIONS``;
 (c) the checks' own checks: a hand-made page with a clash fails (a), a hand-made chapter with
-    a symbol that page lacks fails (b), and the normalisation is pinned on hand-worked cases.
+    a symbol that page lacks fails (b), and the normalisation is pinned on hand-worked cases;
+(d) the chapter a row names as introducing its symbol uses that symbol (or a decorated form of
+    it) in its maths; that it is the *first* chapter to use it cannot be checked, since an
+    earlier chapter may use the letter locally for something else;
+(e) the spellings the book retired (``RETIRED``: the Kalman measurement $y_k$, the sigma points
+    $\\chi_i$, the Förstner distance $d_F$ with an italic F) do not come back in the book's maths
+    of a concept chapter or a case study.
 
 What it cannot see: a letter used in a chapter with a meaning other than its row's. Those
-uses are the page's table of letters with local uses, kept by hand.
+uses are the page's table of letters with local uses, kept by hand; (e) guards the renames
+that matter most against coming back.
 
 Only text is read; nothing is executed.
 """
@@ -236,12 +243,23 @@ def _labels(tex: str, scripts: bool, i: int, out: list, at: int) -> int:
 _FENCE = re.compile(r"^(`{3,}|~{3,}|:{3,})(.*)$")
 
 
-#: A clause ends at a semicolon, a bracket, a full stop before a space or a blank line.
-_CLAUSE = re.compile(r"[;()\[\]]|\.\s|\n\s*\n")
+#: A clause ends at a semicolon, a bracket, a full stop before a space (not the one of "et al.",
+#: "e.g." or "i.e.") or a blank line.
+_CLAUSE = re.compile(r"[;()\[\]]|(?<!\bal)(?<!\be\.g)(?<!\bi\.e)\.\s|\n\s*\n")
 #: Inline maths in a clause that says a paper (or a library) *writes* it is that paper's
 #: spelling, which the book quotes beside its own symbol: "(Isard and Blake write the samples
-#: $s^{(i)}$ …)". Such maths is not the book's notation.
-_PAPER_SPELLING = re.compile(r"\b(write|writes|wrote|written|spells?)\b", re.I)
+#: $s^{(i)}$ …)". Such maths is not the book's notation. The verb needs a subject in the clause
+#: that is not the book's own voice: "we write $\Gamma$", "this book writes $D$", an imperative
+#: "write $e^+$ for …" and a bare "(written $z$" are the book's spelling and are read.
+_PAPER_SPELLING = re.compile(r"(?P<subject>[A-Za-z}][\w.}]*)\s+(?:write|writes|wrote|spells?)\b",
+                             re.I)
+_BOOK_VOICE = {"we", "book", "chapter", "here", "i", "let", "us", "to", "and", "then", "also"}
+
+
+def _a_paper_writes(clause: str) -> bool:
+    """Whether a clause's last "write" has a subject other than the book (``_PAPER_SPELLING``)."""
+    found = list(_PAPER_SPELLING.finditer(clause))
+    return bool(found) and found[-1].group("subject").lower().strip(".") not in _BOOK_VOICE
 
 
 def prose_maths(text: str, papers: bool = False) -> list[str]:
@@ -285,7 +303,7 @@ def prose_maths(text: str, papers: bool = False) -> list[str]:
     prose = re.sub(r"\$\$(.+?)\$\$", " ", prose, flags=re.S)
     for m in re.finditer(r"\$((?:[^$\n]|\n(?!\s*\n))+?)\$", prose):   # may wrap a line
         before = _CLAUSE.split(prose[max(0, m.start() - 400):m.start()])[-1]
-        if papers or not _PAPER_SPELLING.search(before):
+        if papers or not _a_paper_writes(before):
             maths.append(m.group(1))
     return maths
 
@@ -363,6 +381,43 @@ def _show(key: Key) -> str:
     return s + label
 
 
+#: Spellings the book gave up for one symbol, one meaning, with the symbol that replaced them.
+#: Each is a pattern on one piece of the book's maths (a paper's spelling is not read). The
+#: Kalman filter's index is k: a y with a frame index t can be a vertical coordinate, y_t^i.
+RETIRED = {
+    r"(?<![\\A-Za-z])y_\{?k\b": "the Kalman measurement is z_k; y is the vertical coordinate",
+    r"\\(?:chi|mathcal\{\\chi\})_": "the sigma points are \\mathcal{X}_i; chi is the chi-square",
+    r"(?<![\\A-Za-z])d_\{?F\b": "the Förstner distance is d_\\mathrm{F}",
+}
+
+
+def retired(text: str) -> list[str]:
+    """Check (e): the book's maths of a page that uses a spelling of ``RETIRED``."""
+    return [f"${tex.strip()[:60]}$: {why}" for tex in prose_maths(text)
+            for pattern, why in RETIRED.items() if re.search(pattern, tex)]
+
+
+def not_where_named(page: str, texts: dict[str, str]) -> list[str]:
+    """Check (d): rows whose introducing chapter (``{doc}`name```) does not use their symbol.
+
+    ``texts`` maps a chapter's name to its text. Rows written as words (``AUC``) and rows
+    naming a page outside ``texts`` are not checked.
+    """
+    used = {name: chapter_symbols(text) for name, text in texts.items()}
+    bad = []
+    for n, _keys, line in page_rows(page):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        named = re.findall(r"\{doc\}`([^`<>]+)`", cells[2] if len(cells) > 2 else "")
+        tex = re.findall(r"\$([^$]+)\$", cells[0])
+        if not named or not tex or named[0] not in used:
+            continue
+        keys = set().union(*(symbols(piece, scripts=False) for piece in tex))
+        found = used[named[0]]
+        if not any(k in found or any(f[:3] == k[:3] for f in found) for k in keys):
+            bad.append(f"line {n}: {cells[0]} is not in the maths of {named[0]}")
+    return bad
+
+
 # --------------------------------------------------------------------------------------------
 # the checks
 
@@ -384,6 +439,17 @@ def test_every_letter_with_local_uses_has_its_row():
     rows = set().union(*(keys for _, keys, _ in page_rows(page)))
     assert local, "the page has no table of letters with local uses"
     assert [line for _, keys, line in local if not keys <= rows | set(FREE)] == []
+
+
+def test_each_row_is_used_where_it_says_it_is_introduced():
+    texts = {p.stem: p.read_text(encoding="utf-8") for p in chapters()}
+    assert not_where_named(PAGE.read_text(encoding="utf-8"), texts) == []
+
+
+@pytest.mark.parametrize("path", chapters() + sorted(BOOK.glob("case_study_*.md")),
+                         ids=lambda p: p.stem)
+def test_no_retired_spelling_comes_back(path):
+    assert retired(path.read_text(encoding="utf-8")) == []
 
 
 # --------------------------------------------------------------------------------------------
@@ -454,3 +520,24 @@ def test_a_missing_symbol_is_caught():
     assert missing(_PAGE, "$\\mathbf{y}$ and $\\lambda_{\\mathrm{reg}}$") == {
         ("bf", "y", "", ""): "\\mathbf{y}",
         ("", "lambda", "_reg", ""): "\\lambda_{\\mathrm{reg}}"}
+    # the book's own voice is the book's spelling: "we write", an imperative "write", "written"
+    for text in ("Here we write $\\Gamma$ for the gain.", "Each expert errs; write $\\Gamma$.",
+                 "The gain (written $\\Gamma$) moves it.", "This book writes $\\Gamma$."):
+        assert set(missing(_PAGE, text)) == {("", "Gamma", "", "")}, text
+
+
+def test_a_row_named_in_the_wrong_chapter_is_caught():
+    page = ("| symbol | meaning | introduced in |\n|---|---|---|\n"
+            "| $\\nu$ | innovation | {doc}`06_kalman` |\n| $S$ | its covariance | {doc}`06_kalman` |\n"
+            "| AUC | a score | {doc}`00_introduction` |\n")
+    texts = {"06_kalman": "The innovation $\\hat\\nu_k$ and its mean.", "00_introduction": ""}
+    assert not_where_named(page, texts) == ["line 4: $S$ is not in the maths of 06_kalman"]
+
+
+def test_a_retired_spelling_is_caught():
+    assert retired("The measurement $y_k = Hx_k + v_k$ and $\\chi_i$, $d_F$.") == [
+        "$y_k = Hx_k + v_k$: " + RETIRED[r"(?<![\\A-Za-z])y_\{?k\b"],
+        "$\\chi_i$: " + RETIRED[r"\\(?:chi|mathcal\{\\chi\})_"],
+        "$d_F$: " + RETIRED[r"(?<![\\A-Za-z])d_\{?F\b"]]
+    # what replaced them, a y coordinate, the chi-square and a paper's own spelling, pass
+    assert retired("$z_k$, $y$, $p_y$, $\\chi^2_d$, $d_\\mathrm{F}$ (Lee writes $y_k$).") == []
