@@ -118,7 +118,7 @@ useful version needs a prior that keeps the size (penalise changes, or accept a 
 only when $d_\mathrm{F}$ improves clearly) and sequences that do change scale, such as David; the
 chapter's hidden solution cell is the code.
 
-=== 7.8 ★★ pen and paper | Why d_F ignores a common change of coordinates
+=== 7.8 ★★ pen and paper | Why the Förstner distance ignores a common change of coordinates
 Show that $d_\mathrm{F}(AC_1A^T, AC_2A^T) = d_\mathrm{F}(C_1, C_2)$ for every invertible $A$, from the
 definition of the generalised eigenvalues (eq. 6). Then say why it does not follow that
 $d_\mathrm{F}(C, ACA^T) = 0$, and compute $d_\mathrm{F}(C, ACA^T)$ by hand for $C = I_2$ and
@@ -128,7 +128,7 @@ $\det(\lambda AC_1A^T - AC_2A^T)$ $= \det(A)\det(\lambda C_1 - C_2)\det(A^T)$
 $= \det(A)^2\det(\lambda C_1 - C_2)$, and $\det(A) \ne 0$: both matrix pairs have the same
 generalised eigenvalues, hence the same $d_\mathrm{F}$. The invariance needs the same $A$ on both
 sides; $d_\mathrm{F}(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
-$ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_F = \sqrt{0 + \ln^2 4} = \ln 4 \approx
+$ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_\mathrm{F} = \sqrt{0 + \ln^2 4} = \ln 4 \approx
 1.39$.
 
 === 7.9 ★★ pen and paper | A window's covariance from four look-ups
@@ -217,6 +217,6 @@ $\lambda = 1$ and $\lambda = 3$, so $d_\mathrm{F} = \sqrt{0 + \ln^2 3} = \ln 3 \
 $sC$: $\lambda C x = s C x$ gives $\lambda = s$, $d$ times, so
 $d_\mathrm{F}(C, sC) = \sqrt{d}\,|\ln s|$ whatever $C$ is; for $d = 5$, $s = 2$ that is
 $\sqrt 5 \ln 2 \approx 1.55$, and $d_\mathrm{F}(C, C/2)$ is the same. The Frobenius distance
-$\lVert C - sC \rVert_F = |1 - s|\,\lVert C \rVert_F$ instead grows with the size of $C$'s
+$\lVert C - sC \rVert_\mathrm{F} = |1 - s|\,\lVert C \rVert_\mathrm{F}$ instead grows with the size of $C$'s
 entries.
 """
