@@ -16,7 +16,7 @@ the mean-shift tracker: same lattice, same steps, same boxes.
 Run `condensation-mean-shift` (seed 0) on `shelves` with 1, 5 and 20 candidates
 (`n_particles=`). Answer `{1: auc, 5: auc, 20: auc}`. How does the AUC change?
 --- solution
-The AUC rises from 1 to 5 candidates and hardly moves from 5 to 20 (the hidden cell prints
+The AUC rises from 1 to 5 candidates and hardly moves from 5 to 20 (the hidden cell shows
 the three values). Mean-shift pulls every candidate to a nearby mode, so a handful of
 candidates already covers the few modes there are; more candidates mostly land on the same
 modes.
