@@ -83,18 +83,18 @@ frame predicted into the ground stays just under that gate, and the jump comes a
 
 === 7.6 ★★★ implement | Eq. 4 from integral images
 Write `cov_from_sums(F, box)`: for the rectangle `box = (x, y, w, h)` of a feature image `F`
-(H × W × d), take the sums $u = \sum f$ and $V = \sum f f^T$ over the rectangle from
-summed-area tables (four look-ups each) and return $\frac{1}{MN}\big(V - uu^T/MN\big)$, the
+(H × W × d), take the sums $\mathbf s = \sum_k \mathbf f_k$ and $V = \sum_k \mathbf f_k \mathbf f_k^T$ over the rectangle from
+summed-area tables (four look-ups each) and return $\frac{1}{MN}\big(V - \mathbf s \mathbf s^T/MN\big)$, the
 population covariance of eq. 4. By hand first: one feature with values 1, 2, 3, 4 over a
 2 × 2 image has mean 2.5 and variance $(2.25 + 0.25 + 0.25 + 2.25)/4 = 1.25$. The check uses
-that case and a box of two features $f$ and $2f$, whose covariance is
-$\begin{bmatrix}v & 2v\\ 2v & 4v\end{bmatrix}$.
+that case and a box of two features, the second twice the first, whose covariance is
+$\begin{bmatrix}v & 2v\\ 2v & 4v\end{bmatrix}$ ($v$ the first one's variance).
 --- solution
-Build one summed-area table of the $d$ features and one of their products $f f^T$ (pad a
-zero row and column first), read $u$ and $V$ with the four look-ups
-$S[y+h, x+w] - S[y, x+w] - S[y+h, x] + S[y, x]$, and return $(V - uu^T/MN)/MN$ with
+Build one summed-area table of the $d$ features and one of their products $\mathbf f \mathbf f^T$ (pad a
+zero row and column first), read $\mathbf s$ and $V$ with the four look-ups
+$S[y+h, x+w] - S[y, x+w] - S[y+h, x] + S[y, x]$, and return $(V - \mathbf s \mathbf s^T/MN)/MN$ with
 $MN = wh$. Centre the features first (subtract the image's mean): the covariance does not
-change, and $V - uu^T/MN$ then does not lose precision to the subtraction of two large
+change, and $V - \mathbf s \mathbf s^T/MN$ then does not lose precision to the subtraction of two large
 numbers. The appendix's solution cell writes it out.
 
 === 7.7 ★★★ project | Add scale to the covariance tracker
@@ -118,7 +118,7 @@ useful version needs a prior that keeps the size (penalise changes, or accept a 
 only when $d_\mathrm{F}$ improves clearly) and sequences that do change scale, such as David; the
 chapter's hidden solution cell is the code.
 
-=== 7.8 ★★ pen and paper | Why d_F ignores a common change of coordinates
+=== 7.8 ★★ pen and paper | Why the Förstner distance ignores a common change of coordinates
 Show that $d_\mathrm{F}(AC_1A^T, AC_2A^T) = d_\mathrm{F}(C_1, C_2)$ for every invertible $A$, from the
 definition of the generalised eigenvalues (eq. 6). Then say why it does not follow that
 $d_\mathrm{F}(C, ACA^T) = 0$, and compute $d_\mathrm{F}(C, ACA^T)$ by hand for $C = I_2$ and
@@ -128,7 +128,7 @@ $\det(\lambda AC_1A^T - AC_2A^T)$ $= \det(A)\det(\lambda C_1 - C_2)\det(A^T)$
 $= \det(A)^2\det(\lambda C_1 - C_2)$, and $\det(A) \ne 0$: both matrix pairs have the same
 generalised eigenvalues, hence the same $d_\mathrm{F}$. The invariance needs the same $A$ on both
 sides; $d_\mathrm{F}(C, ACA^T)$ compares $C$ with a changed copy of itself. For $C = I_2$,
-$ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_F = \sqrt{0 + \ln^2 4} = \ln 4 \approx
+$ACA^T = \mathrm{diag}(1, 4)$: eigenvalues 1 and 4, $d_\mathrm{F} = \sqrt{0 + \ln^2 4} = \ln 4 \approx
 1.39$.
 
 === 7.9 ★★ pen and paper | A window's covariance from four look-ups
@@ -136,15 +136,15 @@ A 3 × 3 grey image has rows $y = 0, 1, 2$ from the top and columns $x = 0, 1, 2
 
 $$I = \begin{bmatrix} 1 & 2 & 0\\ 3 & 5 & 1\\ 2 & 4 & 6 \end{bmatrix}.$$
 
-Each pixel has the $d = 2$ features $f = (x, I)$. The zero-padded summed-area table of a
+Each pixel has the $d = 2$ features $\mathbf f = (x, I)$. The zero-padded summed-area table of a
 channel $g$ is the 4 × 4 array $S_g[r, c] = \sum_{y < r,\, x < c} g(x, y)$ (row 0 and
 column 0 are zeros), and the sum of $g$ over the rectangle `box = (x, y, w, h)` is
 $S_g[y+h, x+w] - S_g[y, x+w] - S_g[y+h, x] + S_g[y, x]$. (a) Write out $S_I$ and say why
 the four look-ups give the rectangle's sum. (b) For the window $(1, 1, 2, 2)$, the
-bottom-right 2 × 2 pixels, read $u_I = \sum I$ from $S_I$. (c) Read $u_x$, $V_{xx}$,
+bottom-right 2 × 2 pixels, read $s_I = \sum I$ from $S_I$. (c) Read $s_x$, $V_{xx}$,
 $V_{xI}$ and $V_{II}$ the same way from the tables of $x$, $x^2$, $xI$ and $I^2$ (only
 their entries $[3, 3]$, $[1, 3]$, $[3, 1]$ and $[1, 1]$ are needed) and compute
-$C_R = \frac{1}{MN}\big(V - \frac{1}{MN}uu^T\big)$. (d) Check $C_R$ against eq. 4 on the
+$C_R = \frac{1}{MN}\big(V - \frac{1}{MN}\mathbf s \mathbf s^T\big)$. (d) Check $C_R$ against eq. 4 on the
 four pixels directly. How many tables do the five features $x, y, I, |I_x|, |I_y|$ need,
 and how many look-ups does one window cost?
 --- solution
@@ -159,14 +159,14 @@ Subtracting $S[y, x+w]$ (the strip above the rectangle) and $S[y+h, x]$ (the str
 left) removes the block above and to the left twice, and $+S[y, x]$ adds it back once
 (inclusion–exclusion): what is left is the rectangle.
 
-(b) $u_I = S_I[3, 3] - S_I[1, 3] - S_I[3, 1] + S_I[1, 1] = 24 - 3 - 6 + 1 = 16$, and indeed
+(b) $s_I = S_I[3, 3] - S_I[1, 3] - S_I[3, 1] + S_I[1, 1] = 24 - 3 - 6 + 1 = 16$, and indeed
 $5 + 1 + 4 + 6 = 16$.
 
 (c) The four entries $[3, 3], [1, 3], [3, 1], [1, 1]$ of each table: $x$: 9, 3, 0, 0, so
-$u_x = 6$; $x^2$: 15, 5, 0, 0, so $V_{xx} = 10$; $xI$: 25, 2, 0, 0, so $V_{xI} = 23$;
-$I^2$: 96, 5, 14, 1, so $V_{II} = 78$. With $MN = 4$ and $u = (6, 16)$,
+$s_x = 6$; $x^2$: 15, 5, 0, 0, so $V_{xx} = 10$; $xI$: 25, 2, 0, 0, so $V_{xI} = 23$;
+$I^2$: 96, 5, 14, 1, so $V_{II} = 78$. With $MN = 4$ and $\mathbf s = (6, 16)$,
 
-$$V - \tfrac14 uu^T = \begin{bmatrix} 10 - 9 & 23 - 24\\ 23 - 24 & 78 - 64 \end{bmatrix}
+$$V - \tfrac14 \mathbf s \mathbf s^T = \begin{bmatrix} 10 - 9 & 23 - 24\\ 23 - 24 & 78 - 64 \end{bmatrix}
 = \begin{bmatrix} 1 & -1\\ -1 & 14 \end{bmatrix},$$
 
 $$C_R = \begin{bmatrix} 0.25 & -0.25\\ -0.25 & 3.5 \end{bmatrix}.$$
@@ -217,6 +217,6 @@ $\lambda = 1$ and $\lambda = 3$, so $d_\mathrm{F} = \sqrt{0 + \ln^2 3} = \ln 3 \
 $sC$: $\lambda C x = s C x$ gives $\lambda = s$, $d$ times, so
 $d_\mathrm{F}(C, sC) = \sqrt{d}\,|\ln s|$ whatever $C$ is; for $d = 5$, $s = 2$ that is
 $\sqrt 5 \ln 2 \approx 1.55$, and $d_\mathrm{F}(C, C/2)$ is the same. The Frobenius distance
-$\lVert C - sC \rVert_F = |1 - s|\,\lVert C \rVert_F$ instead grows with the size of $C$'s
+$\lVert C - sC \rVert_\mathrm{F} = |1 - s|\,\lVert C \rVert_\mathrm{F}$ instead grows with the size of $C$'s
 entries.
 """

@@ -16,7 +16,7 @@ the mean-shift tracker: same lattice, same steps, same boxes.
 Run `condensation-mean-shift` (seed 0) on `shelves` with 1, 5 and 20 candidates
 (`n_particles=`). Answer `{1: auc, 5: auc, 20: auc}`. How does the AUC change?
 --- solution
-The AUC rises from 1 to 5 candidates and hardly moves from 5 to 20 (the hidden cell prints
+The AUC rises from 1 to 5 candidates and hardly moves from 5 to 20 (the hidden cell shows
 the three values). Mean-shift pulls every candidate to a nearby mode, so a handful of
 candidates already covers the few modes there are; more candidates mostly land on the same
 modes.
@@ -103,69 +103,69 @@ other cases, by hand: `[-1, -1]` is never matched, 0; `[2, 2, 2]` keeps its trac
 and adds up the faces' counts.
 
 === 8.8 ★★ pen and paper | The mean-shift step from the density gradient
-The weighted kernel density at $y$ is $\hat f(y) = C \sum_i w_i\, k(\lVert (y - x_i)/h\rVert^2)$
-with a profile $k$ and $g = -k'$. Show that $\nabla \hat f(y) = 0$ gives the fixed point
-$y = \sum_i x_i w_i g_i / \sum_i w_i g_i$ with $g_i = g(\lVert (y - x_i)/h\rVert^2)$, so that
-the mean-shift step $\hat y_1 = \sum_i x_i w_i g_i / \sum_i w_i g_i$ moves towards it. Then, by
+The weighted kernel density at $\mathbf y$ is $\hat f(\mathbf y) = C \sum_i w_i\, k(\lVert (\mathbf y - \mathbf x_i)/h\rVert^2)$
+with a profile $k$ and $g = -k'$. Show that $\nabla \hat f(\mathbf y) = 0$ gives the fixed point
+$\mathbf y = \sum_i \mathbf x_i w_i g_i / \sum_i w_i g_i$ with $g_i = g(\lVert (\mathbf y - \mathbf x_i)/h\rVert^2)$, so that
+the mean-shift step $\hat{\mathbf y}_1 = \sum_i \mathbf x_i w_i g_i / \sum_i w_i g_i$ moves towards it. Then, by
 hand, in one dimension: the Epanechnikov profile, written here on the squared distance
-$s = \lVert (y - x_i)/h\rVert^2$ as $k(s) = 1 - s$ for $s \le 1$ (the chapter's
-$1 - r^2$ on $r$), $h = 2$,
-pixels at $x = 0, 1, 2$ with weights $w = 1, 2, 1$, start $\hat y_0 = 1.5$. Where is
-$\hat y_1$?
+$s = \lVert (\mathbf y - \mathbf x_i)/h\rVert^2$ as $k(s) = 1 - s$ for $s \le 1$ (the chapter's
+$k(r^2) = 1 - r^2$ with $s = r^2$), $h = 2$,
+pixels at $x = 0, 1, 2$ with weights $w = 1, 2, 1$, start $\hat{\mathbf y}_0 = 1.5$. Where is
+$\hat{\mathbf y}_1$?
 --- solution
-$\nabla \hat f(y) = C \sum_i w_i\, k'(\cdot)\, 2(y - x_i)/h^2$
-$= \frac{2C}{h^2} \sum_i w_i g_i (x_i - y)$
+$\nabla \hat f(\mathbf y) = C \sum_i w_i\, k'(\cdot)\, 2(\mathbf y - \mathbf x_i)/h^2$
+$= \frac{2C}{h^2} \sum_i w_i g_i (\mathbf x_i - \mathbf y)$
 $= \frac{2C}{h^2}\left(\sum_i w_i g_i\right)
-\left(\frac{\sum_i x_i w_i g_i}{\sum_i w_i g_i} - y\right)$. The last factor is the mean-shift
-vector $\hat y_1 - y$: it points along the gradient, and it is zero exactly where the gradient
+\left(\frac{\sum_i \mathbf x_i w_i g_i}{\sum_i w_i g_i} - \mathbf y\right)$. The last factor is the mean-shift
+vector $\hat{\mathbf y}_1 - \mathbf y$: it points along the gradient, and it is zero exactly where the gradient
 is. For the Epanechnikov profile $g = 1$ inside the kernel and 0 outside, so the step is the
-weighted mean of the pixels inside. From $\hat y_0 = 1.5$ the distances over $h$ are 0.75,
-0.25 and 0.25, so $s < 1$ for all three pixels: $\hat y_1 = (0 \cdot 1 + 1 \cdot 2 + 2 \cdot 1)/4 = 1$.
+weighted mean of the pixels inside. From $\hat{\mathbf y}_0 = 1.5$ the distances over $h$ are 0.75,
+0.25 and 0.25, so $s < 1$ for all three pixels: $\hat{\mathbf y}_1 = (0 \cdot 1 + 1 \cdot 2 + 2 \cdot 1)/4 = 1$.
 
 === 8.9 ★★ pen and paper | Where the weights of step ② come from
-A candidate at $\hat y_0$ has the colour histogram $p(\hat y_0)$, with $p_u(\hat y_0) > 0$
-in every bin, the model is $q$, and $\rho(y) = \sum_u \sqrt{p_u(y)\, q_u}$. (a) Expand each
-term $\sqrt{p_u(y)\, q_u}$ to first order in $p_u(y)$ around $p_u(\hat y_0)$ and show that
-$\rho(y) \approx \frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u} +
-\frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$. (b) Insert the candidate's
-kernel-weighted histogram $p_u(y) = f \sum_i k(r_i)\, \delta[h(x_i) - u]$ ($h(x_i)$ the bin
-of pixel $x_i$, $r_i$ its normalised distance from $y$) and show that the second term is
-$\frac f2 \sum_i w_i\, k(r_i)$ with $w_i = \sum_u \sqrt{q_u / p_u(\hat y_0)}\,
-\delta[h(x_i) - u]$, the weights of step ②. What does it mean for the climb that the first
-term does not depend on $y$? (c) Two bins, $q = (0.36, 0.64)$ and
-$p(\hat y_0) = (0.64, 0.36)$. Compute $\rho_0 = \rho(\hat y_0)$ and the weight of a pixel of
-each bin: which pixels pull the window? For a candidate $y$ with $p(y) = (0.5, 0.5)$,
+A candidate at $\hat{\mathbf y}_0$ has the colour histogram $p(\hat{\mathbf y}_0)$, with $p_u(\hat{\mathbf y}_0) > 0$
+in every bin, the model is $q$, and $\rho(\mathbf y) = \sum_u \sqrt{p_u(\mathbf y)\, q_u}$. (a) Expand each
+term $\sqrt{p_u(\mathbf y)\, q_u}$ to first order in $p_u(\mathbf y)$ around $p_u(\hat{\mathbf y}_0)$ and show that
+$\rho(\mathbf y) \approx \frac12 \sum_u \sqrt{p_u(\hat{\mathbf y}_0)\, q_u} +
+\frac12 \sum_u p_u(\mathbf y) \sqrt{q_u / p_u(\hat{\mathbf y}_0)}$. (b) Insert the candidate's
+kernel-weighted histogram $p_u(\mathbf y) = C \sum_i k(r_i^2)\, \delta[b(\mathbf x_i) - u]$ ($b(\mathbf x_i)$ the bin
+of pixel $\mathbf x_i$, $r_i$ its normalised distance from $\mathbf y$) and show that the second term is
+$\frac C2 \sum_i w_i\, k(r_i^2)$ with $w_i = \sum_u \sqrt{q_u / p_u(\hat{\mathbf y}_0)}\,
+\delta[b(\mathbf x_i) - u]$, the weights of step ②. What does it mean for the climb that the first
+term does not depend on $\mathbf y$? (c) Two bins, $q = (0.36, 0.64)$ and
+$p(\hat{\mathbf y}_0) = (0.64, 0.36)$. Compute $\rho_0 = \rho(\hat{\mathbf y}_0)$ and the weight of a pixel of
+each bin: which pixels pull the window? For a candidate $\mathbf y$ with $p(\mathbf y) = (0.5, 0.5)$,
 compute the linearised $\rho$ of (a) and the true $\rho$. Why can the linearised value never
 be below the true one?
 --- solution
 (a) $\frac{d}{dp}\sqrt{p\, q_u} = \frac12 \sqrt{q_u / p}$, so
-$\sqrt{p_u(y)\, q_u} \approx \sqrt{p_u(\hat y_0)\, q_u} +
-\frac12 \big(p_u(y) - p_u(\hat y_0)\big) \sqrt{q_u / p_u(\hat y_0)}$. Summed over $u$, the
-part with $-p_u(\hat y_0)$ is $-\frac12 \sum_u p_u(\hat y_0) \sqrt{q_u / p_u(\hat y_0)}
-= -\frac12 \sum_u \sqrt{p_u(\hat y_0)\, q_u} = -\frac12 \rho_0$, which leaves
-$\rho(y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(y) \sqrt{q_u / p_u(\hat y_0)}$.
+$\sqrt{p_u(\mathbf y)\, q_u} \approx \sqrt{p_u(\hat{\mathbf y}_0)\, q_u} +
+\frac12 \big(p_u(\mathbf y) - p_u(\hat{\mathbf y}_0)\big) \sqrt{q_u / p_u(\hat{\mathbf y}_0)}$. Summed over $u$, the
+part with $-p_u(\hat{\mathbf y}_0)$ is $-\frac12 \sum_u p_u(\hat{\mathbf y}_0) \sqrt{q_u / p_u(\hat{\mathbf y}_0)}
+= -\frac12 \sum_u \sqrt{p_u(\hat{\mathbf y}_0)\, q_u} = -\frac12 \rho_0$, which leaves
+$\rho(\mathbf y) \approx \frac12 \rho_0 + \frac12 \sum_u p_u(\mathbf y) \sqrt{q_u / p_u(\hat{\mathbf y}_0)}$.
 
 (b)
 
 $$\begin{aligned}
-&\frac12 \sum_u \sqrt{q_u / p_u(\hat y_0)}\; f \sum_i k(r_i)\, \delta[h(x_i) - u] \\
-&\quad = \frac f2 \sum_i k(r_i) \sum_u \sqrt{q_u / p_u(\hat y_0)}\, \delta[h(x_i) - u] \\
-&\quad = \frac f2 \sum_i w_i\, k(r_i) :
+&\frac12 \sum_u \sqrt{q_u / p_u(\hat{\mathbf y}_0)}\; C \sum_i k(r_i^2)\, \delta[b(\mathbf x_i) - u] \\
+&\quad = \frac C2 \sum_i k(r_i^2) \sum_u \sqrt{q_u / p_u(\hat{\mathbf y}_0)}\, \delta[b(\mathbf x_i) - u] \\
+&\quad = \frac C2 \sum_i w_i\, k(r_i^2) :
 \end{aligned}$$
 
 each pixel lies in exactly one bin, so the inner sum picks
-that bin's $\sqrt{q_u / p_u(\hat y_0)}$. The first term, $\rho_0 / 2$, is a constant, and $f$
-may be treated as one (the chapter's normalising constant: on the pixel lattice the sum of the kernel's
+that bin's $\sqrt{q_u / p_u(\hat{\mathbf y}_0)}$. The first term, $\rho_0 / 2$, is a constant, and so,
+nearly, is the normalising constant $C$ (on the pixel lattice the sum of the kernel's
 values hardly changes as the ellipse moves). Raising the linearised $\rho$ therefore means
-raising the weighted kernel density $\sum_i w_i\, k(r_i)$ of the pixel positions (the chapter's
-$\text{const} + \frac C2 \sum_i w_i\, k(\cdot)$ with $C = f$), and that density is what the
-mean-shift step climbs (exercise 8.8). Only $k(r_i)$ moves with $y$; the weights are frozen
-at $\hat y_0$, which is why step ② computes them again at every iteration.
+raising the weighted kernel density $\sum_i w_i\, k(r_i^2)$ of the pixel positions (the chapter's
+$\text{const} + \frac C2 \sum_i w_i\, k(\cdot)$), and that density is what the
+mean-shift step climbs (exercise 8.8). Only $k(r_i^2)$ moves with $\mathbf y$; the weights are frozen
+at $\hat{\mathbf y}_0$, which is why step ② computes them again at every iteration.
 
 (c) $\rho_0 = \sqrt{0.64 \cdot 0.36} + \sqrt{0.36 \cdot 0.64} = 0.48 + 0.48 = 0.96$. A pixel
 of bin 1 weighs $\sqrt{0.36 / 0.64} = 0.75$, a pixel of bin 2 weighs
 $\sqrt{0.64 / 0.36} = 4/3 \approx 1.33$: the bin the candidate has too little of counts
-more, and its pixels pull the window towards them. At $p(y) = (0.5, 0.5)$ the linearised
+more, and its pixels pull the window towards them. At $p(\mathbf y) = (0.5, 0.5)$ the linearised
 $\rho$ is $0.48 + \frac12 (0.5 \cdot 0.75 + 0.5 \cdot \frac43) = 0.48 + \frac{25}{48}
 \approx 1.001$ and the true one $\sqrt{0.18} + \sqrt{0.32} = 0.7 \sqrt 2 \approx 0.990$.
 Both are above $\rho_0$ (the move is uphill), but the linearised value even exceeds 1,
@@ -175,22 +175,22 @@ linearisation can only promise too much. That is why step ④ computes the true 
 step ⑤ halves the step when $\rho$ fell.
 
 === 8.10 ★★ pen and paper | A climb by hand, and why it never goes down
-As in exercise 8.8, $\hat f(y) = C \sum_i w_i\, k(s_i)$ with
-$s_i = ((y - x_i)/h)^2$ and the Epanechnikov profile $k(s) = 1 - s$ for $s \le 1$ and 0
+As in exercise 8.8, $\hat f(\mathbf y) = C \sum_i w_i\, k(s_i)$ with
+$s_i = ((\mathbf y - x_i)/h)^2$ and the Epanechnikov profile $k(s) = 1 - s$ for $s \le 1$ and 0
 beyond, so $g = -k'$ is 1 for $s_i < 1$ and 0 for $s_i > 1$, and the mean-shift step
-$y \mapsto \sum_i x_i w_i g_i / \sum_i w_i g_i$ is the weighted mean of the pixels closer
-than $h$ to $y$ (no pixel falls exactly on the border in this exercise). Four pixels lie
+$\mathbf y \mapsto \sum_i x_i w_i g_i / \sum_i w_i g_i$ is the weighted mean of the pixels closer
+than $h$ to $\mathbf y$ (no pixel falls exactly on the border in this exercise). Four pixels lie
 at $x = 0, 2, 4, 7$ with weights $w = 3, 1, 1, 1$, and $h = 4$. (a) Start at
-$\hat y_0 = 9$ and iterate until the step is zero; list the iterates. (b) Compute
-$\hat f / C$ at each iterate. (c) Show that a step from $y$ to the weighted mean $y'$ raises
-the density by at least $\frac{C}{h^2} \big(\sum_i w_i g_i\big) (y' - y)^2$, using that $k$
+$\hat{\mathbf y}_0 = 9$ and iterate until the step is zero; list the iterates. (b) Compute
+$\hat f / C$ at each iterate. (c) Show that a step from $\mathbf y$ to the weighted mean $\mathbf y'$ raises
+the density by at least $\frac{C}{h^2} \big(\sum_i w_i g_i\big) (\mathbf y' - \mathbf y)^2$, using that $k$
 is convex: $k(s') \ge k(s) - g(s)(s' - s)$. Check the bound on your steps. (d) Start again
-at $\hat y_0 = 1$. Where does the climb stop, and which of the two end points has the
+at $\hat{\mathbf y}_0 = 1$. Where does the climb stop, and which of the two end points has the
 higher density? What does this say about a tracker whose climb starts where the target was?
 --- solution
-(a) From 9 only the pixel at 7 is closer than 4: $\hat y_1 = 7$. From 7 the pixels at 4
-and 7 are inside (2 is 5 away): $\hat y_2 = (4 + 7)/2 = 5.5$. From 5.5 the pixels at 2, 4
-and 7 are inside (0 is 5.5 away): $\hat y_3 = 13/3 \approx 4.33$. From $13/3$ the same three
+(a) From 9 only the pixel at 7 is closer than 4: $\hat{\mathbf y}_1 = 7$. From 7 the pixels at 4
+and 7 are inside (2 is 5 away): $\hat{\mathbf y}_2 = (4 + 7)/2 = 5.5$. From 5.5 the pixels at 2, 4
+and 7 are inside (0 is 5.5 away): $\hat{\mathbf y}_3 = 13/3 \approx 4.33$. From $13/3$ the same three
 pixels are inside (0 is 4.33 away), their mean is $13/3$ again, and the step is zero: the
 climb stops at $13/3$.
 
@@ -201,17 +201,17 @@ $(1 - 49/144) + (1 - 1/144) + (1 - 64/144) = 53/24 \approx 2.21$. It rises at ev
 (c) Convexity gives $k(s_i') - k(s_i) \ge g_i (s_i - s_i')$ for every pixel ($k$ is the
 larger of the two straight lines $1 - s$ and 0). Multiply by $C w_i \ge 0$ (the weights here
 are positive, and those of step ② are never negative), insert
-$s_i - s_i' = [(y - x_i)^2 - (y' - x_i)^2]/h^2$ and sum over the pixels:
+$s_i - s_i' = [(\mathbf y - x_i)^2 - (\mathbf y' - x_i)^2]/h^2$ and sum over the pixels:
 
 $$\begin{aligned}
-\hat f(y') - \hat f(y) &\ge \frac{C}{h^2} \sum_i w_i g_i \big[(y - x_i)^2 - (y' - x_i)^2\big]
+\hat f(\mathbf y') - \hat f(\mathbf y) &\ge \frac{C}{h^2} \sum_i w_i g_i \big[(\mathbf y - x_i)^2 - (\mathbf y' - x_i)^2\big]
 \\
-&= \frac{C}{h^2} \sum_i w_i g_i\, (y - y')(y + y' - 2 x_i) .
+&= \frac{C}{h^2} \sum_i w_i g_i\, (\mathbf y - \mathbf y')(\mathbf y + \mathbf y' - 2 x_i) .
 \end{aligned}$$
 
 With $G = \sum_i w_i g_i$ and
-$\sum_i w_i g_i x_i = G y'$ (the definition of $y'$) the sum is
-$(y - y')(G y + G y' - 2 G y') = G (y' - y)^2$. $G > 0$ whenever the step is defined (its
+$\sum_i w_i g_i x_i = G \mathbf y'$ (the definition of $\mathbf y'$) the sum is
+$(\mathbf y - \mathbf y')(G \mathbf y + G \mathbf y' - 2 G \mathbf y') = G (\mathbf y' - \mathbf y)^2$. $G > 0$ whenever the step is defined (its
 denominator is $G$), so every step that moves raises $\hat f$. On the climb of (a), divided by
 $C$: $9 \to 7$, bound $1 \cdot 4/16 = 0.25$, rise $11/16 \approx 0.69$; $7 \to 5.5$, bound
 $2 \cdot 2.25/16 \approx 0.28$, rise $33/64 \approx 0.52$; $5.5 \to 13/3$, bound
@@ -220,7 +220,7 @@ the kernel over this step (2, 4 and 7 stay inside, 0 outside), so $\hat f$ is on
 there and the inequality holds with equality for every pixel.
 
 (d) From 1 the pixels at 0, 2 and 4 are inside (7 is 6 away):
-$\hat y_1 = (0 \cdot 3 + 2 + 4)/5 = 1.2$, and from 1.2 the same pixels give 1.2 again: the
+$\hat{\mathbf y}_1 = (0 \cdot 3 + 2 + 4)/5 = 1.2$, and from 1.2 the same pixels give 1.2 again: the
 climb stops there. $\hat f(1.2)/C = 3\,(1 - 1.44/16) + (1 - 0.64/16) + (1 - 7.84/16) = 4.2$,
 nearly twice the $53/24 \approx 2.21$ at $13/3$. Each climb ends on top of the hill it
 starts on; the one from 9 never sees the higher hill at 1.2. A mean-shift tracker starts

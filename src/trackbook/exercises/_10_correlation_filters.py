@@ -23,8 +23,8 @@ fails instead.
 
 === 10.3 ★★★ implement | Kernel ridge regression in the Fourier domain
 Implement the 1-D kernel ridge regression over all cyclic shifts in the Fourier domain:
-`dual(x, y, sigma, lam)` returning $\alpha$ (real, length $n$) for the Gaussian kernel
-$k(x, x') = \exp(-\lVert x - x'\rVert^2 / (n\sigma^2))$. It must equal
+`dual(x, g, sigma, lam)` returning $\alpha$ (real, length $n$) for the Gaussian kernel
+$\kappa(x, x') = \exp(-\lVert x - x'\rVert^2 / (n\sigma^2))$. It must equal
 $(\mathbf{K} + \lambda_\mathrm{r} I)^{-1} g$ with the $n \times n$ kernel matrix of all shifts written out. By
 hand first: $x = 0$ makes every kernel value 1, so for $n = 2$, $g = (1, 1)$ and
 $\lambda_\mathrm{r} = 1$, $(J + I)\alpha = g$ gives $\alpha = (1/3, 1/3)$. The check uses that case and
@@ -32,7 +32,7 @@ the explicit solve on a random signal.
 --- solution
 The kernel matrix of all cyclic shifts is circulant, so the Fourier transform diagonalises
 it: $\hat\alpha = \hat g / (\hat{\boldsymbol{\kappa}} + \lambda_\mathrm{r})$, with $\boldsymbol{\kappa}$ its first row,
-$k_t = \exp(-(2\lVert x\rVert^2 - 2\,x \cdot \text{shift}_t(x)) / (n\sigma^2))$.
+$\boldsymbol{\kappa}_t = \exp(-(2\lVert x\rVert^2 - 2\,x \cdot \text{shift}_t(x)) / (n\sigma^2))$.
 === 10.4 ★★ pen and paper | The MOSSE filter from its squared error
 MOSSE trains on patches $x_i$ with desired responses $g_i$; $\hat x_i$, $\hat g_i$ and $\hat h$ are their
 DFTs and the filter's, and the filter's response on $x_i$ has the DFT $\hat x_i \odot \hat h^*$. The
@@ -68,7 +68,7 @@ The linear term vanishes for every $\varepsilon$ (real and imaginary) only if
 $\sum_i \hat x_i^* (\hat x_i q - \hat g_i) + \lambda_\mathrm{r} q = 0$, that is
 $q \,(\sum_i \hat x_i \hat x_i^* + \lambda_\mathrm{r}) = \sum_i \hat g_i \hat x_i^*$, so
 $\hat h^*(\omega) = \sum_i \hat g_i \hat x_i^* / (\sum_i \hat x_i \hat x_i^* + \lambda_\mathrm{r})$: at every frequency, the
-element-wise formula. At this $q$, $E_\omega(q + \varepsilon) - E_\omega(q) =
+element-wise formula. At this $q$, $\mathcal{E}_\omega(q + \varepsilon) - \mathcal{E}_\omega(q) =
 (\sum_i \lvert \hat x_i \rvert^2 + \lambda_\mathrm{r}) \lvert \varepsilon \rvert^2 > 0$ for every
 $\varepsilon \ne 0$, since $\lambda_\mathrm{r} > 0$: the stationary point is the unique minimum. Each
 $\hat h(\omega)$ was free here; for real patches and labels $\hat x_i(-\omega) = \hat x_i(\omega)^*$ and
