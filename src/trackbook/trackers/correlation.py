@@ -78,7 +78,7 @@ class MosseParams:
         1e-5, 1e-8, 1.0, None, doc="λ (ε) added to the denominator B of H* = A / (B + λ)",
         paper=NOT_PRINTED,   # the paper's regulariser is not quoted here with a value
         why="1e-5 as in OpenCV's mosse.py sample: with unit-norm patches B averages 1 per "
-            "frequency, so the ridge only guards frequencies with no energy")
+            "frequency, so λ only guards frequencies with no energy")
 
 
 @dataclasses.dataclass(frozen=True)
