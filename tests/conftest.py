@@ -118,3 +118,75 @@ def book_visits(tmp_path_factory):
     # an xdist worker's temporary folder lies in its run's folder, which all workers share
     return Visits((base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base)
                   / "book-visits")
+
+
+def _run_store(tmp_path_factory, name: str) -> Path:
+    """A folder ``name`` of the test run, shared by its test processes (an xdist worker's
+    temporary folder lies in its run's folder, which all workers share)."""
+    import os
+
+    base = tmp_path_factory.getbasetemp()
+    return (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / name
+
+
+@pytest.fixture(scope="session")
+def made_once(tmp_path_factory):
+    """``made_once(name, make)``: the folder ``name`` of the test run, filled by ``make(folder)``
+    once for all the run's test processes. The first process to need it makes it, under a
+    lock; one that needs it meanwhile waits for it; the others read what it made. For
+    fixtures whose making is expensive and whose result is files (a playground's page and
+    its run files), which a module-scoped fixture would make again on every worker that runs
+    one of its tests."""
+    try:
+        import fcntl
+    except ImportError:      # Windows: each test process makes its own
+        fcntl = None
+
+    def made(name, make):
+        folder = _run_store(tmp_path_factory, "made-once") / name
+        folder.parent.mkdir(parents=True, exist_ok=True)
+        if fcntl is None:
+            folder = tmp_path_factory.mktemp(name)
+            make(folder)
+            return folder
+        with open(folder.with_suffix(".lock"), "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            done = folder.with_suffix(".done")
+            if not done.is_file():
+                import shutil
+                shutil.rmtree(folder, ignore_errors=True)    # a maker that failed midway
+                folder.mkdir()
+                make(folder)
+                done.touch()
+        return folder
+
+    return made
+
+
+# ---- the order of the browser checks -------------------------------------------------------
+
+#: the page that takes the longest to open, as the checks of its visit name it: MathJax
+#: typesets its hundreds of formulas for about two minutes on a 2-core machine
+#: (tests/_book_pages.py, ``typeset``)
+SLOWEST_VISIT = ("appendix_exercises", "exercises_appendix")
+
+
+def pytest_collection_modifyitems(config, items):
+    """The first check that reads the visit of the exercises appendix runs first, the other
+    checks of that page last.
+
+    Every check of a page reads its one visit (``book_visits``): the first to need it makes
+    it, and a check of the same page on another worker waits meanwhile. Run side by side, the
+    page's checks held every worker for the two minutes of its visit (measured: three
+    workers, each ~180 s on a busy machine); made first, the visit is ready long before the
+    page's other checks run.
+    """
+    def reads_visit(item):
+        return (any(n in item.nodeid for n in SLOWEST_VISIT)
+                and "book_visits" in getattr(item, "fixturenames", ()))
+
+    slow = [i for i in items if reads_visit(i)]
+    if not slow:
+        return
+    rest = [i for i in items if not reads_visit(i)]
+    items[:] = slow[:1] + rest + slow[1:]

@@ -241,15 +241,20 @@ def test_korean_quote_drawn_with_the_shipped_font(browser, server, scheme):
 
 
 @pytest.fixture(scope="module")
-def static_page(tmp_path_factory):
+def static_page(made_once):
     """One small playground's static page (as the book shows it: its run and frame files
-    copied beside it by the Sphinx extension), without a book build."""
+    copied beside it by the Sphinx extension), without a book build; made once for the test
+    run, whichever workers run its tests (its runs take a minute on a busy machine)."""
+    return made_once("static-playground", _make_static_page) / "site"
+
+
+def _make_static_page(d):
+    """Write the page into ``d / "site"`` and its runs into ``d / "store"``."""
     from playground_export.export import STATIC_BASE, static_html
     from playground_export.static import OUT_ENV
     from sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
-    d = tmp_path_factory.mktemp("static")
     mp = pytest.MonkeyPatch()
     mp.setenv(OUT_ENV, str(d / "store"))
     try:
@@ -265,7 +270,6 @@ def static_page(tmp_path_factory):
         assert copy_files(d / "site") > 0
     finally:
         mp.undo()
-    return d / "site"
 
 
 @pytest.mark.parametrize("scheme", ["file", "http"])
@@ -310,15 +314,20 @@ def test_static_playground_ships_the_widget_module(static_page):
 
 
 @pytest.fixture(scope="module")
-def cf_page(tmp_path_factory):
+def cf_page(made_once):
     """A correlation filter's playground (and mean-shift's, which has no response) as the book
-    shows it, without a book build."""
+    shows it, without a book build; made once for the test run, whichever workers run its
+    tests."""
+    return made_once("cf-playground", _make_cf_page) / "site"
+
+
+def _make_cf_page(d):
+    """Write the page into ``d / "site"`` and its runs into ``d / "store"``."""
     from playground_export.export import STATIC_BASE, static_html
     from playground_export.static import OUT_ENV
     from sphinx_playground import STATIC_DIR, copy_files
     from trackbook.widgets import Playground
 
-    d = tmp_path_factory.mktemp("cf")
     mp = pytest.MonkeyPatch()
     mp.setenv(OUT_ENV, str(d / "store"))
     try:
@@ -333,7 +342,6 @@ def cf_page(tmp_path_factory):
         assert copy_files(d / "site") > 0
     finally:
         mp.undo()
-    return d / "site"
 
 
 #: per panel of the viewer (data-tb-panels, CSS px): how many pixels have the colour ``rgb``

@@ -82,13 +82,39 @@ def test_a_handed_out_appendix_needs_no_removed_cell():
     assert not missing, missing
 
 
-@pytest.mark.slow
-def test_appendix_executes_and_every_solution_passes():
+def _library_changed() -> float:
+    """When a file of the library last changed (seconds since the epoch)."""
+    return max(f.stat().st_mtime for f in (ROOT / "src" / "trackbook").rglob("*")
+               if f.is_file() and "__pycache__" not in f.parts)
+
+
+def _executed_appendix():
+    """The appendix executed, every cell in order in one kernel from its own folder.
+
+    The book's build executes every page (``book/_ext/execute_pages.py``, the same page in
+    the same kind of kernel; it only adds the figure check and the playgrounds' book
+    display, neither of which the appendix uses): where its cache holds this page's current
+    code executed after the library last changed, that execution is read rather than made a
+    second time (it is the slowest page of the book). Otherwise the page runs here.
+    """
     jupytext = pytest.importorskip("jupytext")
+    try:
+        import execute_pages  # from book/_ext, which tests/conftest.py puts on the path
+        nb = execute_pages.cached(APPENDIX, after=_library_changed())
+    except ImportError:              # no jupyter-cache: the book's extra is not installed
+        nb = None
+    if nb is not None:
+        return nb
     nbclient = pytest.importorskip("nbclient")
     nb = jupytext.read(APPENDIX)
     nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
                             resources={"metadata": {"path": str(APPENDIX.parent)}}).execute()
+    return nb
+
+
+@pytest.mark.slow
+def test_appendix_executes_and_every_solution_passes():
+    nb = _executed_appendix()
     code = [c for c in nb.cells if c.cell_type == "code"]
     errors = [o for c in code for o in c.get("outputs", []) if o.get("output_type") == "error"]
     assert not errors, errors[0]

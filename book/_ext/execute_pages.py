@@ -80,6 +80,35 @@ def book_environment() -> None:
     os.environ.pop(BACKGROUND_ENV, None)
 
 
+def cached(page: Path, after: float = 0.0, cache: Path = CACHE):
+    """The executed notebook of ``page`` from the cache, its outputs merged into the page as
+    it reads now; None when the cache holds no execution of the page's current code cells, or
+    only one stored before the time ``after`` (seconds since the epoch).
+
+    A cached page is matched on its own code, not on the library it imports: a caller that
+    reads its outputs passes the time the library last changed as ``after``.
+    """
+    from datetime import timezone
+
+    from jupyter_cache import get_cache
+    from jupyter_cache.readers import get_reader
+
+    if not Path(cache).is_dir():
+        return None
+    store = get_cache(str(cache))
+    nb = get_reader(READER)(str(page))
+    try:
+        record = store.match_cache_notebook(nb)
+    except KeyError:
+        return None
+    made = record.created
+    if made.tzinfo is None:          # the cache's database keeps UTC without its zone
+        made = made.replace(tzinfo=timezone.utc)
+    if made.timestamp() < after:
+        return None
+    return store.merge_match_into_notebook(nb)[1]
+
+
 def main() -> int:
     import nbformat
     from jupyter_cache import get_cache
