@@ -176,9 +176,9 @@ step ⑤ halves the step when $\rho$ fell.
 
 === 8.10 ★★ pen and paper | A climb by hand, and why it never goes down
 As in exercise 8.8, $\hat f(\mathbf y) = C \sum_i w_i\, k(s_i)$ with
-$s_i = ((\mathbf y - x_i)/h)^2$ and the Epanechnikov profile $k(s) = 1 - s$ for $s \le 1$ and 0
+$s_i = ((\mathbf y - \mathbf x_i)/h)^2$ and the Epanechnikov profile $k(s) = 1 - s$ for $s \le 1$ and 0
 beyond, so $g = -k'$ is 1 for $s_i < 1$ and 0 for $s_i > 1$, and the mean-shift step
-$\mathbf y \mapsto \sum_i x_i w_i g_i / \sum_i w_i g_i$ is the weighted mean of the pixels closer
+$\mathbf y \mapsto \sum_i \mathbf x_i w_i g_i / \sum_i w_i g_i$ is the weighted mean of the pixels closer
 than $h$ to $\mathbf y$ (no pixel falls exactly on the border in this exercise). Four pixels lie
 at $x = 0, 2, 4, 7$ with weights $w = 3, 1, 1, 1$, and $h = 4$. (a) Start at
 $\hat{\mathbf y}_0 = 9$ and iterate until the step is zero; list the iterates. (b) Compute
@@ -201,16 +201,16 @@ $(1 - 49/144) + (1 - 1/144) + (1 - 64/144) = 53/24 \approx 2.21$. It rises at ev
 (c) Convexity gives $k(s_i') - k(s_i) \ge g_i (s_i - s_i')$ for every pixel ($k$ is the
 larger of the two straight lines $1 - s$ and 0). Multiply by $C w_i \ge 0$ (the weights here
 are positive, and those of step ② are never negative), insert
-$s_i - s_i' = [(\mathbf y - x_i)^2 - (\mathbf y' - x_i)^2]/h^2$ and sum over the pixels:
+$s_i - s_i' = [(\mathbf y - \mathbf x_i)^2 - (\mathbf y' - \mathbf x_i)^2]/h^2$ and sum over the pixels:
 
 $$\begin{aligned}
-\hat f(\mathbf y') - \hat f(\mathbf y) &\ge \frac{C}{h^2} \sum_i w_i g_i \big[(\mathbf y - x_i)^2 - (\mathbf y' - x_i)^2\big]
+\hat f(\mathbf y') - \hat f(\mathbf y) &\ge \frac{C}{h^2} \sum_i w_i g_i \big[(\mathbf y - \mathbf x_i)^2 - (\mathbf y' - \mathbf x_i)^2\big]
 \\
-&= \frac{C}{h^2} \sum_i w_i g_i\, (\mathbf y - \mathbf y')(\mathbf y + \mathbf y' - 2 x_i) .
+&= \frac{C}{h^2} \sum_i w_i g_i\, (\mathbf y - \mathbf y')(\mathbf y + \mathbf y' - 2 \mathbf x_i) .
 \end{aligned}$$
 
 With $G = \sum_i w_i g_i$ and
-$\sum_i w_i g_i x_i = G \mathbf y'$ (the definition of $\mathbf y'$) the sum is
+$\sum_i w_i g_i \mathbf x_i = G \mathbf y'$ (the definition of $\mathbf y'$) the sum is
 $(\mathbf y - \mathbf y')(G \mathbf y + G \mathbf y' - 2 G \mathbf y') = G (\mathbf y' - \mathbf y)^2$. $G > 0$ whenever the step is defined (its
 denominator is $G$), so every step that moves raises $\hat f$. On the climb of (a), divided by
 $C$: $9 \to 7$, bound $1 \cdot 4/16 = 0.25$, rise $11/16 \approx 0.69$; $7 \to 5.5$, bound
