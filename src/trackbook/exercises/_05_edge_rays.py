@@ -153,7 +153,7 @@ to one pixel at the steepest point, the edge ends both where the brightness chan
 
 === 5.10 ★★ pen and paper | Sliding a contour along its normals
 Condensation's likelihood, $\log p(z \mid x) = -\frac{1}{2\sigma^2}\sum_{m=1}^{M}
-\min(\nu_m^2, \mu^2) + \text{const}$, with $\sigma = 3$ and $\mu = 10$. A box-shaped contour
+\min(\nu_m^2, \nu_{\max}^2) + \text{const}$, with $\sigma = 3$ and $\nu_{\max} = 10$. A box-shaped contour
 has $M = 4$ points on its left and right sides, whose normals are horizontal; the hypothesis
 $x$ is the box shifted sideways by $d$ pixels, which moves every point by $d$ along its normal.
 Measured from the unshifted points, the nearest edge on each normal lies at the offsets
