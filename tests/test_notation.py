@@ -23,7 +23,8 @@ A piece of maths is cut into symbols; each is a key ``(font, base, label, decora
   A run of italic letters is one symbol per letter (``KHP`` is ``K``, ``H``, ``P``);
 * ``font``: italic (``""``), ``bf`` (``\\mathbf``, ``\\boldsymbol``), ``rm`` (an upright
   letter, ``\\mathrm{P}``), ``cal``, ``bb``. ``\\mathbf{x}``, ``\\mathrm{x}``,
-  ``\\mathcal{X}`` are not ``x``;
+  ``\\mathcal{X}`` are not ``x`` (the book writes no ``\\mathcal``: its offline
+  fonts have no script alphabet);
 * ``label``: an **upright** subscript or superscript (``\\lambda_{\\mathrm{UT}}``,
   ``\\eta_\\text{tmpl}``, ``q^\\mathrm{O}``), or an italic one that is a word of three or more
   letters (``h_{ref}``), is part of the name: ``\\lambda_{\\mathrm{UT}}`` is not ``\\lambda``.
@@ -386,7 +387,7 @@ def _show(key: Key) -> str:
 #: Kalman filter's index is k: a y with a frame index t can be a vertical coordinate, y_t^i.
 RETIRED = {
     r"(?<![\\A-Za-z])y_\{?k\b": "the Kalman measurement is z_k; y is the vertical coordinate",
-    r"\\(?:chi|mathcal\{\\chi\})_": "the sigma points are \\mathcal{X}_i; chi is the chi-square",
+    r"\\(?:chi|mathcal\{\\chi\})_": "the sigma points are a bold chi, \\boldsymbol\\chi_i; a plain chi is the chi-square",
     r"(?<![\\A-Za-z])d_\{?F\b": "the Förstner distance is d_\\mathrm{F}",
 }
 

@@ -83,7 +83,7 @@ they come from another density, a *proposal* $q(x)$, instead. Show that the weig
 $$w^{(i)} \propto \frac{p(z \mid x^{(i)})\, p(x^{(i)})}{q(x^{(i)})}$$
 
 make the weighted set stand for the posterior, and that they reduce to factored sampling's weights when $q = p$. Then, by hand:
-prior $\mathcal{N}(0, 1)$, proposal $\mathcal{N}(1, 1)$, a likelihood that is the same everywhere, and the two
+prior $\mathrm{N}(0, 1)$, proposal $\mathrm{N}(1, 1)$, a likelihood that is the same everywhere, and the two
 samples $x^{(1)} = 0$, $x^{(2)} = 1$. What are their normalised weights?
 --- solution
 For any function $\varphi$,
@@ -103,7 +103,7 @@ normalised weights are $1/(1 + e^{-1}) \approx 0.731$ and $e^{-1}/(1 + e^{-1}) \
 The sample the proposal over-produces ($x = 1$, its mean) is weighed down.
 
 === 2.7 ★★ modify | Systematic resampling is tight
-Systematic resampling uses one random offset $u \sim \mathcal{U}[0, 1/N)$ and the $N$ evenly spaced
+Systematic resampling uses one random offset $u \sim \mathrm{U}[0, 1/N)$ and the $N$ evenly spaced
 pointers $u + k/N$. Write `bounds(w, N)` returning, for each particle, the smallest and the
 largest number of copies it can get (two integer arrays), and verify on 300 random weight
 vectors that the copies of `systematic_resample` always lie within your bounds and that the

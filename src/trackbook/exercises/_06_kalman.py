@@ -4,7 +4,7 @@ STEM = "06_kalman"
 
 TEXT = r"""
 === 6.1 ★ use | The product of two Gaussians
-The prior is $\mathcal{N}(20, 4)$ (mean 20 px, variance 4), the measurement $z = 26$ px with noise
+The prior is $\mathrm{N}(20, 4)$ (mean 20 px, variance 4), the measurement $z = 26$ px with noise
 variance 12. Compute by hand the Kalman gain $K$, the posterior mean and the posterior
 variance, and check them on a grid. Answer `(K, mean, variance)`.
 --- solution
@@ -54,8 +54,8 @@ variances after each measurement in `zs`: predict by adding the known motion `u`
 and `var_q` to the variance (the convolution of two Gaussians), update by the product of two
 Gaussians (gain $K = v / (v + \text{var}_r)$). Use plain NumPy, not `KalmanFilter`. The check
 uses exercise 6.1 (one measurement: mean 21.5, variance 3), a second measurement after it
-($K = 3/15$, variance 2.4) and a case with motion: from $\mathcal{N}(0, 3)$ with $u = 5$ and
-$\text{var}_q = 1$ the prediction is $\mathcal{N}(5, 4)$, and $z = 11$ with variance 12 gives mean 6.5
+($K = 3/15$, variance 2.4) and a case with motion: from $\mathrm{N}(0, 3)$ with $u = 5$ and
+$\text{var}_q = 1$ the prediction is $\mathrm{N}(5, 4)$, and $z = 11$ with variance 12 gives mean 6.5
 and variance 3.
 --- solution
 One loop over the measurements, two lines per step:
@@ -72,10 +72,10 @@ def kf1d(zs, mu0, var0, u, var_q, var_r):
     return np.array(means), np.array(variances)
 ```
 
-The cases by hand: from $\mathcal{N}(20, 4)$ with $u = 0$, $\text{var}_q = 0$ and $z = 26$ (variance
+The cases by hand: from $\mathrm{N}(20, 4)$ with $u = 0$, $\text{var}_q = 0$ and $z = 26$ (variance
 12), $K = 1/4$, mean 21.5, variance 3 (exercise 6.1). A second measurement with the same
 variance has $K = 3/(3 + 12) = 1/5$, so the variance becomes $(4/5) \cdot 3 = 2.4$. With motion,
-$\mathcal{N}(0, 3)$ predicts to $\mathcal{N}(0 + 5, 3 + 1) = \mathcal{N}(5, 4)$; then $K = 4/16 = 1/4$, mean
+$\mathrm{N}(0, 3)$ predicts to $\mathrm{N}(0 + 5, 3 + 1) = \mathrm{N}(5, 4)$; then $K = 4/16 = 1/4$, mean
 $5 + (11 - 5)/4 = 6.5$ and variance $(3/4) \cdot 4 = 3$.
 
 === 6.6 ★★ modify | A precise bearing or a good start

@@ -38,11 +38,11 @@ MOSSE trains on patches $x_i$ with desired responses $g_i$; $\hat x_i$, $\hat g_
 DFTs and the filter's, and the filter's response on $x_i$ has the DFT $\hat x_i \odot \hat h^*$. The
 filter minimises the output sum of squared error plus a penalty on its size,
 
-$$\mathcal{E} = \sum_i \sum_\omega \lvert \hat x_i(\omega) \hat h^*(\omega) - \hat g_i(\omega) \rvert^2 +
+$$\mathsf{E} = \sum_i \sum_\omega \lvert \hat x_i(\omega) \hat h^*(\omega) - \hat g_i(\omega) \rvert^2 +
 \lambda_\mathrm{r} \sum_\omega \lvert \hat h(\omega) \rvert^2 ,$$
 
 with $\omega$ running over the frequencies and $\lambda_\mathrm{r} > 0$.
-(a) Show that $\mathcal{E}$ splits into one term per frequency, and minimise each term over the
+(a) Show that $\mathsf{E}$ splits into one term per frequency, and minimise each term over the
 complex number $\hat h^*(\omega)$ to obtain
 $\hat h^* = \sum_i \hat g_i \odot \hat x_i^* / (\sum_i \hat x_i \odot \hat x_i^* + \lambda_\mathrm{r})$. Why is the stationary
 point a minimum? (b) At one frequency, two training patches have $\hat x_1 = 2$ and $\hat x_2 = i$
@@ -52,14 +52,14 @@ $\hat h^*$ at a frequency where every $\hat x_i$ is 0, and what would it be with
 Perturb $q = \hat h^*(\omega)$ to $q + \varepsilon$ and expand $\lvert a + b \rvert^2 =
 \lvert a \rvert^2 + 2\operatorname{Re}(a b^*) + \lvert b \rvert^2$.
 --- solution
-(a) Each summand holds one frequency's $\hat h(\omega)$ and no other, so $\mathcal{E}$ is a sum of terms
+(a) Each summand holds one frequency's $\hat h(\omega)$ and no other, so $\mathsf{E}$ is a sum of terms
 that can be minimised one at a time. At one frequency write $q = \hat h^*(\omega)$ (then
 $\lvert \hat h(\omega) \rvert^2 = \lvert q \rvert^2$) and
-$\mathcal{E}_\omega(q) = \sum_i \lvert \hat x_i q - \hat g_i \rvert^2 + \lambda_\mathrm{r} \lvert q \rvert^2$. Expanding
+$\mathsf{E}_\omega(q) = \sum_i \lvert \hat x_i q - \hat g_i \rvert^2 + \lambda_\mathrm{r} \lvert q \rvert^2$. Expanding
 with $a = \hat x_i q - \hat g_i$, $b = \hat x_i \varepsilon$:
 
 $$\begin{aligned}
-\mathcal{E}_\omega(q + \varepsilon) = \mathcal{E}_\omega(q) &+ 2 \operatorname{Re}\Big[\varepsilon^*
+\mathsf{E}_\omega(q + \varepsilon) = \mathsf{E}_\omega(q) &+ 2 \operatorname{Re}\Big[\varepsilon^*
 \Big(\sum_i \hat x_i^* (\hat x_i q - \hat g_i) + \lambda_\mathrm{r} q\Big)\Big] \\
 &+ \Big(\sum_i \hat x_i \hat x_i^* + \lambda_\mathrm{r}\Big) \lvert \varepsilon \rvert^2 .
 \end{aligned}$$
@@ -68,14 +68,14 @@ The linear term vanishes for every $\varepsilon$ (real and imaginary) only if
 $\sum_i \hat x_i^* (\hat x_i q - \hat g_i) + \lambda_\mathrm{r} q = 0$, that is
 $q \,(\sum_i \hat x_i \hat x_i^* + \lambda_\mathrm{r}) = \sum_i \hat g_i \hat x_i^*$, so
 $\hat h^*(\omega) = \sum_i \hat g_i \hat x_i^* / (\sum_i \hat x_i \hat x_i^* + \lambda_\mathrm{r})$: at every frequency, the
-element-wise formula. At this $q$, $\mathcal{E}_\omega(q + \varepsilon) - \mathcal{E}_\omega(q) =
+element-wise formula. At this $q$, $\mathsf{E}_\omega(q + \varepsilon) - \mathsf{E}_\omega(q) =
 (\sum_i \lvert \hat x_i \rvert^2 + \lambda_\mathrm{r}) \lvert \varepsilon \rvert^2 > 0$ for every
 $\varepsilon \ne 0$, since $\lambda_\mathrm{r} > 0$: the stationary point is the unique minimum. Each
 $\hat h(\omega)$ was free here; for real patches and labels $\hat x_i(-\omega) = \hat x_i(\omega)^*$ and
 $\hat g_i(-\omega) = \hat g_i(\omega)^*$ give $\hat h^*(-\omega) = \hat h^*(\omega)^*$, so the filter
 $h = \operatorname{DFT}^{-1}(\hat h)$ is real: the best of all filters is a real one. (By
 Parseval, with $n$ the number of pixels and $r_i$ the filter's response on $x_i$,
-$\mathcal{E} = n\,(\sum_i \lVert r_i - g_i \rVert^2 + \lambda_\mathrm{r}
+$\mathsf{E} = n\,(\sum_i \lVert r_i - g_i \rVert^2 + \lambda_\mathrm{r}
 \lVert h \rVert^2)$: the same minimiser as the least squares on the patches themselves.)
 
 (b) $\sum_i \hat g_i \hat x_i^* = 1 \cdot 2 + 1 \cdot (-i) = 2 - i$ and

@@ -50,7 +50,7 @@ A four-state filter ($n_x = 4$) is run on $M = 25$ simulated tracks. The $\chi^2
 for 100 degrees of freedom the 2.5 % point 74.22 and the 97.5 % point 129.56. Compute the
 95 % band of the average NEES. The average NEES at the last step is 5.6: what do you
 conclude, and which of $Q$, $R$ would you change first? Without a table, the normal
-approximation $\chi^2_d \approx \mathcal{N}(d, 2d)$ gives which band?
+approximation $\chi^2_d \approx \mathrm{N}(d, 2d)$ gives which band?
 --- solution
 $M\,\overline{\mathrm{NEES}} \sim \chi^2_{100}$, so the band is $[74.22/25, 129.56/25] =
 [2.97, 5.18]$. 5.6 is above it: the filter is overconfident, its $P$ too small. If the NIS

@@ -7,7 +7,7 @@ STEM = "18_sigma_points_and_proposals"
 
 TEXT = r"""
 === 18.1 ★ pen and paper | Three points for a Gaussian
-For $x \sim \mathcal{N}(m, \sigma^2)$ take the points $m$ and $m \pm \gamma_{\mathrm{UT}}\sigma$, with weight $w_0$ on the
+For $x \sim \mathrm{N}(m, \sigma^2)$ take the points $m$ and $m \pm \gamma_{\mathrm{UT}}\sigma$, with weight $w_0$ on the
 centre and $w_1$ on each side point. Derive $w_0$ and $w_1$ from two requirements: the weights
 sum to 1, and the weighted variance of the points is $\sigma^2$. Why does the weighted mean not
 give a third equation? Then choose $\gamma_{\mathrm{UT}}$ so that the weighted fourth central moment equals the
@@ -25,8 +25,8 @@ $\kappa_{\mathrm{UT}} = 2 = 3 - n$.
 
 === 18.2 ★★ pen and paper | The points carry the mean and covariance for any scaling
 Show, for Van der Merwe's scaled sigma points in $n$ dimensions, that
-$\sum_i W^m_i = 1$, $\sum_i W^m_i \mathcal{X}_i = m$ and
-$\sum_i W^c_i (\mathcal{X}_i - m)(\mathcal{X}_i - m)^T = P$ for every $\lambda_{\mathrm{UT}} > -n$ and every
+$\sum_i W^m_i = 1$, $\sum_i W^m_i \boldsymbol{\chi}_i = m$ and
+$\sum_i W^c_i (\boldsymbol{\chi}_i - m)(\boldsymbol{\chi}_i - m)^T = P$ for every $\lambda_{\mathrm{UT}} > -n$ and every
 $\beta_{\mathrm{UT}}$. Why does $\beta_{\mathrm{UT}}$ not appear in the result, and why is the
 transform then exact for an affine $\varphi(x) = A x + b$?
 --- solution
@@ -37,7 +37,7 @@ weighted mean is $(W^m_0 + n/(n + \lambda_{\mathrm{UT}}))\, m = m$. In the covar
 term is $W^c_0 \cdot 0$ (that is why $\beta_{\mathrm{UT}}$, which only changes $W^c_0$, drops
 out); each pair gives $2 L_i L_i^T / (2(n + \lambda_{\mathrm{UT}}))$ and
 $\sum_i L_i L_i^T = L L^T = (n + \lambda_{\mathrm{UT}}) P$, so the sum is $P$. For
-$\varphi = Ax + b$ the images are $A\mathcal{X}_i + b$: their weighted mean is $Am + b$ and their
+$\varphi = Ax + b$ the images are $A\boldsymbol{\chi}_i + b$: their weighted mean is $Am + b$ and their
 weighted covariance $A P A^T$ (the mean of the images is the image of the mean, so the centre
 term is again zero), which are the exact moments of $Ax + b$.
 
@@ -69,7 +69,7 @@ $0 \le w_i \le 1$ gives $w_i^2 \le w_i$, so $\sum_i w_i^2 \le \sum_i w_i = 1$, e
 $w_i$ is 0 or 1, i.e. one particle has all the weight.
 
 === 18.5 ★★ pen and paper | A shifted proposal
-Target $p = \mathcal{N}(0, 1)$, proposal $q = \mathcal{N}(\mu, 1)$. Show that the unnormalised weight
+Target $p = \mathrm{N}(0, 1)$, proposal $q = \mathrm{N}(\mu, 1)$. Show that the unnormalised weight
 $\tilde w = p(x)/q(x)$ has $E_q[\tilde w] = 1$ and $E_q[\tilde w^2] = e^{\mu^2}$, and conclude
 that for large $N$, $N_\text{eff} / N \to e^{-\mu^2}$. How many of 1000 samples count for
 $\mu = 1$, 2 and 3? Check $\mu = 1$ with $10^6$ samples.
@@ -78,7 +78,7 @@ $N_\text{eff} = (\sum_i \tilde w_i)^2 / \sum_i \tilde w_i^2$; divide top and bot
 let $N \to \infty$.
 --- solution
 $E_q[\tilde w] = \int p = 1$. $\tilde w = e^{-x^2/2 + (x - \mu)^2/2} = e^{\mu^2/2 - \mu x}$, so
-$E_q[\tilde w^2] = \int p(x)^2/q(x)\, dx = e^{\mu^2} \int \mathcal{N}(x; -\mu, 1)\, dx = e^{\mu^2}$ (complete
+$E_q[\tilde w^2] = \int p(x)^2/q(x)\, dx = e^{\mu^2} \int \mathrm{N}(x; -\mu, 1)\, dx = e^{\mu^2}$ (complete
 the square: $-x^2 + (x - \mu)^2/2 = -(x + \mu)^2/2 + \mu^2$). Then
 $N_\text{eff}/N = (\frac1N \sum \tilde w_i)^2 / (\frac1N \sum \tilde w_i^2) \to 1/e^{\mu^2}$. For
 1000 samples: about 368, 18 and 0.1 — the last means that a single sample holds nearly all the
@@ -106,7 +106,7 @@ parameters are tuning knobs and not constants.
 
 === 18.7 ★★★ implement | Van der Merwe's sigma points and weights
 Write `sigma_points(m, P, alpha, beta, kappa)` returning `(chi, Wm, Wc)`: the $2n + 1$ points
-as the rows of `chi`, in the order $\mathcal{X}_0 = m$, $\mathcal{X}_i = m + L_i$, $\mathcal{X}_{n+i} = m - L_i$
+as the rows of `chi`, in the order $\boldsymbol{\chi}_0 = m$, $\boldsymbol{\chi}_i = m + L_i$, $\boldsymbol{\chi}_{n+i} = m - L_i$
 ($i = 1 \dots n$, $L_i$ the $i$-th column of a matrix $L$ with $L L^T = (n + \lambda_{\mathrm{UT}})P$,
 e.g. the lower Cholesky factor), and the two weight vectors. `m` is a 1-D array of length
 $n$ and `P` an $n \times n$ array. By hand first: $n = 1$, $m = 5$, $P = 4$,

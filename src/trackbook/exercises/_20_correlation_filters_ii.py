@@ -9,12 +9,12 @@ TEXT = r"""
 === 20.1 ★ pen and paper | The scale filter from its ridge regression
 The scale filter sees one training sample: $n_\mathrm{c}$ feature channels $x^c$, each a signal of $n_\mathrm{s}$
 values over the scales, and the desired output $g$ over the scales. Its filter $h$ minimises
-$\mathcal{E}(h) = \lVert \sum_c h^c \star x^c - g \rVert^2 + \lambda_\mathrm{r} \sum_c \lVert h^c \rVert^2$
+$\mathsf{E}(h) = \lVert \sum_c h^c \star x^c - g \rVert^2 + \lambda_\mathrm{r} \sum_c \lVert h^c \rVert^2$
 over all cyclic shifts along the scale axis. Show that, frequency by frequency,
 $\hat h^c = \hat g^* \hat x^c / (\sum_k \hat x^{k*} \hat x^k + \lambda_\mathrm{r})$. Then: with DSST's $n_\mathrm{s} = 33$ and
 $a = 1.02$, what are the smallest and largest relative sizes one frame can test?
 --- hint
-By Parseval, $\mathcal{E}(h)$ splits into one small problem per frequency. In each, the data are
+By Parseval, $\mathsf{E}(h)$ splits into one small problem per frequency. In each, the data are
 the single row $\hat{\mathbf x} = (\hat x^1, \dots, \hat x^{n_\mathrm{c}})$; invert $\hat{\mathbf x}^H \hat{\mathbf x} + \lambda_\mathrm{r} I$ with
 Sherman–Morrison.
 --- solution
