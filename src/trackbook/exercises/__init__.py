@@ -16,6 +16,10 @@ The text format of a module's ``TEXT``::
     An optional hint.
     --- solution
     An optional worked solution.
+
+A header may end with ``| after <stem>``: the exercise uses a chapter that the book teaches
+later (``=== 3.4 ★★ modify | How much colour? | after 02_particle_filters``), and it is shown
+with that chapter's link, so a course sets it once the class has read that chapter.
 """
 
 from __future__ import annotations
@@ -46,7 +50,7 @@ LEGEND = ("Graded by effort, ★ short, ★★ longer, ★★★ an implementati
 GRADES = {"use": ("★",), "modify": ("★★",), "implement": ("★★★",),
           "pen and paper": ("★", "★★"), "project": ("★★★",)}
 
-_HEAD = re.compile(r"^=== (\d+)\.(\d+) (★+) ([a-z ]+?) \| (.*)$")
+_HEAD = re.compile(r"^=== (\d+)\.(\d+) (★+) ([a-z ]+?) \| (.*?)(?: \| after (\w+))?$")
 _PART = re.compile(r"^--- (hint|solution)$")
 
 
@@ -62,6 +66,8 @@ class Exercise:
     kind : one of :data:`KINDS`.
     title : a few words.
     statement, hint, solution : MyST text (hint and solution may be empty).
+    after : the stem of a chapter the book teaches after this one and the exercise needs
+        (``"02_particle_filters"``), or ``""``.
     """
 
     stem: str
@@ -72,6 +78,7 @@ class Exercise:
     statement: str
     hint: str = ""
     solution: str = ""
+    after: str = ""
 
     @property
     def autocheck(self):
@@ -88,13 +95,13 @@ def parse(text: str, stem: str) -> list[Exercise]:
         if head:
             if cur:
                 out.append(cur)
-            chapter, k, stars, kind, title = head.groups()
+            chapter, k, stars, kind, title, after = head.groups()
             if stars not in STARS or kind not in KINDS:
                 raise ValueError(f"{stem}: exercise {chapter}.{k} has grade {stars!r} and kind "
                                  f"{kind!r}; use one of {STARS} and one of {KINDS}")
             cur, part = {"number": f"{chapter}.{k}", "stars": stars, "kind": kind,
-                         "title": title.strip(), "statement": [], "hint": [],
-                         "solution": []}, "statement"
+                         "title": title.strip(), "after": after or "", "statement": [],
+                         "hint": [], "solution": []}, "statement"
         elif sub and cur:
             part = sub.group(1)
         elif cur is None:
@@ -157,10 +164,12 @@ def markdown(number, *, solution: bool = True, title_level: int | None = None) -
     e = number if isinstance(number, Exercise) else get(number)
     title = e.title if e.title.endswith(("?", "!", ".")) else e.title + "."
     head = f"Exercise {e.number} {e.stars} ({e.kind}). {title}"
+    # an exercise that needs a later chapter says which, before its statement
+    after = f"*(After {{doc}}`{e.after}`.)* " if e.after else ""
     if title_level:
-        parts = ["#" * title_level + " " + head, e.statement]
+        parts = ["#" * title_level + " " + head, after + e.statement]
     else:
-        parts = [f"**{head}** {e.statement}"]
+        parts = [f"**{head}** {after}{e.statement}"]
     if e.hint:
         parts.append(f"*Hint.* {e.hint}")
     if solution and e.solution:

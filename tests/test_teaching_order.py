@@ -1,0 +1,75 @@
+"""The book's teaching order: nothing is used before it is taught.
+
+The order is the table of contents (``_toc.yml``). Two things a reader meets are held to it:
+
+* a concept chapter's **Prerequisites** paragraph names only chapters that come before it;
+* an exercise that needs a chapter taught later says so in its header (``| after <stem>``),
+  and that chapter does come later (an ``after`` that names an earlier chapter, or the
+  exercise's own, is a stale flag).
+
+The exercises appendix and ``trackbook.exercises.chapters()`` list the chapters in the same
+order as the table of contents.
+"""
+import re
+from pathlib import Path
+
+import pytest
+
+from trackbook import exercises
+
+ROOT = Path(__file__).resolve().parents[1]
+BOOK = ROOT / "book"
+
+
+def _order():
+    return [f.split("/")[-1] for f in
+            re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())]
+
+
+ORDER = _order()
+CONCEPT = [s for s in ORDER if re.match(r"\d\d_", s)]
+_LINK = re.compile(r"(?:\{doc\}`(?:[^`<]*<)?|\]\()(\d\d_[a-z0-9_]+)(?:\.md)?[>`)]")
+
+
+def _prerequisites(stem: str) -> str:
+    text = (BOOK / f"{stem}.md").read_text()
+    m = re.search(r"^\*\*Prerequisites\.\*\*(.*?)(?:\n\s*\n)", text, re.M | re.S)
+    assert m, f"{stem} has no **Prerequisites.** paragraph"
+    return m.group(1)
+
+
+def test_the_link_pattern_finds_both_link_forms():
+    text = ("{doc}`the Kalman chapter <06_kalman>` and [HOG](03_hog.md) and "
+            "{doc}`02_particle_filters`")
+    assert _LINK.findall(text) == ["06_kalman", "03_hog", "02_particle_filters"]
+
+
+@pytest.mark.parametrize("stem", CONCEPT)
+def test_prerequisites_come_before_the_chapter(stem):
+    here = ORDER.index(stem)
+    later = [s for s in _LINK.findall(_prerequisites(stem)) if ORDER.index(s) > here]
+    assert not later, f"{stem}'s prerequisites name chapters the book teaches later: {later}"
+
+
+@pytest.mark.parametrize("stem", exercises.chapters())
+def test_an_exercise_that_needs_a_later_chapter_names_it(stem):
+    here = ORDER.index(stem)
+    for e in exercises.for_chapter(stem):
+        if e.after:
+            assert e.after in ORDER, f"{e.number}: 'after {e.after}' is not a page of the book"
+            assert ORDER.index(e.after) > here, (
+                f"{e.number}: 'after {e.after}' names a chapter the book teaches before "
+                f"{stem}; drop the flag")
+
+
+def test_exercise_chapters_follow_the_table_of_contents():
+    assert list(exercises.chapters()) == [s for s in ORDER if s in exercises.chapters()]
+
+
+def test_the_after_flag_is_parsed_and_shown():
+    text = "=== 3.4 ★★ modify | How much colour? | after 02_particle_filters\nRun it.\n"
+    (e,) = exercises.parse(text, "03_hog")
+    assert (e.title, e.after) == ("How much colour?", "02_particle_filters")
+    assert "*(After {doc}`02_particle_filters`.)* Run it." in exercises.markdown(e)
+    (plain,) = exercises.parse("=== 3.1 ★ use | Halve the light\nRun it.\n", "03_hog")
+    assert plain.after == "" and "After" not in exercises.markdown(plain)
