@@ -1,7 +1,7 @@
 """The built book as a reader sees it in a 1280 px window.
 
-* the sidebar numbers the chapters as their file names do (the introduction is the root page,
-  unnumbered);
+* the sidebar shows the parts of ``_toc.yml`` in order, each page under its part, and numbers
+  nothing (a chapter's file number is a fixed label, not its place);
 * every page renders within its column: no output, table, figure, display equation or
   playground wider than the column (code sources may scroll), no printed output with numbers
   over ``MAX_LINES`` lines, no raw TeX outside typeset maths, no MathJax error; each offender
@@ -15,6 +15,7 @@ Runs after the book is built (``jupyter-book build .``); skips when there is no
 
 from __future__ import annotations
 
+import html
 import re
 from pathlib import Path
 
@@ -55,17 +56,30 @@ def page(browser):
 # The checks of the book's pages read each page's one visit over http (tests/_book_pages.py),
 # made once MathJax has typeset the page in a 1280 x 900 window.
 @needs_build
-def test_sidebar_numbers_the_chapters_one_to_nine(browser, book_visits, server):
+def test_sidebar_shows_the_parts_in_order_and_numbers_nothing(browser, book_visits, server):
     # index.html only redirects (meta refresh) to the root page: reading it races the redirect
-    entries = book_visits(browser, server, HTML, _toc_pages()[0] + ".html").sidebar
-    numbered = {}
-    for href, text in entries:
-        m = re.search(r"(?:^|/)0([1-9])_[^/]*\.html", href)
-        if m:
-            numbered[int(m.group(1))] = text
-    assert sorted(numbered) == list(range(1, 10)), f"chapter links in the sidebar: {numbered}"
-    wrong = {n: t for n, t in numbered.items() if not re.match(rf"{n}\.\s", t)}
-    assert not wrong, f"sidebar entries not numbered '<n>. ': {wrong}"
+    v = book_visits(browser, server, HTML, _toc_pages()[0] + ".html")
+    nav = re.search(r'<nav [^>]*class="[^"]*\bbd-links\b.*?</nav>', v.dom, re.S)
+    assert nav, "the page has no sidebar navigation"
+    nav = nav.group(0)
+    captions = [(m.start(), html.unescape(m.group(1)).strip()) for m in
+                re.finditer(r'class="caption-text">([^<]*)<', nav)]
+    toc = (ROOT / "_toc.yml").read_text()
+    want = [c.strip('"') for c in re.findall(r"^\s*- caption:\s*(.+?)\s*$", toc, re.M)]
+    assert [c for _, c in captions] == want, "the sidebar's parts are not _toc.yml's"
+    # each page's link stands under its own part's caption
+    part = None
+    for line in toc.splitlines():
+        if m := re.match(r"\s*- caption:\s*(.+?)\s*$", line):
+            part = m.group(1).strip('"')
+        elif m := re.match(r"\s*- file: (\S+)", line):
+            at = nav.find(f'{Path(m.group(1)).name}.html"')
+            if at < 0:          # the page being visited is marked current, without its name
+                continue
+            under = [c for pos, c in captions if pos < at][-1]
+            assert under == part, f"{m.group(1)} is under {under!r}, not {part!r}"
+    numbered = [t for _, t in v.sidebar if re.match(r"\d+\.\s", t)]
+    assert not numbered, f"sidebar entries carry a number: {numbered}"
 
 
 # MAX_LINES and the MEASURE script that runs in the page live in tests/_book_pages.py, which

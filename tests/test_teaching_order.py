@@ -73,3 +73,45 @@ def test_the_after_flag_is_parsed_and_shown():
     assert "*(After {doc}`02_particle_filters`.)* Run it." in exercises.markdown(e)
     (plain,) = exercises.parse("=== 3.1 ★ use | Halve the light\nRun it.\n", "03_hog")
     assert plain.after == "" and "After" not in exercises.markdown(plain)
+
+
+def _teaching():
+    return (BOOK / "appendix_teaching.md").read_text()
+
+
+def _parts():
+    """page -> the caption of its part in _toc.yml (the introduction has none)."""
+    parts, cur = {}, None
+    for line in (ROOT / "_toc.yml").read_text().splitlines():
+        if m := re.match(r'\s*- caption: "?([^"]+?)"?\s*$', line):
+            cur = m.group(1)
+        elif m := re.match(r"\s*- file: book/(\S+)", line):
+            parts[m.group(1)] = cur
+    return parts
+
+
+def test_the_teaching_pages_old_to_new_table_is_the_table_of_contents():
+    rows = re.findall(r"^\| \[[^\]]+\]\((\d\d_\w+)\.md\) \| (\d+) \| ([^|]+?) \| (\d+) \|$",
+                      _teaching(), re.M)
+    assert sorted(r[0] for r in rows) == sorted(CONCEPT)
+    parts = _parts()
+    for stem, old, part, now in rows:
+        assert int(old) == int(stem[:2]), f"{stem}: the old place is its file number"
+        assert int(now) == CONCEPT.index(stem), f"{stem}: place now {now}"
+        want = parts.get(stem, "the introduction")
+        assert part.lower() == want.lower(), f"{stem}: part {part!r}, _toc.yml says {want!r}"
+
+
+def test_the_core_path_follows_the_book_and_optional_pages_come_after_their_prerequisites():
+    text = _teaching()
+    core = re.findall(r"^\| (\d+) \| \[[^\]]+\]\((\d\d_\w+)\.md\)", text, re.M)
+    weeks = {stem: int(w) for w, stem in core}
+    assert [int(w) for w, _ in core] == list(range(1, len(core) + 1))
+    places = [ORDER.index(s) for _, s in core]
+    assert places == sorted(places), "the core path is not in the book's order"
+    optional = re.findall(r"^\| \[[^\]]+\]\((\d\d_\w+)\.md\) \| (\d+) \| [^|]*\|$", text, re.M)
+    assert optional, "the table of optional chapters is missing"
+    for stem, after in optional:
+        needed = [s for s in _LINK.findall(_prerequisites(stem)) if s in weeks]
+        late = [s for s in needed if weeks[s] > int(after)]
+        assert not late, f"{stem} is placed after week {after} but needs {late}"
