@@ -43,7 +43,7 @@ uint8 frames the pixels that clip at 255 do not move with the rest: the shift no
 cancels (on this box $d_\mathrm{F}$ is about 0.3 instead of 0), and a contrast change is no longer a
 congruence, so two windows of the changed frame no longer keep their distance.
 
-=== 7.4 ★★ modify | Small q or large q?
+=== 7.4 ★★ modify | Small q or large q? | after 06_kalman
 Run the book's variant `kalman-covariance-manoeuvre` (from the
 {doc}`case study <case_study_lee2015>`) on the first 146 frames of `red-cube`
 (`evaluate(..., seed=0, q=..., max_frames=146)`) with `q=0.01` and with `q=100`; the cube
@@ -57,7 +57,7 @@ $q = 0.01$: a tiny window (±4 px, 81 candidates) and a confident velocity; the 
 frame 139 leaves it, $d_\mathrm{F}$ jumps, and the manoeuvre window is searched. $q = 100$: a ±48 px
 window in every frame, $(2 \cdot 48 + 1)^2 = 9409$ candidates, never a second search.
 
-=== 7.5 ★★ modify | The manoeuvre window
+=== 7.5 ★★ modify | The manoeuvre window | after 06_kalman
 Starting from the steady state (Q = R = I, a measurement every
 frame), add σ_v² = 64 to the velocity block of $P^+$ and predict. What is the 3σ half-size
 of the window now, and what are the position and velocity gains of the update? On
