@@ -33,7 +33,7 @@ itself with inverted contrast (`255 - patch`), signed and unsigned.
 Inverting the contrast turns every gradient by 180°: the unsigned descriptor cannot tell the
 two apart (ρ = 1), the signed one can.
 
-=== 3.4 ★★ modify | How much colour?
+=== 3.4 ★★ modify | How much colour? | after 02_particle_filters
 Run `color-hog-pf` on the night clip with $\alpha$ = 0, 0.02, 0.1 and 0.5
 (seeds 0–2). How does the mean AUC move, and how does that fit the measurement of the two
 features at night in the {doc}`case study <case_study_lee2012>`?
@@ -44,7 +44,7 @@ HOG's likelihood varies less across the candidates than colour's, so even a smal
 colour lets colour, the feature more often off target at night, carry most of the spread of
 the fused weights and decide.
 
-=== 3.5 ★★★ implement | Fusing the two likelihoods
+=== 3.5 ★★★ implement | Fusing the two likelihoods | after 02_particle_filters
 Write `my_fuse(rho_c, rho_h, alpha, sigma)`: the normalised particle weights of eq. 14 from
 the colour and HOG Bhattacharyya coefficients of each particle, with the corrected likelihood
 of eq. 10–11, $p \propto \exp(-(1 - \rho)/2\sigma^2)$. By hand first: with

@@ -15,7 +15,7 @@ the singular values of $\xi\Sigma$ augmented by $b$, and so on recursively. The 
 saw 5 updates after the fit; column 4 saw 4, …, the last column 0: ages
 $(5, 5, 5, 5, 4, 3, 2, 1, 0)$.
 
-=== 4.2 ★ use | Which setting costs most?
+=== 4.2 ★ use | Which setting costs most? | after 02_particle_filters
 Which of the paper preset's settings costs most on the day clip? Start from
 `preset="paper"` and change one setting at a time: σ (both `sigma_color` and `sigma_hog`,
 to 0.2), `feature_map` (to `"sqrt"`) or `init` (to `"box"`), and compare the AUC of seed 0 over the first 80
@@ -47,7 +47,7 @@ clip (150 frames, 110 of them after $T$), averaged over seeds 0–2, the order c
 square root lifts the mean AUC from 0.245 to 0.541, σ = 0.2 to 0.426 and the box start to
 0.310.
 
-=== 4.3 ★★ modify | Raw or square-rooted histograms?
+=== 4.3 ★★ modify | Raw or square-rooted histograms? | after 02_particle_filters
 Run `color-hog-ipca` (seed 0) on the first 80 frames of `robot-corridor-day` with `anchor=0.0`
 (after the learning phase of $T = 40$ frames, the likelihood is the subspace's reconstruction
 error alone), once with `feature_map="sqrt"` and once with `feature_map="raw"`. Compare the
@@ -63,8 +63,10 @@ square root has norm 1, and its errors spread over a range that σ can resolve.
 
 === 4.4 ★★ pen and paper | Twice the distance
 With a single learned appearance $u = \sqrt{h_{ref}}$, show that
-$\lVert z - uu^Tz\rVert^2 = 1 - \rho^2$ for any $z = \sqrt h$, with $\rho = u^Tz$. What σ after
-frame $T$ gives the same weights as σ = 0.2 before it, for $\rho$ near 1? Then check the
+$\lVert z - uu^Tz\rVert^2 = 1 - \rho^2$ for any $z = \sqrt h$, with $\rho = u^Tz$. A tracker
+scores a candidate by $\exp(-D^2/2\sigma^2)$, before frame $T$ with $D^2 = 1 - \rho$ and from
+frame $T$ on, once it has learned $u$, with $D^2 = \lVert z - uu^Tz\rVert^2$. What σ after
+frame $T$ gives the same scores as σ = 0.2 before it, for $\rho$ near 1? Then check the
 identity on the target's colour histograms of frames 0 and 30 of `robot-corridor-day`
 (`color_histograms` on the ground-truth boxes): compute
 $\lVert z - uu^Tz\rVert^2 / (1 - \rho)$ and compare it with $1 + \rho$.
@@ -87,7 +89,7 @@ middle matrix of eq. 6 is $\begin{bmatrix}\Sigma & U^Tb\\ 0 & \tilde b^Tb\end{bm
 eq. 7 rotates $[U, \tilde b]$ by the left singular vectors of that small matrix. In the hand
 case $U^Tb = 0$ and $\tilde b^Tb = 3$: the middle matrix is diag(2, 3).
 
-=== 4.6 ★★★ project | Learn with a different number of basis vectors and measure it
+=== 4.6 ★★★ project | Learn with a different number of basis vectors and measure it | after 02_particle_filters
 Lee et al. (2012) print no
 $n_\mathrm{b}$ (their matrices have $n = 40$ columns {quote}`lee2012.window40`, but no number of basis
 vectors is given). Run `color-hog-ipca` with $n_\mathrm{b}$ = 1, 2, 4, 8 and 16 on both sample clips, with the anchor
@@ -130,7 +132,7 @@ clip, and the runs above cannot resolve it.
 === 4.7 ★ pen and paper | A reconstruction error by hand
 Four-bin histograms, fed to the subspace as $z = \sqrt h$. The tracker has learned two
 appearances, $u_1 = (0.8, 0.6, 0, 0)^T$ and $u_2 = (0, 0, 0.6, 0.8)^T$, and
-$U = [u_1\ u_2]$. A particle's histogram is $h = (0.25, 0.25, 0.25, 0.25)$.
+$U = [u_1\ u_2]$. A candidate's histogram is $h = (0.25, 0.25, 0.25, 0.25)$.
 (a) Check that $U$ has orthonormal columns. (b) Compute $U^Tz$, the reconstruction $UU^Tz$,
 the residual $z - UU^Tz$ and $D^2 = \lVert z - UU^Tz\rVert^2$. (c) Show that
 $D^2 = \lVert z\rVert^2 - \lVert U^Tz\rVert^2$ for any $z$ and any $U$ with orthonormal
@@ -156,12 +158,12 @@ $\lVert UU^Tz\rVert^2 = z^TUU^TUU^Tz = z^TUU^Tz = \lVert U^Tz\rVert^2$. Here
 $\lVert z\rVert^2 = 4 \cdot 0.25 = 1$ and $\lVert U^Tz\rVert^2 = 0.49 + 0.49 = 0.98$:
 $D^2 = 0.02$, as in (b).
 
-(d) With $u_1$ alone, $D^2 = 1 - 0.7^2 = 0.51$: half of this particle's appearance lies in
+(d) With $u_1$ alone, $D^2 = 1 - 0.7^2 = 0.51$: half of this candidate's appearance lies in
 the two bins that $u_1$ cannot explain. A second basis vector can only lower the error, never
 raise it.
 
 (e) $2\sigma^2 = 0.08$: $e^{-0.02/0.08} = e^{-0.25} \approx 0.78$ with $n_\mathrm{b} = 2$ and
-$e^{-0.51/0.08} = e^{-6.375} \approx 0.0017$ with $n_\mathrm{b} = 1$. The same particle is a good match
+$e^{-0.51/0.08} = e^{-6.375} \approx 0.0017$ with $n_\mathrm{b} = 1$. The same candidate is a good match
 for the two-vector subspace and a poor one for the one-vector subspace.
 
 === 4.8 ★★ pen and paper | Why the small matrix is enough

@@ -4,7 +4,7 @@ STEM = "05_edge_rays"
 
 TEXT = r"""
 === 5.1 ★ use | Eq. 5 and 6 by hand
-The model's eight ray lengths are $M = (5, 9, 2, 7, 6, 3, 8, 4)$ and a particle's are
+The model's eight ray lengths are $M = (5, 9, 2, 7, 6, 3, 8, 4)$ and a candidate's are
 $p = (6, 10, 2, 7, 6, 3, 9, 5)$. Work out by hand the Ratio of eq. 5 (pAvg / mAvg, each the
 mean of the 4th and 5th sorted lengths) and the weight of eq. 6,
 $w = 1 - \sum_j |p_j - m_j| / \sum_j m_j$ (zero when the Ratio is outside [0.8, 1.2]), then
@@ -23,11 +23,11 @@ pixels has a Ratio (`er.ratio`) inside the paper's window [0.8, 1.2]
 [0.9, 1.1]? Answer `(fraction_08_12, fraction_09_11)`.
 --- solution
 The Ratio test alone rejects most of the pixels: only places whose median ray length matches
-the target's survive. The narrower window is a sharper test, but it also zeroes particles that
-sit on the target at a slightly wrong scale (the tracker's `ratio_low` / `ratio_high` params
-over a few seeds show no clear gain on this clip).
+the target's survive. The narrower window is a sharper test, but it also zeroes candidates
+that sit on the target at a slightly wrong scale (the tracker's `ratio_low` / `ratio_high`
+params over a few seeds show no clear gain on this clip).
 
-=== 5.3 ★★ modify | A frame without edges
+=== 5.3 ★★ modify | A frame without edges | after 02_particle_filters
 Initialise `edge-ray-pf` (seed 0) on frame 0 of `patterned-object` with its ground-truth box,
 then update it with a flat grey frame (`np.full_like(frame0, 128)`). What are the rays of the
 centre pixel of the flat frame, and what `ok` does `update` return? Explain from the rays.
@@ -46,7 +46,7 @@ sorted weight 1, the highest possible. Direction by direction they differ, so eq
 book reads it scores them lower. With exercise 5.1's $M$ the turned rays are
 $(6, 3, 8, 4, 5, 9, 2, 7)$, $\sum_j |p_j - m_j| = 1 + 6 + 6 + 3 + 1 + 6 + 6 + 3 = 32$ and
 $w = 1 - 32/44 = 3/11 \approx 0.27$: a pattern of edges turned upside down about the
-particle (each ray's length moved to the opposite direction) looks perfect to the sorted
+point (each ray's length moved to the opposite direction) looks perfect to the sorted
 reading.
 
 === 5.5 ★★★ implement | The Ratio of eq. 5
@@ -67,12 +67,12 @@ def my_ratio(p, m):
 NumPy counts from 0, so the 4th and 5th sorted values are at indices 3 and 4, the slice
 `3:5`; `[2:4]` would take the 3rd and 4th, a common slip (on exercise 5.1's rays it gives
 $5.5/4.5$ instead of $6/5.5$). Sorting along the last axis lets the same function take one
-ray set of shape `(8,)` or `N` particles' of shape `(N, 8)`. The check's cases follow from the
+ray set of shape `(8,)` or `N` candidates' of shape `(N, 8)`. The check's cases follow from the
 definition: exercise 5.1's rays give $6/5.5 \approx 1.09$ (worked there); a ray set against
 itself gives 1; doubling every ray doubles both middle values, so the Ratio is 2; and sorting
 forgets the directions, so reordered rays have the same middle pair and the same Ratio.
 
-=== 5.6 ★★★ project | Add scale to the edge-ray tracker
+=== 5.6 ★★★ project | Add scale to the edge-ray tracker | after 02_particle_filters
 Run `edge-ray-pf` with `adapt_scale=True` on the sample clip and on one real sequence, compare
 its AUC with the default over three seeds, and explain the result with what the Ratio
 measures.
@@ -114,20 +114,21 @@ def my_weight(p, m, low=0.8, high=1.2):
 
 Three points. The differences are taken direction by direction, `p - m` on the unsorted rays
 (the sort is only for the Ratio). The sums run over the last axis, so one call weighs all $N$
-particles, and `np.atleast_2d` lets a single ray set through as one particle. And both cut-offs
-are needed: the window zeroes a particle of the wrong typical size even when eq. 6 would be
-positive, and the clip at 0 zeroes a particle inside the window whose differences exceed the
-model's total length. The check's cases by hand: exercise 5.1 gives $1 - 4/44 = 10/11$; the
-model against itself has no difference, weight 1; rays 1.3 times as long have Ratio 1.3,
-outside the window, so weight 0 although eq. 6 would give $1 - 0.3 = 0.7$; seven rays of 1 and
-one of 17 against eight rays of 1 have middle pair 1 and Ratio 1, but
-$\sum_j |p_j - m_j| = 16$ against $\sum_j m_j = 8$, so eq. 6 gives $1 - 2 = -1$, clipped to 0.
+candidates, and `np.atleast_2d` lets a single ray set through as one candidate. And both
+cut-offs are needed: the window zeroes a candidate of the wrong typical size even when eq. 6
+would be positive, and the clip at 0 zeroes a candidate inside the window whose differences
+exceed the model's total length. The check's cases by hand: exercise 5.1 gives
+$1 - 4/44 = 10/11$; the model against itself has no difference, weight 1; rays 1.3 times as
+long have Ratio 1.3, outside the window, so weight 0 although eq. 6 would give
+$1 - 0.3 = 0.7$; seven rays of 1 and one of 17 against eight rays of 1 have middle pair 1 and
+Ratio 1, but $\sum_j |p_j - m_j| = 16$ against $\sum_j m_j = 8$, so eq. 6 gives
+$1 - 2 = -1$, clipped to 0.
 
 === 5.9 ★ pen and paper | Where a ray stops
 Edge detection in one dimension, as Canny's detector does it across an edge: along a ray, the
 gradient is the central difference $g_k = (I_{k+1} - I_{k-1})/2$, and step $k$ is an edge
 pixel where $|g_k| \ge 20$ and $|g_k|$ is not smaller than either neighbour's (non-maximum
-suppression). From a particle's pixel ($k = 0$) the brightness along its NE ray is
+suppression). From a candidate's pixel ($k = 0$) the brightness along its NE ray is
 
 $$I = (50, 52, 51, 53, 120, 190, 192, 191, 190), \qquad k = 0, \dots, 8 .$$
 
@@ -161,9 +162,9 @@ $e = (1, 2, -1, 2)$ px, and for every shift considered ($|d| \le 3$) it stays th
 and within $\nu_{\max}$, so $\nu_m = |e_m - d|$. (a) Write $\log p(z \mid x)$ as a function of $d$
 and show that it is largest at the mean offset $\bar e$. (b) Show that $p(z \mid x)$, as a
 function of $d$, is a Gaussian bell with variance $\sigma^2/M$: what are its centre and its
-standard deviation? (c) Three particles sit at $d = 0, 1, 2$: compute their normalised
-weights. (d) If the third normal had no edge within $\nu_{\max}$ of any of these shifts, where would
-the likelihood peak, and how wide would it be?
+standard deviation? (c) Three candidates sit at $d = 0, 1, 2$: compute their weights, the
+likelihoods normalised to sum 1. (d) If the third normal had no edge within $\nu_{\max}$ of
+any of these shifts, where would the likelihood peak, and how wide would it be?
 --- solution
 (a) $\log p = -\frac{1}{18}\sum_m (e_m - d)^2 + \text{const}$. Writing
 $e_m - d = (e_m - \bar e) + (\bar e - d)$ and using $\sum_m (e_m - \bar e) = 0$,
