@@ -16,7 +16,7 @@ FIXED_CHAPTERS = ["00_introduction", "01_kernel_histograms", "02_particle_filter
                   "14_tracking_by_detection", "15_background_subtraction",
                   "16_several_targets", "17_kalman_filter_design",
                   "18_sigma_points_and_proposals", "19_evaluation_protocols",
-                  "20_correlation_filters_ii"]
+                  "20_correlation_filters_ii", "21_bayes_filter"]
 
 
 def _toc_files():

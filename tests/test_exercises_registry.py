@@ -237,6 +237,16 @@ def dual(x, y, sigma, lam):
     return np.fft.ifft(np.fft.fft(y) / (np.fft.fft(k) + lam)).real
 
 
+def grid_step(belief, motion, likelihood, backwards=False):
+    """21.7 written out cell by cell; ``backwards`` moves the target the wrong way."""
+    n, predicted = len(belief), np.zeros(len(belief))
+    for j in range(n):
+        for move, p in motion.items():
+            predicted[(j - move if backwards else j + move) % n] += p * belief[j]
+    product = np.asarray(likelihood, float) * predicted
+    return product / product.sum(), product.sum()
+
+
 def axes(prob, half=0.5):
     """13.4 from cv2.moments (an oracle independent of the library's moments)."""
     m = cv2.moments(np.asarray(prob, np.float64))
@@ -419,6 +429,8 @@ RIGHT_AND_WRONG = {
     "12.7": (lk_window, lambda I, J, x, y, r, iterations=1: lk_window(I, J, x, y, r, 1)),
     # 19.5: VOT's reset rule; wrong: a zero on a re-initialisation frame counted as a failure
     "19.5": (reset_count, lambda o, skip: reset_count(o, skip, first=0)),
+    # 21.7: one grid step on a ring; wrong: every move taken backwards
+    "21.7": (grid_step, lambda b, m, lik: grid_step(b, m, lik, backwards=True)),
     # 20.4: box means by an integral image, then the merge; wrong: the weights swapped
     "20.4": (lambda t, b, box, g: staple_merged(t, b, box, g),
              lambda t, b, box, g: staple_merged(t, b, box, 1 - g)),

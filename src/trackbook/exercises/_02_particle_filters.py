@@ -34,8 +34,8 @@ one seed are a hint, not a measurement; the case study's mean over seven sequenc
 seeds puts the book's defaults ahead of each section V value.
 
 === 2.4 ★★ modify | A look-alike close by
-In the 1-D corridor example, move the look-alike to 45 m (as strong as
-before, 0.6 of the target). How many peaks does the grid posterior have now, where, and how do
+In the 1-D corridor example of {doc}`the Bayes filter <21_bayes_filter>`, move the look-alike
+to 45 m (as strong as before, 0.6 of the target). How many peaks does the grid posterior have now, where, and how do
 its mean and spread compare with the look-alike at 60 m? How far from the target must the
 look-alike be (same prediction) before the posterior has a second peak?
 --- solution

@@ -9,8 +9,8 @@ CHAPTERS = ("00_introduction",
             "01_kernel_histograms", "03_hog", "05_edge_rays", "07_region_covariance",
             "04_incremental_svd",
             # Bayesian filtering
-            "02_particle_filters", "06_kalman", "17_kalman_filter_design",
-            "18_sigma_points_and_proposals",
+            "21_bayes_filter", "06_kalman", "17_kalman_filter_design",
+            "02_particle_filters", "18_sigma_points_and_proposals",
             # search
             "08_mean_shift", "13_camshift", "10_correlation_filters",
             "12_template_matching_and_optical_flow", "20_correlation_filters_ii",

@@ -256,6 +256,27 @@ def dual_ok(f):
     return _close(f(x, y, 0.5, 1e-3), _dual_by_definition(x, y, 0.5, 1e-3), atol=1e-8)
 
 
+def grid_step_ok(f):
+    """21.7: one step of a grid Bayes filter on a ring, predict by the moves, update, normalise."""
+    cases = [  # (belief, motion, likelihood) -> (posterior, normaliser), by hand
+        # the chapter's ten cells: predicted (0, 0, .025, .25, .45, .25, .025, 0, 0, 0)
+        ([0, .25, .5, .25, 0, 0, 0, 0, 0, 0], {1: .1, 2: .8, 3: .1},
+         [.1, .1, .1, .1, .1, .7, .1, .1, .7, .1],
+         ([0, 0, .01, .1, .18, .7, .01, 0, 0, 0], .25)),
+        # exercise 21.1: predicted (.125, .5, .375, 0, 0), product (.025, .1, .225, 0, 0)
+        ([.5, .5, 0, 0, 0], {0: .25, 1: .75}, [.2, .2, .6, .2, .6],
+         ([1 / 14, 4 / 14, 9 / 14, 0, 0], .35)),
+        # round the ring: the move -1 from cell 0 comes in at cell 3; predicted
+        # (0, .5, 0, .5), product (0, .5, 0, .1)
+        ([1, 0, 0, 0], {-1: .5, 1: .5}, [1, 1, 1, .2], ([0, 5 / 6, 0, 1 / 6], .6)),
+    ]
+    for belief, motion, likelihood, (posterior, normaliser) in cases:
+        got, z = f(np.array(belief, float), motion, np.array(likelihood, float))
+        if not (_close(got, posterior) and abs(float(z) - normaliser) < 1e-9):
+            return False
+    return True
+
+
 #: exercise number -> predicate on the student's answer
 def roc_count_ok(f):
     """11.4: the ROC area as a share of pairs, ties one half."""
@@ -271,6 +292,7 @@ CHECKS = {
     "4.5": svd_update_ok, "5.5": ratio_ok, "5.8": edge_weight_ok, "6.5": kalman_1d_ok,
     "6.7": jacobian_ok, "7.6": covariance_ok, "8.5": motion_ok, "8.7": switches_ok,
     "9.5": loso_ok, "9.7": without_first_ok, "10.3": dual_ok, "11.4": roc_count_ok,
+    "21.7": grid_step_ok,
 }
 
 

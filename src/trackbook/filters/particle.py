@@ -1,7 +1,7 @@
 """The particle filter's pure steps: normalised weights, effective sample size, resamplers, estimate.
 
-Chapter ``02_particle_filters`` (Bayes filter, factored sampling, SIR/Condensation, degeneracy and
-resampling). The SIR tracker built from these steps is
+Chapter ``02_particle_filters`` (the Bayes filter of ``21_bayes_filter`` with samples: factored
+sampling, SIR/Condensation, degeneracy and resampling). The SIR tracker built from these steps is
 :class:`trackbook.trackers.particle_filter.ParticleFilterTracker`. Resamplers are pure
 functions that take normalised weights and a ``numpy.random.Generator`` and return the indices
 of the particles to keep (as filterpy's ``monte_carlo`` module does, but without the global
