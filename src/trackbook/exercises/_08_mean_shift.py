@@ -53,7 +53,7 @@ $\begin{bmatrix}\sum I_x^2 & \sum I_xI_y\\ \sum I_xI_y & \sum I_y^2\end{bmatrix}
 \begin{bmatrix}p\\ q\end{bmatrix} = -\begin{bmatrix}\sum I_xI_t\\ \sum I_yI_t\end{bmatrix}$.
 `np.gradient` returns the derivative along rows ($I_y$) first.
 
-=== 8.6 ★★ modify | Force a swap
+=== 8.6 ★★ modify | Force a swap | after case_study_cho2005
 On `two-faces`, force a swap by hand: exchange the two trackers (`mt.trackers.reverse()`)
 after the crossing (frame 95), then *during* the overlap (frame 65) — `run_faces(faces,
 name, associate, swap_at=...)` of the {doc}`case study <case_study_cho2005>`'s data-association

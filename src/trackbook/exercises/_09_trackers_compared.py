@@ -16,7 +16,7 @@ AUC, credits a tracker that stays near the target with a loose box: it only asks
 centre is within 20 px, not whether the box is tight; the tracking rate asks for an overlap
 above 0.5.
 
-=== 9.2 ★ use | Where MIL wins
+=== 9.2 ★ use | Where MIL wins | after 14_tracking_by_detection
 Load the committed benchmark of the real sequences (`results.load("real")`) and compute the
 mean AUC per difficulty with `compare.per_attribute(rows, compare.SEQUENCE_ATTRIBUTES)`. For
 which difficulty is OpenCV's MIL (`opencv-mil`) the best tracker? Answer its code (`"IV"`,
