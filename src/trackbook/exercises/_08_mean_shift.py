@@ -3,7 +3,7 @@
 STEM = "08_mean_shift"
 
 TEXT = r"""
-=== 8.1 ★ use | One candidate
+=== 8.1 ★ use | One candidate | after case_study_cho2005
 Run `condensation-mean-shift` on `occluder` (random seed 0) with `n_particles=1`,
 `use_motion=False`, `noise_position=0.0`, `noise_velocity=0.0`, and `mean-shift` on the same
 clip. Are the two trackers' boxes the same on every frame? Answer `True` or `False`, and
@@ -12,7 +12,7 @@ explain what is left of the proposed tracker.
 One candidate, predicted without noise or motion vector and then moved only by mean-shift, is
 the mean-shift tracker: same lattice, same steps, same boxes.
 
-=== 8.2 ★ use | How many candidates?
+=== 8.2 ★ use | How many candidates? | after case_study_cho2005
 Run `condensation-mean-shift` (seed 0) on `shelves` with 1, 5 and 20 candidates
 (`n_particles=`). Answer `{1: auc, 5: auc, 20: auc}`. How does the AUC change?
 --- solution
@@ -21,7 +21,7 @@ the three values). Mean-shift pulls every candidate to a nearby mode, so a handf
 candidates already covers the few modes there are; more candidates mostly land on the same
 modes.
 
-=== 8.3 ★★ modify | Eq. 13: mean-shift never lowers ρ on average
+=== 8.3 ★★ modify | Eq. 13: mean-shift never lowers ρ on average | after case_study_cho2005
 Create the tracker (`trackers.create("condensation-mean-shift", seed=0)`), initialise it on
 frame 0 of `occluder` with its ground-truth box and update it on frames 1–30. After each
 update, `tracker.rho` holds the candidates' Bhattacharyya coefficients after mean-shift and
@@ -33,7 +33,7 @@ a step only when it does not lower $\rho$ (step ⑤ halves it until it does, and
 still lowers $\rho$ is refused), so every candidate's $\rho$ after mean-shift is at least its
 $\rho$ before, and so is the mean over the candidates: eq. 13.
 
-=== 8.4 ★★ modify | Wider noise for Condensation
+=== 8.4 ★★ modify | Wider noise for Condensation | after case_study_cho2005
 Widen Condensation's position noise (`noise_position` 0.3 and 0.6) on `occluder`.
 Does it now survive the pole?
 --- solution
