@@ -156,9 +156,12 @@ def test_the_readme_says_what_the_committed_calibration_shows():
     said = ("the rule does not reach 95 % of absent frames flagged with at most 1 % false "
             "losses on the calibration scenes for any tracker")
     assert said in readme
-    # one row per algorithm; a -redetect name judges with its algorithm's thresholds
-    assert {r["tracker"] for r in rows} == {n for n in trackers.available()
-                                           if not n.endswith("-redetect")}
+    # one row per algorithm of the library (a plugin another test loaded into this process,
+    # e.g. the experiments' edge-ray-x, is not one); a -redetect name judges with its
+    # algorithm's thresholds
+    own = {n for n in trackers.available() if not n.endswith("-redetect")
+           and trackers.get(n).__module__.startswith("trackbook.")}
+    assert {r["tracker"] for r in rows} == own
     assert not [r["tracker"] for r in rows if r["meets_target"]], (
         "a tracker's calibration now meets the target: update the README's 'What ok promises'")
     assert all(r["absent_lost"] < 0.95 or r["false_lost"] > 0.01 for r in rows)
