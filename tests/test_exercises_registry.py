@@ -451,6 +451,20 @@ def test_auto_check_accepts_the_right_solution_and_rejects_the_wrong_one(number,
     assert f"{number}: PASS" in out and f"{number}: FAIL" in out and "not answered yet" in out
 
 
+def test_grid_step_check_rejects_a_ring_that_wraps_one_way_only():
+    """21.7: Python's negative indices wrap a move past cell 0, not one past the last cell."""
+    def one_way(belief, motion, likelihood):
+        n, predicted = len(belief), np.zeros(len(belief))
+        for j in range(n):
+            for move, p in motion.items():
+                if j + move < n:
+                    predicted[j + move] += p * belief[j]
+        product = np.asarray(likelihood, float) * predicted
+        return product / product.sum(), product.sum()
+
+    assert checks.CHECKS["21.7"](one_way) is False
+
+
 def test_hand_values_of_the_checks_follow_from_the_equations():
     """A few expected values of the checks, recomputed here from the equations."""
     # 2.8: pointers 0.125 + k/4 against c = cumsum(0.7, 0.1, 0.1, 0.1): smallest i, c_i >= pointer

@@ -56,7 +56,7 @@ $0.1 \cdot 1 + 0.8 \cdot 2 + 0.1 \cdot 3 = 2$, variance $0.1 \cdot 1 + 0.8 \cdot
 sum of two independent Gaussians is again Gaussian). The prediction depends only on the motion
 model; the update depends on the measurement and on the shape of the likelihood, and with a
 look-alike the posterior is not even one bump. When both belief and likelihood are Gaussian the
-update has a closed form too: that is the Kalman filter, the next chapter.
+update has a closed form too: that is {doc}`the Kalman filter <06_kalman>`, the next chapter.
 
 === 21.3 ★ pen and paper | Odds: the target against the look-alike
 (a) Show that for two cells $a$ and $b$ the posterior odds are the predicted odds times the
@@ -129,8 +129,9 @@ deviation 5 m (exercise 21.2). The probability that each likelihood bump collect
 integral of the prediction times the bump, which for two Gaussians is a Gaussian in the
 distance between their centres, with the two variances added, $5^2 + 3^2 = 34$ m². The
 target's bump is 2 m from the prediction, the look-alike's 22 m, so the look-alike collects
-$e^{-(22^2 - 2^2)/(2 \cdot 34)} = e^{-480/68} \approx 1/1160$ as much per unit of strength. Its
-share is about $s/(s + 1160)$ for a strength $s$: half at $s \approx 1160$. The share beyond
+$e^{-(22^2 - 2^2)/(2 \cdot 34)} = e^{-480/68} \approx 1/1160$ as much per unit of strength. A
+look-alike 1160 times as strong as the target collects as much as the target, so half of the
+belief (a look-alike 100 times as strong gets $100/1260$ of it, and so on). The share beyond
 50 m is a little smaller: the prediction pulls the look-alike's posterior bump towards 38 m, to
 about 54 m, and a little of it falls short of 50 m, so on the grid half lies beyond 50 m at a
 strength of about 1300. A motion model that says "about 38 m" turns a 20 m jump into odds of
@@ -138,11 +139,12 @@ a thousand to one.
 
 === 21.6 ★★ modify | A look-alike that walks a little slower
 In the chapter's frame-after-frame run, let the look-alike start 20 m behind the target and
-never stop, walking 7, 6 or 4 m per frame while the target walks 8: its position in frame $k$
-is $8 + v\,(k - 1)$ m for the pace $v$. Run 9 frames for each pace. What share of the belief
-lies near the look-alike (within 8 m, the chapter's `share_near`) in frame 9? Answer a dict
-`{7: share, 6: share, 4: share}`. Why does a look-alike 1 m per frame slower than the target
-keep so much of the belief, when one that stops loses almost all of it in three frames?
+never stop, walking 7, 6 or 4 m per frame while the target walks 8: at 7 m per frame its
+position in frame $k$ is $8 + 7\,(k - 1)$ m, and likewise at 6 and 4. Run 9 frames for each
+pace. What share of the belief lies near the look-alike (within 8 m, the chapter's
+`share_near`) in frame 9? Answer a dict `{7: share, 6: share, 4: share}`. Why does a
+look-alike 1 m per frame slower than the target keep so much of the belief, when one that
+stops loses almost all of it in three frames?
 --- solution
 In frame 9 the look-alike keeps about 0.41 of the belief at 7 m per frame, about 0.18 at 6 m
 and well under 1 % at 4 m (the exercises appendix prints the shares below the exercise). The
@@ -164,8 +166,8 @@ probability on along every move, update by multiplying by the likelihood, and re
 normalised posterior and the normaliser $p(z_t \mid z_{1:t-1})$. The cells form a ring (a
 circular track): a move past the last cell comes back in at the first. By hand first: the
 chapter's ten cells give the posterior $(0, 0, 0.01, 0.1, 0.18, 0.7, 0.01, 0, 0, 0)$ and the
-normaliser 0.25. The check uses that case, exercise 21.1 and one where the belief wraps round
-the ring.
+normaliser 0.25. The check uses that case, exercise 21.1 and two where the belief wraps round
+the ring, one each way.
 --- solution
 ```python
 def grid_step(belief, motion, likelihood):
@@ -184,6 +186,10 @@ rolling by `-move` walks the target backwards. The product with the likelihood i
 numerator of Bayes' rule and its sum the normaliser. The wrap-round case: a belief $(1, 0, 0, 0)$
 with moves $-1$ and $+1$ of probability one half each predicts $(0, 0.5, 0, 0.5)$ (the move
 $-1$ from cell 0 comes in at cell 3); the likelihood $(1, 1, 1, 0.2)$ gives the product
-$(0, 0.5, 0, 0.1)$, the normaliser 0.6 and the posterior $(0, 5/6, 0, 1/6)$. The exercises
-appendix runs this solution through the check.
+$(0, 0.5, 0, 0.1)$, the normaliser 0.6 and the posterior $(0, 5/6, 0, 1/6)$. The other way
+round: a belief $(0, 0, 0, 1)$ that stays or moves $+1$ with probability one half each
+predicts $(0.5, 0, 0, 0.5)$ (the move $+1$ from cell 3 comes in at cell 0); the likelihood
+$(0.2, 1, 1, 1)$ gives the product $(0.1, 0, 0, 0.5)$, the normaliser 0.6 and the posterior
+$(1/6, 0, 0, 5/6)$. A function that wraps only one way, say by Python's negative indices, fails
+this case. The exercises appendix runs this solution through the check.
 """

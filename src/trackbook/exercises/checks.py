@@ -269,6 +269,9 @@ def grid_step_ok(f):
         # round the ring: the move -1 from cell 0 comes in at cell 3; predicted
         # (0, .5, 0, .5), product (0, .5, 0, .1)
         ([1, 0, 0, 0], {-1: .5, 1: .5}, [1, 1, 1, .2], ([0, 5 / 6, 0, 1 / 6], .6)),
+        # round the ring the other way: the move +1 from cell 3 comes in at cell 0;
+        # predicted (.5, 0, 0, .5), product (.1, 0, 0, .5)
+        ([0, 0, 0, 1], {0: .5, 1: .5}, [.2, 1, 1, 1], ([1 / 6, 0, 0, 5 / 6], .6)),
     ]
     for belief, motion, likelihood, (posterior, normaliser) in cases:
         got, z = f(np.array(belief, float), motion, np.array(likelihood, float))
