@@ -23,9 +23,14 @@ per frame rises too, because every particle needs its own histogram (by how much
 the machine and on what else runs on it).
 
 === 2.3 ★★ modify | Which departure matters more?
-`color-pf` departs from its paper in σ and in the start (the departures of the
-{doc}`case study <case_study_lee2012>`). Which of the two matters more on the day clip? Run the
-paper preset, then the paper preset with only `sigma_color=0.2`, then with only `init="box"`.
+`color-pf` departs from its paper in σ and in the start (two of the departures of the
+{doc}`case study <case_study_lee2012>`): the paper preset weighs with
+$\sigma_\mathrm{color} = 0.4$ and spreads the first particles over the whole frame, the book's
+defaults weigh with $\sigma_\mathrm{color} = 0.2$ and start them around the given box.
+Which of the two matters more on the day clip? Run the paper preset,
+`trackers.create("color-pf", preset="paper", seed=0)`, then the paper preset with only
+`sigma_color=0.2`, then with only `init="box"`, each through
+`evaluate(tracker, "robot-corridor-day")`.
 --- solution
 σ. With the paper preset's other settings, σ = 0.2 lifts the AUC of seed 0 on the day clip
 far more than starting the particles around the given box does (the exercises appendix prints
