@@ -15,7 +15,7 @@ the singular values of $\xi\Sigma$ augmented by $b$, and so on recursively. The 
 saw 5 updates after the fit; column 4 saw 4, …, the last column 0: ages
 $(5, 5, 5, 5, 4, 3, 2, 1, 0)$.
 
-=== 4.2 ★ use | Which setting costs most? | after 02_particle_filters
+=== 4.2 ★ use | Which setting costs most? | after case_study_lee2012
 Which of the paper preset's settings costs most on the day clip? Start from
 `preset="paper"` and change one setting at a time: σ (both `sigma_color` and `sigma_hog`,
 to 0.2), `feature_map` (to `"sqrt"`) or `init` (to `"box"`), and compare the AUC of seed 0 over the first 80
@@ -78,18 +78,19 @@ $\sigma' = \sqrt2\,\sigma \approx 0.28$. The ratio of the two distances is $1 + 
 for similar histograms.
 
 === 4.5 ★★★ implement | One incremental step
-Write `my_update(U, S, b)`: one step of eq. 6–7 with $m = 1$, no forgetting and no truncation.
-Return `(U_new, S_new)`. By hand first: $U = e_1$ (3 × 1), $\Sigma = 2$ and $b = 3e_2$ make
-$[U\Sigma,\ b]$ the matrix with columns $2e_1$ and $3e_2$, whose singular values are 3 and 2
-with the basis $e_2, e_1$. The check uses that case and a $b$ inside span$(U)$, which adds a
-zero singular value.
+Write `my_update(U, S, b)`: one step of the chapter's update with $m = 1$, no forgetting and
+no truncation. Return `(U_new, S_new)`. By hand first: $U = e_1$ (3 × 1), $\Sigma = 2$ and
+$b = 3e_2$ make $[U\Sigma,\ b]$ the matrix with columns $2e_1$ and $3e_2$, whose singular
+values are 3 and 2 with the basis $e_2, e_1$. The check uses that case and a $b$ inside
+span$(U)$, which adds a zero singular value.
 --- solution
 The residual $r = b - UU^Tb$ gives the new direction $\tilde b = r / \lVert r\rVert$; the
-middle matrix of eq. 6 is $\begin{bmatrix}\Sigma & U^Tb\\ 0 & \tilde b^Tb\end{bmatrix}$, and
-eq. 7 rotates $[U, \tilde b]$ by the left singular vectors of that small matrix. In the hand
-case $U^Tb = 0$ and $\tilde b^Tb = 3$: the middle matrix is diag(2, 3).
+middle matrix $R$ is $\begin{bmatrix}\Sigma & U^Tb\\ 0 & \tilde b^Tb\end{bmatrix}$, and
+$U' = [U\ \tilde b]\,\tilde U$ rotates $[U, \tilde b]$ by the left singular vectors of that
+small matrix. In the hand case $U^Tb = 0$ and $\tilde b^Tb = 3$: the middle matrix is
+diag(2, 3).
 
-=== 4.6 ★★★ project | Learn with a different number of basis vectors and measure it | after 02_particle_filters
+=== 4.6 ★★★ project | Learn with a different number of basis vectors and measure it | after case_study_lee2012
 Lee et al. (2012) print no
 $n_\mathrm{b}$ (their matrices have $n = 40$ columns {quote}`lee2012.window40`, but no number of basis
 vectors is given). Run `color-hog-ipca` with $n_\mathrm{b}$ = 1, 2, 4, 8 and 16 on both sample clips, with the anchor

@@ -72,7 +72,7 @@ definition: exercise 5.1's rays give $6/5.5 \approx 1.09$ (worked there); a ray 
 itself gives 1; doubling every ray doubles both middle values, so the Ratio is 2; and sorting
 forgets the directions, so reordered rays have the same middle pair and the same Ratio.
 
-=== 5.6 ★★★ project | Add scale to the edge-ray tracker | after 02_particle_filters
+=== 5.6 ★★★ project | Add scale to the edge-ray tracker | after case_study_kim2016
 Run `edge-ray-pf` with `adapt_scale=True` on the sample clip and on one real sequence, compare
 its AUC with the default over three seeds, and explain the result with what the Ratio
 measures.
