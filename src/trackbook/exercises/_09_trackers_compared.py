@@ -3,7 +3,7 @@
 STEM = "09_trackers_compared"
 
 TEXT = r"""
-=== 9.1 ★ use | Another measure
+=== 9.1 ★ use | Another measure | after case_studies_compared
 Run `compare.check_claims(rows, metric="precision20")` on the book
 defaults (`rows = [r for r in results.load("claims") if
 r["preset"] == "book"]`). Which verdicts change compared with the AUC's (on the page
@@ -39,7 +39,7 @@ The gap between the two trackers is of the order of the seed-to-seed spread of e
 ranking can flip with the seed. Compare particle filters over several seeds (and clips), and
 report the spread, before calling one better.
 
-=== 9.4 ★★ modify | Which interval?
+=== 9.4 ★★ modify | Which interval? | after case_studies_compared
 Re-run the claims check of {doc}`The four papers' claims, checked <case_studies_compared>`
 with a 90 % and a 99 % interval
 (`level=0.90`, `level=0.99`). Which verdicts move? Why is a wider interval "more cautious"?
@@ -85,7 +85,7 @@ sequence of $N = 11$ frames, $r = 6/11$ is 6 successes, frame 1 among them; over
 --- solution
 $rN$ frames are successes, one of them frame 1: $(rN - 1)/(N - 1)$.
 
-=== 9.8 ★★★ project | A benchmark of your own
+=== 9.8 ★★★ project | A benchmark of your own | after case_studies_compared
 Download a handful of OTB sequences, point the
 library at them (`clips.load_dataset`), run the trackers of
 one paper with both presets over three seeds, and write up its claim with intervals as
