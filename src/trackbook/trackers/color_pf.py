@@ -126,7 +126,8 @@ class ColorPFParams:
 class ColorPF(ParticleFilterTracker):
     """``color-pf``: the colour-only particle filter Lee et al. 2012 compare against
     [quote: lee2012.baselines] (Pérez et al. 2002), with their state (eq. 8), motion (eq. 9), colour likelihood (eq. 10,
-    sign corrected) and N = 100. The first whole tracker of the book (``02_particle_filters``).
+    sign corrected) and N = 100. The colour tracker of the book's particle-filter chapter
+    (``02_particle_filters``).
 
     Besides the hooks of :class:`ParticleFilterTracker`, the family of Lee et al. 2012 has
     ``features(frame, boxes) -> dict`` (the measured features of every box, here ``"color"``;

@@ -511,8 +511,8 @@ class MeanShift(_EllipseColourModel, Tracker):
     Confidence: ``state().confidence`` is the Bhattacharyya coefficient where the climb
     stopped, rho[p(y), q] = sum_u sqrt(p_u(y) q_u), p(y) the colour distribution (eq. 3) of
     the ellipse, in [0, 1]; 0 on a constant frame (not scored). ``ok`` comes from the
-    failure-detection layer on it: a lost frame keeps the last ellipse, so the next climb
-    starts where the target was last seen. ``mean-shift-redetect`` adds the re-detection
+    failure-detection layer on it: a lost frame reports the last box judged on target and
+    teaches nothing, while the next climb starts where this one stopped (``_follow``). ``mean-shift-redetect`` adds the re-detection
     layer (the whole frame scored by rho while lost, the climb restarted at the best box).
     """
 
