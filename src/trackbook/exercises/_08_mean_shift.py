@@ -35,10 +35,10 @@ $\rho$ before, and so is the mean over the candidates: eq. 13.
 
 === 8.4 ★★ modify | Wider noise for Condensation | after case_study_cho2005
 Widen Condensation's position noise (`noise_position` 0.3 and 0.6) on `occluder`.
-Does it now survive the pole?
+Does it now survive the tree trunk?
 --- solution
 No. With 0.3 and 0.6 the AUC stays about 0.40 and the centre error at the last frame stays
-above 200 pixels: once the person is behind the pole, candidates spread a few tenths of a
+above 200 pixels: once the person is behind the tree trunk, candidates spread a few tenths of a
 half-axis a frame around a wrong estimate do not reach the person again.
 
 === 8.5 ★★★ implement | The motion vector of eq. 8
