@@ -7,6 +7,8 @@ import pytest
 
 from trackbook import cli
 
+from . import _toc
+
 ROOT = Path(__file__).resolve().parents[1]
 FIXED_CHAPTERS = ["00_introduction", "01_kernel_histograms", "02_particle_filters",
                   "03_hog", "04_incremental_svd", "05_edge_rays", "06_kalman",
@@ -20,7 +22,7 @@ FIXED_CHAPTERS = ["00_introduction", "01_kernel_histograms", "02_particle_filter
 
 
 def _toc_files():
-    return re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())
+    return _toc.files()
 
 
 def test_toc_lists_existing_chapters_only_and_every_chapter():

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import pytest
 
+from . import _toc
 from ._book_pages import (assert_offline, font_check, open_watched, own_weight, playground_fails,
                           serve)
 from ._playground_browser import CHROMIUM, exercise, settle, watch_errors
@@ -41,7 +42,7 @@ pytestmark = [
 
 
 def _toc_pages():
-    return re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())
+    return _toc.files()
 
 
 @pytest.fixture(scope="module")

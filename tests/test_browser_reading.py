@@ -21,6 +21,7 @@ from pathlib import Path
 
 import pytest
 
+from . import _toc
 from ._book_pages import MAX_LINES, MEASURE, serve
 from ._playground_browser import CHROMIUM
 
@@ -35,7 +36,7 @@ needs_build = pytest.mark.skipif(not (HTML / "index.html").is_file(), reason="bo
 
 
 def _toc_pages():
-    return re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())
+    return _toc.files()
 
 
 @pytest.fixture(scope="module")
@@ -64,20 +65,14 @@ def test_sidebar_shows_the_parts_in_order_and_numbers_nothing(browser, book_visi
     nav = nav.group(0)
     captions = [(m.start(), html.unescape(m.group(1)).strip()) for m in
                 re.finditer(r'class="caption-text">([^<]*)<', nav)]
-    toc = (ROOT / "_toc.yml").read_text()
-    want = [c.strip('"') for c in re.findall(r"^\s*- caption:\s*(.+?)\s*$", toc, re.M)]
-    assert [c for _, c in captions] == want, "the sidebar's parts are not _toc.yml's"
+    assert [c for _, c in captions] == _toc.captions(), "the sidebar's parts are not _toc.yml's"
     # each page's link stands under its own part's caption
-    part = None
-    for line in toc.splitlines():
-        if m := re.match(r"\s*- caption:\s*(.+?)\s*$", line):
-            part = m.group(1).strip('"')
-        elif m := re.match(r"\s*- file: (\S+)", line):
-            at = nav.find(f'{Path(m.group(1)).name}.html"')
-            if at < 0:          # the page being visited is marked current, without its name
-                continue
-            under = [c for pos, c in captions if pos < at][-1]
-            assert under == part, f"{m.group(1)} is under {under!r}, not {part!r}"
+    for stem, part in _toc.parts().items():
+        at = nav.find(f'{stem}.html"')
+        if at < 0:              # the page being visited is marked current, without its name
+            continue
+        under = [c for pos, c in captions if pos < at][-1]
+        assert under == part, f"{stem} is under {under!r}, not {part!r}"
     numbered = [t for _, t in v.sidebar if re.match(r"\d+\.\s", t)]
     assert not numbered, f"sidebar entries carry a number: {numbered}"
 

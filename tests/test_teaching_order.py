@@ -17,16 +17,13 @@ import pytest
 
 from trackbook import exercises
 
+from . import _toc
+
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = ROOT / "book"
 
 
-def _order():
-    return [f.split("/")[-1] for f in
-            re.findall(r"(?:root|file):\s*(\S+)", (ROOT / "_toc.yml").read_text())]
-
-
-ORDER = _order()
+ORDER = _toc.stems()
 CONCEPT = [s for s in ORDER if re.match(r"\d\d_", s)]
 _LINK = re.compile(r"(?:\{doc\}`(?:[^`<]*<)?|\]\()(\d\d_[a-z0-9_]+)(?:\.md)?[>`)]")
 
@@ -79,22 +76,11 @@ def _teaching():
     return (BOOK / "appendix_teaching.md").read_text()
 
 
-def _parts():
-    """page -> the caption of its part in _toc.yml (the introduction has none)."""
-    parts, cur = {}, None
-    for line in (ROOT / "_toc.yml").read_text().splitlines():
-        if m := re.match(r'\s*- caption: "?([^"]+?)"?\s*$', line):
-            cur = m.group(1)
-        elif m := re.match(r"\s*- file: book/(\S+)", line):
-            parts[m.group(1)] = cur
-    return parts
-
-
 def test_the_teaching_pages_old_to_new_table_is_the_table_of_contents():
     row = r"^\| \[[^\]]+\]\((\d\d_\w+)\.md\) \| (\d+|new) \| ([^|]+?) \| (\d+) \|$"
     rows = re.findall(row, _teaching(), re.M)
     assert sorted(r[0] for r in rows) == sorted(CONCEPT)
-    parts = _parts()
+    parts = _toc.parts()
     for stem, old, part, now in rows:
         # the old order ran 00 ... 20 by file number; a chapter added since is "new"
         assert old == (str(int(stem[:2])) if int(stem[:2]) <= 20 else "new"), stem

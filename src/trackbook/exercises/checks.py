@@ -280,7 +280,6 @@ def grid_step_ok(f):
     return True
 
 
-#: exercise number -> predicate on the student's answer
 def roc_count_ok(f):
     """11.4: the ROC area as a share of pairs, ties one half."""
     cases = [(([2, 2, 1], [2, 0]), 4 / 6), (([3, 2], [1]), 1.0), (([1], [1]), 0.5),
@@ -289,6 +288,7 @@ def roc_count_ok(f):
                for (a, b), v in cases)
 
 
+#: exercise number -> predicate on the student's answer
 CHECKS = {
     "0.4": iou_ok, "0.5": auc_ok, "1.5": kernel_ok, "1.7": histogram_ok,
     "2.5": stratified_ok, "2.8": systematic_ok, "3.5": fuse_ok, "3.6": gradient_ok,
