@@ -110,14 +110,9 @@ def browser():
 def book_visits(tmp_path_factory):
     """Each page of a built book opened once over http for all its checks, shared by the
     run's test processes (tests/_book_pages.py)."""
-    import os
-
     from ._book_pages import Visits
 
-    base = tmp_path_factory.getbasetemp()
-    # an xdist worker's temporary folder lies in its run's folder, which all workers share
-    return Visits((base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base)
-                  / "book-visits")
+    return Visits(_run_store(tmp_path_factory, "book-visits"))
 
 
 def _run_store(tmp_path_factory, name: str) -> Path:
