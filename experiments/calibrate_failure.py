@@ -11,7 +11,10 @@ with the ground truth and whether the target is absent; then
 ``trackbook.evaluation.failure.calibrate`` chooses each tracker's thresholds of the rule
 (``trackbook.trackers.failure.FailureDetector``): flag at least 95 % of the absent frames
 while flagging at most 1 % of the frames on target (IoU > 0.5, at least half of the target
-in view, not the first 3 frames after a return: the rule needs 3 frames to trust it) lost.
+in view and lit by at least half of the light, not the first 3 frames after a return: the
+rule needs 3 frames to trust it) lost. A frame of a fade lit by less than half of the light
+but more than a tenth (under a tenth the target is absent) is neither: a rule may call the
+target lost in a picture that dark, and need not.
 
 With the real sequences present (``../shared/data/sequences``; ``--no-sequences`` skips
 them), each tracker also runs over them and the confidence's ROC is taken for "on target"
@@ -56,6 +59,7 @@ ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "src" / "trackbook" / "data" / "failure_calibration.json"
 ON_TARGET_IOU = 0.5
 MIN_VISIBLE = 0.5
+MIN_LIGHT = 0.5
 
 
 class NoConfidence(RuntimeError):
@@ -71,13 +75,15 @@ class Run:
     iou: np.ndarray
     absent: np.ndarray
     visible: np.ndarray
+    light: np.ndarray
 
     @property
     def on_target(self) -> np.ndarray:
-        """Frames the rule should call ok: the box on the target (IoU > 0.5) and at least
-        half of the target in view (a target mostly out of the frame or behind a panel may
-        well be called lost)."""
-        return ~self.absent & (self.iou > ON_TARGET_IOU) & (self.visible >= MIN_VISIBLE)
+        """Frames the rule should call ok: the box on the target (IoU > 0.5), at least half
+        of the target in view and at least half of the light (a target mostly out of the
+        frame, behind a panel or in the dark may well be called lost)."""
+        return (~self.absent & (self.iou > ON_TARGET_IOU) & (self.visible >= MIN_VISIBLE)
+                & (self.light >= MIN_LIGHT))
 
 
 def confidence_of(tracker) -> float:
@@ -127,7 +133,7 @@ def record(names, scenes, seed: int = 0, log=None) -> dict:
         for j, (n, r) in enumerate(zip(names, results)):
             iou = np.nan_to_num(box_iou(r.boxes, sc.clip.groundtruth), nan=0.0)
             out[n].append(Run(sc.kind, conf[j, 1:], iou[1:], np.asarray(sc.absent)[1:],
-                              np.asarray(sc.visible)[1:]))
+                              np.asarray(sc.visible)[1:], np.asarray(sc.light)[1:]))
         if log:
             log(f"scene {k + 1}/{len(scenes)} ({sc.kind}, {len(sc.clip)} frames): "
                 f"{time.perf_counter() - t0:.1f} s")
@@ -215,10 +221,11 @@ def _cell(v, fmt="{:.2f}") -> str:
 
 def table(rows, kinds) -> str:
     """Markdown: tracker x kind, each cell ``absent flagged / false losses / ROC AUC``."""
-    head = ["tracker", "k_lost / k_found"] + list(kinds) + ["all"]
+    head = ["tracker", "k_lost / k_found", "ratio_lost / ratio_found"] + list(kinds) + ["all"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for r in rows:
-        cells = [r["tracker"], f"{r['k_lost']:g} / {r['k_found']:g}"]
+        cells = [r["tracker"], f"{_cell(r['k_lost'], '{:g}')} / {_cell(r['k_found'], '{:g}')}",
+                 f"{r['ratio_lost']:g} / {r['ratio_found']:.2f}"]
         for k in kinds:
             p = r["per_kind"].get(k, {})
             cells.append(f"{_cell(p.get('absent_lost'))} / {_cell(p.get('false_lost'), '{:.3f}')}"
@@ -311,7 +318,8 @@ def main(argv=None) -> int:
                       + (" --quick" if a.quick else "") + (" --no-mil" if a.no_mil else ""),
            "seed": a.seed, "per_kind": per_kind, "scenes": len(scenes), "kinds": list(KINDS),
            "frames": int(sum(len(r.confidence) for r in runs[names[0]])) if names else 0,
-           "on_target_iou": ON_TARGET_IOU, "on_target_min_visible": MIN_VISIBLE, **options,
+           "on_target_iou": ON_TARGET_IOU, "on_target_min_visible": MIN_VISIBLE,
+           "on_target_min_light": MIN_LIGHT, **options,
            "sequences": sorted(seqs),
            "version": trackbook.__version__, "git": git_describe(), "rows": rows}
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -106,7 +106,9 @@ def test_record_aligns_confidence_iou_and_absent_frames(fakes):
     want = np.nan_to_num(inter / (gt[1:, 2] * gt[1:, 3] + box[2] * box[3] - inter), nan=0.0)
     np.testing.assert_allclose(run.iou, want, atol=1e-12)
     np.testing.assert_array_equal(run.visible, sc.visible[1:])
-    assert run.on_target.sum() == int(((want > 0.5) & (sc.visible[1:] >= 0.5)).sum())
+    np.testing.assert_array_equal(run.light, sc.light[1:])
+    assert run.on_target.sum() == int(((want > 0.5) & (sc.visible[1:] >= 0.5)
+                                       & (sc.light[1:] >= 0.5)).sum())
 
 
 def test_the_script_calibrates_writes_and_prints(fakes, tmp_path, capsys):
@@ -118,14 +120,18 @@ def test_the_script_calibrates_writes_and_prints(fakes, tmp_path, capsys):
     assert doc["kinds"] == list(KINDS) and doc["version"] and doc["git"]
     (row,) = doc["rows"]
     assert row["tracker"] == "test-template"
-    p = FailureParams(**{k: row[k] for k in ("k_lost", "k_found", "m", "window", "warmup")})
-    assert p.k_found <= p.k_lost and load_calibration(out) == {"test-template": p}
+    fields = ("k_lost", "k_found", "m", "window", "warmup", "ratio_lost", "ratio_found")
+    # JSON has no infinity: a spread test turned off is written null
+    p = FailureParams(**{k: float("inf") if row[k] is None else row[k] for k in fields})
+    assert p.k_found <= p.k_lost and p.ratio_lost <= p.ratio_found
+    assert load_calibration(out) == {"test-template": p}
     assert 0 <= row["absent_lost"] <= 1 and 0 <= row["false_lost"] <= 1
     assert set(row["per_kind"]) == set(KINDS) and row["per_kind"]["blur"]["n_absent"] == 0
     # matching the patch anywhere: the best correlation is higher on target than without it
     assert row["roc_auc"] > 0.7
     printed = capsys.readouterr().out.splitlines()
-    assert printed[0].startswith("| tracker | k_lost / k_found | exit | occlusion |")
+    assert printed[0].startswith("| tracker | k_lost / k_found | ratio_lost / ratio_found | exit "
+                                 "| occlusion |")
     assert printed[2].startswith("| test-template |") and len(printed) == 3
     # the file is there: not overwritten without --force
     assert mod.main(["--quick", "--trackers", "test-template", "--out", str(out)]) == 2
@@ -148,13 +154,13 @@ def test_the_script_says_when_a_tracker_has_no_confidence(fakes, tmp_path, capsy
 
 
 def test_the_readme_says_what_the_committed_calibration_shows():
-    """The README says the calibrated rule meets its target for no tracker: the day a
-    committed calibration meets it, that sentence must change."""
+    """The README names the trackers whose calibrated rule meets its target on the
+    calibration scenes: the day the committed calibration changes that, the sentence must."""
     rows = json.loads((ROOT / "src" / "trackbook" / "data" / "failure_calibration.json")
                       .read_text(encoding="utf-8"))["rows"]
     readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
-    said = ("the rule does not reach 95 % of absent frames flagged with at most 1 % false "
-            "losses on the calibration scenes for any tracker")
+    said = ("the rule reaches 95 % of absent frames flagged with at most 1 % false losses on "
+            "the calibration scenes for two trackers only, `bacf` and `hog-pf`,")
     assert said in readme
     # one row per algorithm of the library (a plugin another test loaded into this process,
     # e.g. the experiments' edge-ray-x, is not one); a -redetect name judges with its
@@ -162,6 +168,9 @@ def test_the_readme_says_what_the_committed_calibration_shows():
     own = {n for n in trackers.available() if not n.endswith("-redetect")
            and trackers.get(n).__module__.startswith("trackbook.")}
     assert {r["tracker"] for r in rows} == own
-    assert not [r["tracker"] for r in rows if r["meets_target"]], (
-        "a tracker's calibration now meets the target: update the README's 'What ok promises'")
-    assert all(r["absent_lost"] < 0.95 or r["false_lost"] > 0.01 for r in rows)
+    meeting = sorted(r["tracker"] for r in rows if r["meets_target"])
+    assert meeting == ["bacf", "hog-pf"], (
+        f"the calibration now meets the target for {meeting}: update the README's "
+        "'What ok promises'")
+    assert all((r["absent_lost"] >= 0.95 and r["false_lost"] <= 0.01) == r["meets_target"]
+               for r in rows)

@@ -10,7 +10,7 @@ from sklearn.metrics import roc_curve as sk_roc_curve
 from trackbook.evaluation.failure import (calibrate, counted_on_target, detection_rates,
                                           roc_auc, roc_curve)
 from trackbook.trackers.failure import (MAD_TO_SIGMA, FailureDetector, FailureParams, judge,
-                                        robust_reference)
+                                        robust_reference, threshold)
 
 
 # --------------------------------------------------------------------------- the rule
@@ -128,7 +128,10 @@ def test_warmup_keeps_the_first_frames_ok():
 
 @pytest.mark.parametrize("kw, word", [({"k_lost": 1.0, "k_found": 2.0}, "k_found <= k_lost"),
                                       ({"k_lost": -1.0, "k_found": -2.0}, ">= 0"),
-                                      ({"k_lost": float("nan")}, "finite"),
+                                      ({"k_lost": float("nan")}, "number >= 0"),
+                                      ({"ratio_lost": 1.5, "ratio_found": 1.5}, "in \\[0, 1\\]"),
+                                      ({"ratio_lost": 0.6, "ratio_found": 0.5},
+                                       "ratio_found >= ratio_lost"),
                                       ({"m": 0}, "m = 0"), ({"window": 1}, "window"),
                                       ({"warmup": 40, "window": 30}, "warmup <= window")])
 def test_bad_params_are_refused_naming_the_fix(kw, word):
@@ -136,6 +139,78 @@ def test_bad_params_are_refused_naming_the_fix(kw, word):
         FailureParams(**kw)
     with pytest.raises(TypeError, match="FailureParams"):
         FailureDetector({"k_lost": 3})
+
+
+# ---------------------------------------------------------------------- the ratio test
+def test_threshold_by_hand():
+    # the larger of r - k s and the ratio's fraction of r
+    assert threshold(10.0, 1.0, 3.0, 0.5) == 7.0              # spread test is the higher
+    assert threshold(10.0, 1.0, 8.0, 0.5) == 5.0              # ratio test is the higher
+    assert threshold(10.0, 1.0, float("inf"), 0.5) == 5.0     # spread test off
+    assert threshold(10.0, 1.0, 3.0, 0.0) == 7.0              # ratio test off
+    assert threshold(10.0, 1.0, float("inf"), 0.0) == float("-inf")
+    # a negated distance: r = -2 is a distance of 2; lost when it passes 2 / 0.5 = 4
+    assert threshold(-2.0, 0.1, float("inf"), 0.5) == -4.0
+    assert threshold(0.0, 0.0, float("inf"), 0.5) == 0.0
+
+
+def test_the_ratio_test_alone_by_hand():
+    p = FailureParams(k_lost=float("inf"), k_found=float("inf"), ratio_lost=0.5,
+                      ratio_found=0.8, m=1, window=10, warmup=4)
+    base = [0.8, 1.0] * 5                     # r = 0.9: lost below 0.45, found at 0.72
+    ok = judge(base + [0.46, 0.44, 0.7, 0.73], p)
+    assert list(ok[10:]) == [True, False, False, True]
+    # a negated distance, d = 2 on target: lost when d > 4, found when d <= 2 / 0.8 = 2.5
+    ok = judge([-2.0] * 10 + [-3.9, -4.1, -2.6, -2.5], p)
+    assert list(ok[10:]) == [True, False, False, True]
+
+
+@pytest.mark.parametrize("a", [0.25, 2.0, 8.0])
+def test_with_the_ratio_test_the_rule_is_invariant_under_scaling_not_shifting(a):
+    g = np.random.default_rng(5)
+    c = np.concatenate([g.integers(40, 48, 60), g.integers(0, 10, 8),
+                        g.integers(40, 48, 30)]).astype(float)
+    p = FailureParams(k_lost=8, k_found=4, ratio_lost=0.5, ratio_found=0.75, m=2, window=16,
+                      warmup=5)
+    ok = judge(c, p)
+    assert (~ok).any() and ok[-20:].all()
+    np.testing.assert_array_equal(judge(a * c, p), ok)
+    # shifted up by 100 the drop from ~44 to ~5 is no longer to half of the reference
+    # (~105 of ~144), and the spread test alone (8 spreads) is what still sees it
+    shifted = judge(c + 100, FailureParams(k_lost=float("inf"), k_found=float("inf"),
+                                           ratio_lost=0.5, ratio_found=0.75, window=16,
+                                           warmup=5))
+    assert shifted.all() and (~judge(c, FailureParams(k_lost=float("inf"),
+                                                      k_found=float("inf"), ratio_lost=0.5,
+                                                      ratio_found=0.75, window=16,
+                                                      warmup=5))).any()
+
+
+def test_calibrate_picks_the_ratio_test_where_no_spread_serves_every_scene():
+    # steady scenes (s = 0.074) dip to 9 on target: 13.5 spreads, so k_lost >= 14; noisy
+    # scenes (s = 7.4) lose the target at 4: 0.81 spreads, which no k >= 14 flags. A ratio
+    # flags 4 and keeps 9 for 0.4 < ratio <= 0.9; the smallest such on the grid is 0.5
+    steady, noisy = [10.0, 10.1] * 5, [5.0, 15.0] * 5
+    runs = []
+    for _ in range(5):
+        runs.append(steady + [9.0] * 5 + [4.0] * 5)
+        runs.append(noisy + [4.0] * 5)
+    absent = [np.r_[np.zeros(len(r) - 5, bool), np.ones(5, bool)] for r in runs]
+    on = [~a for a in absent]
+    for j in range(0, 10, 2):                 # the dip to 9 is on target too
+        on[j] = ~absent[j]
+    grid = tuple(float(k) for k in range(1, 21)) + (float("inf"),)
+    cal = calibrate(runs, absent, on, k_lost_grid=grid, hysteresis=(1.0,), m=1, window=10,
+                    warmup=4)
+    assert cal.params.k_lost == float("inf") and cal.params.ratio_lost == 0.5
+    assert cal.absent_lost == 1.0 and cal.false_lost == 0.0 and cal.meets_target
+    # the spread test alone cannot: keeping the dips needs k_lost >= 15, and then neither
+    # the noisy scenes' 4 (0.81 spreads) nor the steady scenes' 4 is flagged (by then the
+    # reference has learned the dip: median 9.5, s = 0.74, and 4 is 7.4 spreads down)
+    alone = calibrate(runs, absent, on, k_lost_grid=grid[:-1], ratio_grid=(0.0,),
+                      hysteresis=(1.0,), m=1, window=10, warmup=4)
+    assert alone.params.k_lost >= 15 and alone.false_lost == 0.0
+    assert alone.absent_lost == 0.0
 
 
 # ----------------------------------------------------------------------------- the ROC
@@ -218,8 +293,8 @@ def test_calibrate_picks_the_largest_k_meeting_the_target_and_a_k_found_that_rec
     # down: recovered only with k_found >= 3.5. m = 2 frames of grace after each absence
     back = [_level(3.5)] * 6
     runs = [_run([_level(6.5)] * 3 + back, [True] * 3 + [False] * 6) for _ in range(10)]
-    cal = calibrate(*zip(*runs), k_lost_grid=GRID, found_ratios=(0.25, 0.5, 0.75, 1.0), m=2,
-                    window=10, warmup=4)
+    cal = calibrate(*zip(*runs), k_lost_grid=GRID, ratio_grid=(0.0,),
+                    hysteresis=(0.25, 0.5, 0.75, 1.0), m=2, window=10, warmup=4)
     # k_lost = 6: k_found in 1.5, 3, 4.5, 6 -> 4.5 and 6 recover, 4.5 leaves the wider band
     assert (cal.params.k_lost, cal.params.k_found) == (6.0, 4.5)
     assert cal.absent_lost == 1.0 and cal.false_lost == 0.0
@@ -232,8 +307,8 @@ def test_calibrate_when_false_losses_forbid_the_target():
     # must be >= 4. Absent frames at 2.5, 4.5, 5.5, 6.5 spreads: k_lost = 4 flags 3 of 4.
     runs = [_run([_level(3.5)], [False]) for _ in range(10)]
     runs += [_run([_level(q)], [True]) for q in (2.5, 4.5, 5.5, 6.5) for _ in range(5)]
-    cal = calibrate(*zip(*runs), k_lost_grid=GRID, found_ratios=(0.5,), m=1, window=10,
-                    warmup=4)
+    cal = calibrate(*zip(*runs), k_lost_grid=GRID, ratio_grid=(0.0,), hysteresis=(0.5,), m=1,
+                    window=10, warmup=4)
     assert cal.params.k_lost == 4.0
     assert cal.absent_lost == 0.75 and cal.false_lost == 0.0
     assert cal.feasible and not cal.meets_target
@@ -242,7 +317,8 @@ def test_calibrate_when_false_losses_forbid_the_target():
 def test_calibrate_without_a_feasible_point_says_so():
     runs = [_run([_level(30)], [False]) for _ in range(10)]        # dips below every k
     runs += [_run([_level(40)], [True]) for _ in range(5)]
-    cal = calibrate(*zip(*runs), k_lost_grid=GRID, m=1, window=10, warmup=4)
+    cal = calibrate(*zip(*runs), k_lost_grid=GRID, ratio_grid=(0.0,), m=1, window=10,
+                    warmup=4)
     assert not cal.feasible and not cal.meets_target
     assert cal.false_lost == pytest.approx(10 / 160)
 

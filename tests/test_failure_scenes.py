@@ -75,6 +75,19 @@ def test_a_faded_target_is_absent_only_in_the_dark():
         # under a tenth of the light the target changes no pixel by more than 26 levels
         assert np.all(diff[absent] <= 26) and np.all(diff[~absent] > 0)
         assert with_t[absent].mean() < 0.1 * with_t[0].mean() + 5
+        # the scene says how much light each frame has: the frames' mean brightness follows
+        sc = fs.render_scene("fade", s)
+        np.testing.assert_array_equal(sc.light, plan.gain)
+        assert sc.light.min() == 0.0 and sc.light[0] == 1.0
+        bright = with_t.reshape(len(with_t), -1).mean(axis=1)
+        lit = sc.light > 0.5
+        assert bright[lit].min() > bright[sc.light < 0.1].max()
+
+
+def test_only_a_fade_dims_the_light():
+    for kind in fs.KINDS:
+        if kind != "fade":
+            assert (fs.render_scene(kind, SEEDS[0]).light == 1.0).all()
 
 
 def test_blur_scenes_blur_some_frames():

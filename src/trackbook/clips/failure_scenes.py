@@ -71,6 +71,9 @@ class FailureScene:
     visible : ndarray of float
         Share of the target's area in view per frame (0 where absent; a target half out of
         the frame or half covered shows 0.5).
+    light : ndarray of float
+        Share of the light the frame is exposed with (1 but while a ``fade`` scene fades:
+        down to 0, and the target is absent under :data:`FADE_ABSENT`).
     """
 
     kind: str
@@ -78,6 +81,7 @@ class FailureScene:
     clip: Clip
     absent: np.ndarray
     visible: np.ndarray
+    light: np.ndarray
 
 
 # ------------------------------------------------------------------ random ingredients
@@ -390,7 +394,8 @@ def _check(kind, seed, size, frames) -> None:
 def render_scene(kind: str, seed: int, size=None, frames: int | None = None) -> FailureScene:
     """The scene of :func:`failure_scene` as a :class:`FailureScene` (with ``visible``)."""
     _check(kind, seed, size, frames)
-    frames_, gt, alike, absent, share, _ = _render(kind, int(seed), size, frames)
+    frames_, gt, alike, absent, share, plan = _render(kind, int(seed), size, frames)
+    light = np.asarray(plan.gain, float).copy()
     targets = {"target": gt}
     if kind == "lookalike":
         targets["lookalike"] = alike
@@ -399,7 +404,8 @@ def render_scene(kind: str, seed: int, size=None, frames: int | None = None) -> 
                 source="generated")
     absent.setflags(write=False)
     share.setflags(write=False)
-    return FailureScene(kind, int(seed), clip, absent, share)
+    light.setflags(write=False)
+    return FailureScene(kind, int(seed), clip, absent, share, light)
 
 
 class CalibrationSet(Sequence):

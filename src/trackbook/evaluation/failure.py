@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -23,13 +24,25 @@ from scipy.stats import rankdata
 
 from ..trackers.failure import CALIBRATION_FILE, FailureDetector, FailureParams, load_calibration
 
-#: Default grid of ``k_lost`` (in spreads below the reference): fine up to 8, then coarse up
-#: to 100 (a very steady confidence, as on a rendered clip, has a tiny spread, so an ordinary
-#: dip is many spreads deep).
-K_LOST_GRID = tuple(float(k) for k in np.r_[np.arange(0.5, 8.0, 0.5), np.arange(8, 21),
-                                             25, 30, 40, 50, 70, 100])
-#: Default ratios ``k_found / k_lost`` tried for each ``k_lost``.
-FOUND_RATIOS = (0.25, 0.5, 0.75, 1.0)
+#: Default grid of ``k_lost`` (in spreads below the reference; ``inf``: the spread test off):
+#: a very steady confidence, as on a rendered clip, has a tiny spread, so an ordinary dip is
+#: many spreads deep.
+K_LOST_GRID = (3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 15.0, 20.0, 30.0, 50.0, math.inf)
+#: Default grid of ``ratio_lost`` (the fraction of the reference; 0: the ratio test off).
+RATIO_GRID = tuple(round(0.1 * j, 1) for j in range(10))
+#: Default hysteresis ``h``, tried for every pair: the found thresholds are ``h`` times as far
+#: below the reference as the lost ones, ``k_found = h k_lost`` and
+#: ``ratio_found = ratio_lost ** h`` (the same shrink of the distance in log units).
+HYSTERESIS = (0.5, 0.75, 1.0)
+
+
+def params_for(k_lost: float, ratio_lost: float, h: float, **fixed) -> FailureParams:
+    """The :class:`FailureParams` of one grid point: lost thresholds and a hysteresis ``h``
+    in (0, 1] (see :data:`HYSTERESIS`)."""
+    if not 0 < h <= 1:
+        raise ValueError(f"hysteresis h = {h!r}: give a number in (0, 1].")
+    return FailureParams(k_lost=k_lost, k_found=h * k_lost, ratio_lost=ratio_lost,
+                         ratio_found=ratio_lost ** h if ratio_lost > 0 else 0.0, **fixed)
 
 
 def _scores(values, name: str) -> np.ndarray:
@@ -199,22 +212,25 @@ class Calibration:
 
 
 def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: float = 0.01,
-              k_lost_grid=K_LOST_GRID, found_ratios=FOUND_RATIOS, m: int = 3,
-              window: int = 30, warmup: int = 5, grace: int | None = None) -> Calibration:
-    """Choose ``k_lost`` and ``k_found`` for one tracker from its calibration runs.
+              k_lost_grid=K_LOST_GRID, ratio_grid=RATIO_GRID, hysteresis=HYSTERESIS,
+              m: int = 3, window: int = 30, warmup: int = 5,
+              grace: int | None = None) -> Calibration:
+    """Choose the thresholds of the failure rule for one tracker from its calibration runs.
 
     The rule is stateful (a loss freezes the reference; recovery takes ``m`` frames), so it
     is judged on whole runs with per-frame labels, not on two pools of values.
 
-    Objective, over the grid ``k_lost in k_lost_grid``, ``k_found = ratio * k_lost`` for
-    ``ratio in found_ratios``:
+    Objective, over the grid ``k_lost in k_lost_grid``, ``ratio_lost in ratio_grid``,
+    ``h in hysteresis`` (:func:`params_for`; the pair ``k_lost = inf``, ``ratio_lost = 0``,
+    no test at all, is left out):
 
     1. constraint: false losses ``<= max_false`` (on-target frames judged lost);
     2. maximise ``min(absent_lost, target)``: flag the absent frames, but detection beyond
        the target buys nothing;
     3. then the fewest false losses; 4. then the most absent frames flagged;
-    5. then the largest ``k_lost`` (the farthest from the on-target noise), then the
-       smallest ``k_found`` (the widest hysteresis band: the least flapping).
+    5. then the largest ``k_lost`` and the smallest ``ratio_lost`` (the farthest from the
+       on-target noise), then the smallest ``h`` (the widest hysteresis band: the least
+       flapping).
 
     When no grid point meets the constraint, the fewest false losses win (then 2-5), and
     the result says ``feasible=False``.
@@ -227,7 +243,7 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
         The share of absent frames to flag (0.95).
     max_false : float
         The most on-target frames that may be flagged lost (0.01).
-    k_lost_grid, found_ratios
+    k_lost_grid, ratio_grid, hysteresis
         The candidates.
     m, window, warmup
         Fixed :class:`FailureParams` fields.
@@ -244,14 +260,17 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
                          "frames; the calibration set's scenes give both.")
     best, best_key = None, None
     for k in sorted({float(v) for v in k_lost_grid}):
-        for ratio in sorted({float(v) for v in found_ratios}):
-            p = FailureParams(k_lost=k, k_found=ratio * k, m=m, window=window, warmup=warmup)
-            r = detection_rates(s, a, o, p, grace=grace)
-            fa, fl = r["absent_lost"], r["false_lost"]
-            ok = fl <= max_false
-            key = (ok, 0.0 if ok else -fl, min(fa, target), -fl, fa, k, -p.k_found)
-            if best_key is None or key > best_key:
-                best, best_key = (p, r), key
+        for ratio in sorted({float(v) for v in ratio_grid}):
+            if math.isinf(k) and ratio == 0:
+                continue
+            for h in sorted({float(v) for v in hysteresis}):
+                p = params_for(k, ratio, h, m=m, window=window, warmup=warmup)
+                r = detection_rates(s, a, o, p, grace=grace)
+                fa, fl = r["absent_lost"], r["false_lost"]
+                ok = fl <= max_false
+                key = (ok, 0.0 if ok else -fl, min(fa, target), -fl, fa, k, -ratio, -h)
+                if best_key is None or key > best_key:
+                    best, best_key = (p, r), key
     p, r = best
     feasible = r["false_lost"] <= max_false
     return Calibration(p, r["absent_lost"], r["false_lost"], feasible,
@@ -273,6 +292,6 @@ def calibration_table(path=None) -> dict:
     return json.loads(path.read_text(encoding="utf-8"))
 
 
-__all__ = ["CALIBRATION_FILE", "Calibration", "calibration_table", "FailureDetector", "FailureParams", "K_LOST_GRID",
-           "FOUND_RATIOS", "calibrate", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
+__all__ = ["CALIBRATION_FILE", "Calibration", "calibration_table", "FailureDetector", "FailureParams",
+           "HYSTERESIS", "K_LOST_GRID", "RATIO_GRID", "calibrate", "params_for", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
            "roc_curve"]

@@ -7,7 +7,8 @@ TEXT = r"""
 The reference of a tracker holds the confidences $0.80, 0.84, 0.82, 0.90, 0.82$. Compute its
 median $r$ and scaled MAD $s$. With $k_\text{lost} = 3$, is a frame of confidence 0.72 lost?
 And one of 0.75? After the frame of 0.72, with $k_\text{found} = 1$ and $m = 2$, which of the
-next frames $0.79, 0.81, 0.80$ is the first judged on target again?
+next frames $0.79, 0.81, 0.80$ is the first judged on target again? Last, with the spread
+test off and the ratio test on instead ($\phi_\text{lost} = 0.9$): are 0.72 and 0.75 lost?
 --- solution
 Sorted: $0.80, 0.82, 0.82, 0.84, 0.90$, so $r = 0.82$. The absolute deviations are
 $0.02, 0.02, 0, 0.08, 0$; sorted $0, 0, 0.02, 0.02, 0.08$, median $0.02$, so
@@ -17,10 +18,13 @@ the found threshold is $0.82 - 0.0297 = 0.7903$: 0.79 falls just short, 0.81 and
 it, so 0.80, the second in a row, is the first frame judged on target again. Check:
 `FailureDetector(FailureParams(k_lost=3, k_found=1, m=2, warmup=5))` stepped through the five
 reference values and then 0.72, 0.79, 0.81, 0.80 returns five True, three False, one True.
+With the ratio test the threshold is $0.9 \times 0.82 = 0.738$: 0.72 is lost and 0.75 is not,
+the same verdicts from a threshold that does not use the spread at all.
 
 === 11.2 ★★ pen and paper | Units do not matter
-Show that the rule gives the same verdicts for a confidence series $c_t$ and for
-$a c_t + b$ with $a > 0$. Which step fails for $a < 0$, and why is that the right answer?
+Show that the spread test gives the same verdicts for a confidence series $c_t$ and for
+$a c_t + b$ with $a > 0$. Which step fails for $a < 0$, and why is that the right answer? Which
+of these maps leave the ratio test's verdicts unchanged?
 --- solution
 The median commutes with an increasing affine map: $\operatorname{median}(a c + b) = a\,r + b$
 (for an even count too: the mean of the two middle values maps the same way).
@@ -31,18 +35,23 @@ multiplied by $a > 0$ and shifted by $b$: the same truth value, frame by frame, 
 same frames enter the reference and the same verdicts follow by induction. For $a < 0$
 the spread becomes $|a| s$ and the loss test becomes $c_t > r + k s$: the rule would call a
 rise a loss. That is right, because $-c$ is no longer a confidence ("larger is surer" is part
-of the rule's contract).
+of the rule's contract). The ratio test $c_t < \phi r_t$ becomes $a c_t < \phi a r_t$ under
+$c \to a c$: the same inequality, so scaling leaves its verdicts alone. A shift does not:
+$c_t + b < \phi (r_t + b)$ is $c_t < \phi r_t - (1 - \phi) b$, another threshold. The ratio
+test measures the drop from the confidence's own zero, and a shift moves the zero.
 
 === 11.3 ★★ modify | The price of a looser threshold
-Run `kcf` on an occlusion scene of the calibration set with `failure=FailureParams(...)` at
-half, once and twice its calibrated $k_\text{lost}$. How does the share of absent frames
-flagged change, and what would you expect to happen to the false losses on the sample clips?
+Run `kcf` on an occlusion scene of the calibration set with `failure=FailureParams(...)`:
+its calibrated thresholds, but the ratio test's $\phi_\text{lost}$ at 0.2, 0.5 and 0.8 (and
+$\phi_\text{found}$ at least as high). How does the share of absent frames flagged change,
+and what would you expect to happen to the false losses on the sample clips?
 --- solution
-A smaller $k_\text{lost}$ puts the threshold closer to the median, so more absent frames fall
-below it: the share flagged rises (or stays at 100 %). The same closeness catches the ordinary
-dips of a tracker on target (a fast motion, a change of light), so the false losses on the
-sample clips rise too. Doubling $k_\text{lost}$ does the reverse. That trade-off is the ROC
-curve read one point at a time; calibration picks the point with at most 1 % false losses.
+A larger $\phi_\text{lost}$ puts the threshold closer to the median, so more absent frames
+fall below it: the share flagged rises (or stays at 100 %). The same closeness catches the
+ordinary dips of a tracker on target (a fast motion, a change of light), so the false losses
+on the sample clips rise too. A smaller $\phi_\text{lost}$ does the reverse. That trade-off
+is the ROC curve read one point at a time; calibration picks the point with at most 1 % false
+losses.
 
 === 11.4 ★★★ implement | The ROC area as a count
 Implement `auc(on, absent)`: the area under the ROC curve of confidences `on` (positives) and

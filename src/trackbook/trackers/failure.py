@@ -3,9 +3,10 @@
 Every tracker reports a confidence each frame (larger is surer), but on its own scale: a
 peak-to-sidelobe ratio lies in [0, 50], a Bhattacharyya coefficient in [0, 1], a negated
 distance in (-inf, 0]. One fixed threshold cannot serve them all, so the rule compares each
-frame with the tracker's *own* recent confidence, through a robust centre and spread, with
-hysteresis. The thresholds of each tracker are a few numbers (:class:`FailureParams`),
-chosen on calibration runs by :func:`trackbook.evaluation.failure.calibrate`.
+frame with the tracker's *own* recent confidence -- a drop to a fraction of its recent median,
+or a drop of many robust spreads below it -- with hysteresis. The thresholds of each tracker
+are a few numbers (:class:`FailureParams`), chosen on calibration runs by
+:func:`trackbook.evaluation.failure.calibrate`.
 
 This module imports nothing of the package, so the trackers can use it.
 """
@@ -35,15 +36,28 @@ MEAN_AD_TO_SIGMA = 1.2533141373155003
 class FailureParams:
     """The thresholds of :class:`FailureDetector` for one tracker.
 
+    Two tests, either of which declares a loss: a drop to a fraction of the reference (the
+    *ratio* test, ``ratio_lost``) and a drop of many spreads below it (the *spread* test,
+    ``k_lost``). A ratio of 0 or a ``k`` of ``inf`` turns that test off; the defaults use the
+    spread test alone.
+
     Attributes
     ----------
     k_lost : float
-        Lost when the confidence falls more than ``k_lost`` spreads below the reference.
+        Lost when the confidence falls more than ``k_lost`` spreads below the reference
+        (``math.inf``: never by this test).
     k_found : float
         Found again only at no more than ``k_found`` spreads below the reference;
         ``k_found <= k_lost`` (the band between them is the hysteresis).
+    ratio_lost : float
+        Lost when the confidence falls below ``ratio_lost`` times a positive reference (for a
+        negative reference, a negated distance, when the distance grows past the reference's
+        over ``ratio_lost``); in [0, 1], 0: never by this test.
+    ratio_found : float
+        Found again only at no less than ``ratio_found`` times the reference;
+        ``ratio_lost <= ratio_found <= 1`` (0 only with ``ratio_lost`` 0).
     m : int
-        Frames in a row at or above the found threshold needed to recover (>= 1).
+        Frames in a row at or above the found thresholds needed to recover (>= 1).
     window : int
         How many of the last frames judged ok make the reference (>= 2).
     warmup : int
@@ -56,18 +70,30 @@ class FailureParams:
     m: int = 3
     window: int = 30
     warmup: int = 5
+    ratio_lost: float = 0.0
+    ratio_found: float = 0.0
 
     def __post_init__(self):
         for name in ("k_lost", "k_found"):
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v) \
                     or v < 0:
-                raise ValueError(f"FailureParams.{name} = {v!r}: give a finite number >= 0 "
-                                 "(a multiple of the confidence's spread).")
+                raise ValueError(f"FailureParams.{name} = {v!r}: give a number >= 0 (a "
+                                 "multiple of the confidence's spread), or math.inf to turn "
+                                 "the spread test off.")
         if self.k_found > self.k_lost:
             raise ValueError(f"FailureParams: k_found = {self.k_found} is above k_lost = "
                              f"{self.k_lost}; recovering must be at least as strict as staying "
                              "on target, so give k_found <= k_lost.")
+        for name in ("ratio_lost", "ratio_found"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0 <= v <= 1:
+                raise ValueError(f"FailureParams.{name} = {v!r}: give a fraction in [0, 1] "
+                                 "of the reference (0 turns the ratio test off).")
+        if self.ratio_found < self.ratio_lost:
+            raise ValueError(f"FailureParams: ratio_found = {self.ratio_found} is below "
+                             f"ratio_lost = {self.ratio_lost}; recovering must be at least as "
+                             "strict as staying on target, so give ratio_found >= ratio_lost.")
         for name, low in (("m", 1), ("window", 2), ("warmup", 1)):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < low:
@@ -76,6 +102,24 @@ class FailureParams:
             raise ValueError(f"FailureParams: warmup = {self.warmup} exceeds window = "
                              f"{self.window}; the reference never holds that many frames, so "
                              "give warmup <= window.")
+
+
+def threshold(r: float, s: float, k: float, ratio: float) -> float:
+    r"""The confidence below which a frame fails against a reference ``(r, s)``.
+
+    .. math::
+
+        \theta(r, s) = \max\bigl(r - k\, s,\; \phi^{\operatorname{sign} r}\, r\bigr)
+
+    with :math:`\phi` = ``ratio``: :math:`\phi r` for a reference :math:`r \ge 0` (a
+    similarity: lost below a fraction of it), :math:`r / \phi` for :math:`r < 0` (a negated
+    distance: lost when the distance grows by the factor :math:`1/\phi`). A test that is
+    off (``k = inf``, ``ratio = 0``) contributes :math:`-\infty`.
+    """
+    spread = r - k * s if math.isfinite(k) else -math.inf
+    if ratio <= 0:
+        return spread
+    return max(spread, r * ratio if r >= 0 else r / ratio)
 
 
 def robust_reference(values) -> tuple[float, float]:
@@ -100,28 +144,38 @@ class FailureDetector:
     r"""Judge each frame on target or lost from the tracker's confidence alone.
 
     With :math:`r_t, s_t` the median and the scaled MAD (:func:`robust_reference`) of the
-    confidences of the last ``window`` frames judged ok before frame :math:`t`:
+    confidences of the last ``window`` frames judged ok before frame :math:`t`, and
+    :math:`\theta` the threshold of :func:`threshold`:
 
     .. math::
 
-        \text{on target} \to \text{lost} &\iff c_t < r_t - k_\text{lost}\, s_t, \\
-        \text{lost} \to \text{on target} &\iff c_{t-j} \ge r - k_\text{found}\, s
+        \text{on target} \to \text{lost} &\iff
+            c_t < \theta_\text{lost} = \max(r_t - k_\text{lost} s_t,\ \phi_\text{lost} r_t), \\
+        \text{lost} \to \text{on target} &\iff c_{t-j} \ge
+            \theta_\text{found} = \max(r - k_\text{found} s,\ \phi_\text{found} r)
         \text{ for } j = 0, \dots, m - 1,
 
-    with :math:`k_\text{found} \le k_\text{lost}`, and :math:`r, s` frozen at the loss while
+    (for a negative reference :math:`\phi r` reads :math:`r / \phi`, see :func:`threshold`),
+    with :math:`k_\text{found} \le k_\text{lost}`,
+    :math:`\phi_\text{lost} \le \phi_\text{found}`, and :math:`r, s` frozen at the loss while
     lost (a reference that learned from lost frames would drift down to them and declare the
     target found). A frame judged ok adds its confidence to the reference; a lost one does
     not. Until the reference holds ``warmup`` finite values, every frame is ok.
 
-    Why this rule: trackers' confidences differ in scale *and* sign (a peak-to-sidelobe
+    Why two tests: trackers' confidences differ in scale *and* sign (a peak-to-sidelobe
     ratio in [0, 50], a Bhattacharyya coefficient in [0, 1], a negated distance in
-    (-inf, 0]). A ratio test ``c_t < rho r_t`` is scale-free but assumes a positive
-    confidence with a meaningful zero; it is wrong for a negated distance and changes
-    meaning when the confidence is shifted. Median and MAD are equivariant under every
-    positive affine map ``c -> a c + b`` (``a > 0``), so the rule gives exactly the same ``ok``
-    sequence for ``c`` and ``a c + b``: the thresholds ``k`` are in units of the tracker's own
-    spread, comparable between trackers. Median and MAD also ignore the few outlying frames
-    (a brief occlusion the tracker survived) that would pull a mean and standard deviation.
+    (-inf, 0]). The spread test is in units of the tracker's own spread: median and MAD are
+    equivariant under every positive affine map ``c -> a c + b`` (``a > 0``), so with the
+    ratio test off the rule gives the same ``ok`` sequence for ``c`` and ``a c + b``. But a
+    spread is only as good as the frames it was measured on: on a steady scene it is tiny and
+    an ordinary wobble is many spreads deep, so a ``k`` safe on every scene must be so large
+    that the threshold can fall below the confidence's whole range (a Bhattacharyya
+    coefficient 70 spreads below 0.93 is -0.36). The ratio test measures the drop against the
+    confidence's own zero (no match, no peak above the sidelobes, zero distance), which every
+    confidence here has: it is unchanged by ``c -> a c`` (``a > 0``), not by a shift. The
+    calibration chooses, per tracker, either test or both. Median and MAD also ignore the
+    few outlying frames (a brief occlusion the tracker survived) that would pull a mean and
+    standard deviation.
 
     Conventions: a NaN or ``-inf`` confidence (the tracker found nothing to score) is below
     any threshold; ``+inf`` is above any threshold and is not added to the reference (it
@@ -177,13 +231,13 @@ class FailureDetector:
         if not self.lost:
             if len(self._ref) >= p.warmup:
                 r, s = robust_reference(self._ref)
-                if not c >= r - p.k_lost * s:            # NaN compares False: lost
+                if not c >= threshold(r, s, p.k_lost, p.ratio_lost):  # NaN: lost
                     self.lost, self._frozen, self._run = True, (r, s), 0
                     return False
             self._learn(c)
             return True
         r, s = self._frozen
-        self._run = self._run + 1 if c >= r - p.k_found * s else 0
+        self._run = self._run + 1 if c >= threshold(r, s, p.k_found, p.ratio_found) else 0
         if self._run >= p.m:
             self.lost = False
             self._learn(c)
@@ -221,7 +275,9 @@ def load_calibration(path=None) -> dict:
                                 "elsewhere).")
     fields = [f.name for f in dataclasses.fields(FailureParams)]
     rows = json.loads(path.read_text(encoding="utf-8"))["rows"]
-    return {r["tracker"]: FailureParams(**{k: r[k] for k in fields}) for r in rows}
+    # JSON has no infinity: a test turned off (k = inf) is written null
+    return {r["tracker"]: FailureParams(**{k: math.inf if r[k] is None else r[k]
+                                           for k in fields if k in r}) for r in rows}
 
 
 @functools.lru_cache(maxsize=1)
@@ -247,4 +303,4 @@ def judge(confidences, params: FailureParams | None = None) -> np.ndarray:
 
 
 __all__ = ["CALIBRATION_FILE", "FailureDetector", "FailureParams", "calibrated_params", "judge",
-           "load_calibration", "robust_reference"]
+           "load_calibration", "robust_reference", "threshold"]
