@@ -132,6 +132,8 @@ def test_warmup_keeps_the_first_frames_ok():
                                       ({"ratio_lost": 1.5, "ratio_found": 1.5}, "in \\[0, 1\\]"),
                                       ({"ratio_lost": 0.6, "ratio_found": 0.5},
                                        "ratio_found >= ratio_lost"),
+                                      ({"k_lost": float("inf"), "k_found": float("inf")},
+                                       "turn both tests"),
                                       ({"m": 0}, "m = 0"), ({"window": 1}, "window"),
                                       ({"warmup": 40, "window": 30}, "warmup <= window")])
 def test_bad_params_are_refused_naming_the_fix(kw, word):

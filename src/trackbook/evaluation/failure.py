@@ -280,8 +280,9 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
 def calibration_table(path=None) -> dict:
     """The whole calibration file as written: its settings and one row per tracker.
 
-    Each row holds the chosen thresholds (``k_lost``, ``k_found``, ``m``, ``window``,
-    ``warmup``), what they reach on the calibration scenes (``absent_lost``, ``false_lost``,
+    Each row holds the chosen thresholds (``k_lost``, ``k_found``, ``ratio_lost``,
+    ``ratio_found``, ``m``, ``window``, ``warmup``; a ``k`` of null is a spread test turned
+    off), what they reach on the calibration scenes (``absent_lost``, ``false_lost``,
     ``meets_target``), the confidence's ROC area and thinned curve (``roc_auc``, ``roc``), the
     same per kind of scene (``per_kind``) and, when the real sequences were present, on them
     (``real_roc_auc``, ``real_roc``: on target against off target). ``load_calibration``

@@ -24,7 +24,7 @@ the same verdicts from a threshold that does not use the spread at all.
 === 11.2 ★★ pen and paper | Units do not matter
 Show that the spread test gives the same verdicts for a confidence series $c_t$ and for
 $a c_t + b$ with $a > 0$. Which step fails for $a < 0$, and why is that the right answer? Which
-of these maps leave the ratio test's verdicts unchanged?
+maps $c \mapsto a c + b$ leave the ratio test's verdicts unchanged?
 --- solution
 The median commutes with an increasing affine map: $\operatorname{median}(a c + b) = a\,r + b$
 (for an even count too: the mean of the two middle values maps the same way).
@@ -41,7 +41,8 @@ $c_t + b < \phi (r_t + b)$ is $c_t < \phi r_t - (1 - \phi) b$, another threshold
 test measures the drop from the confidence's own zero, and a shift moves the zero.
 
 === 11.3 ★★ modify | The price of a looser threshold
-Run `kcf` on an occlusion scene of the calibration set with `failure=FailureParams(...)`:
+Run `kcf` on the second camera-cut scene of `calibration_set(seed=1, per_kind=2)` with
+`failure=FailureParams(...)`:
 its calibrated thresholds, but the ratio test's $\phi_\text{lost}$ at 0.2, 0.5 and 0.8 (and
 $\phi_\text{found}$ at least as high). How does the share of absent frames flagged change,
 and what would you expect to happen to the false losses on the sample clips?

@@ -38,8 +38,9 @@ class FailureParams:
 
     Two tests, either of which declares a loss: a drop to a fraction of the reference (the
     *ratio* test, ``ratio_lost``) and a drop of many spreads below it (the *spread* test,
-    ``k_lost``). A ratio of 0 or a ``k`` of ``inf`` turns that test off; the defaults use the
-    spread test alone.
+    ``k_lost``). A ratio of 0 or a ``k`` of ``inf`` turns that test off (not both: a rule
+    that can never declare a loss is ``failure=False``); the defaults use the spread test
+    alone.
 
     Attributes
     ----------
@@ -50,12 +51,13 @@ class FailureParams:
         Found again only at no more than ``k_found`` spreads below the reference;
         ``k_found <= k_lost`` (the band between them is the hysteresis).
     ratio_lost : float
-        Lost when the confidence falls below ``ratio_lost`` times a positive reference (for a
-        negative reference, a negated distance, when the distance grows past the reference's
-        over ``ratio_lost``); in [0, 1], 0: never by this test.
+        Lost when the confidence falls below ``ratio_lost`` times a reference ``r >= 0``; for
+        a negative reference (a negated distance ``-d``), when the distance exceeds
+        ``|r| / ratio_lost``. In [0, 1]; 0: never by this test.
     ratio_found : float
-        Found again only at no less than ``ratio_found`` times the reference;
-        ``ratio_lost <= ratio_found <= 1`` (0 only with ``ratio_lost`` 0).
+        Found again only at no less than ``ratio_found`` times a reference ``r >= 0`` (for a
+        negative one, at a distance of at most ``|r| / ratio_found``);
+        ``ratio_lost <= ratio_found <= 1``.
     m : int
         Frames in a row at or above the found thresholds needed to recover (>= 1).
     window : int
@@ -90,6 +92,10 @@ class FailureParams:
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not 0 <= v <= 1:
                 raise ValueError(f"FailureParams.{name} = {v!r}: give a fraction in [0, 1] "
                                  "of the reference (0 turns the ratio test off).")
+        if math.isinf(self.k_lost) and self.ratio_lost == 0:
+            raise ValueError("FailureParams: k_lost = inf and ratio_lost = 0 turn both tests "
+                             "off, so no frame could ever be lost; give a finite k_lost or a "
+                             "ratio_lost > 0 (or failure=False for no failure layer at all).")
         if self.ratio_found < self.ratio_lost:
             raise ValueError(f"FailureParams: ratio_found = {self.ratio_found} is below "
                              f"ratio_lost = {self.ratio_lost}; recovering must be at least as "
