@@ -233,8 +233,11 @@ def test_lost_keeps_the_last_box_and_finds_it_again():
     for ok, box in boxes[3:7]:
         assert not ok and box == last
         assert t.state().confidence is not None
-    ok, box = boxes[7]
-    assert ok and box[0] + box[2] / 2 == pytest.approx(20 + 5 * 8 + 12, abs=1.0)
+    # the square is back from frame 8: the failure layer believes it after m frames in a row
+    m = t.failure_params.m
+    assert [ok for ok, _ in boxes[7:]] == [False] * (m - 1) + [True] * (len(boxes) - 6 - m)
+    ok, box = boxes[10]                       # frame 11, the box on the square
+    assert ok and box[0] + box[2] / 2 == pytest.approx(20 + 5 * 11 + 12, abs=1.0)
 
 
 def test_scale_follows_the_target():

@@ -238,7 +238,8 @@ KNOWN_RECOVERY: dict = {
     ('median-flow-redetect', 'occluder'): 'IoU > 0.5 never after the return',
     ('median-flow-redetect', 'leave-and-return'): 'IoU > 0.5 never after the return',
 }
-#: ("samples" | "real", tracker) -> the false losses measured where there are more than 1 %.
+#: ("samples" | "real" | "small-long", tracker) -> the false losses measured where there are
+#: more than 1 %.
 FALSE_LOSSES: dict = {
     ('samples', 'color-hog-ipca'): 'ok=False with IoU > 0.5 on robot-corridor-day: 26 of 147',
     ('samples', 'edge-ray-pf'): 'ok=False with IoU > 0.5 on robot-corridor-day: 11 of 50',
@@ -251,6 +252,7 @@ FALSE_LOSSES: dict = {
     ('real', 'edge-ray-pf'): 'ok=False on 19 of the 479 frames with IoU > 0.5',
     ('real', 'mosse'): 'ok=False on 80 of the 324 frames with IoU > 0.5',
     ('real', 'opencv-mil'): 'ok=False on 97 of the 514 frames with IoU > 0.5',
+    ('small-long', 'condensation'): 'ok=False on 6.1% of the frames with IoU > 0.5',
 }
 
 
@@ -349,20 +351,20 @@ def test_redetection_finds_the_target_within_10_frames_of_its_return(name, key):
                                       f"after the return (frame {back})")
 
 
-@pytest.mark.parametrize("name", CANONICAL)
+def _false_loss_cells(where):
+    for n in CANONICAL:
+        reason = FALSE_LOSSES.get((where, n))
+        yield pytest.param(n, marks=[pytest.mark.xfail(strict=True, reason=reason)]
+                           if reason else [])
+
+
+@pytest.mark.parametrize("name", list(_false_loss_cells("small-long")))
 def test_a_long_run_on_a_small_clip_has_no_false_losses(name):
     sc = S.SCENARIOS["small-long"]()
     r = trackbook.evaluate(name, sc.clip, seed=0)
     m = S.measure(r, sc)
     assert m["false_lost"] <= 0.01, \
         f"{name}: ok=False on {m['false_lost']:.1%} of the frames with IoU > 0.5"
-
-
-def _false_loss_cells(where):
-    for n in CANONICAL:
-        reason = FALSE_LOSSES.get((where, n))
-        yield pytest.param(n, marks=[pytest.mark.xfail(strict=True, reason=reason)]
-                           if reason else [])
 
 
 # Item 2 on the sample clips and the real sequences reads the committed runs of every tracker

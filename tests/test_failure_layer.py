@@ -160,7 +160,7 @@ def test_the_readme_says_what_the_committed_calibration_shows():
                       .read_text(encoding="utf-8"))["rows"]
     readme = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
     said = ("the rule reaches 95 % of absent frames flagged with at most 1 % false losses on "
-            "the calibration scenes for two trackers only, `bacf` and `hog-pf`,")
+            "the calibration scenes for two trackers only, `bacf` and `hog-pf`.")
     assert said in readme
     # one row per algorithm of the library (a plugin another test loaded into this process,
     # e.g. the experiments' edge-ray-x, is not one); a -redetect name judges with its

@@ -22,44 +22,60 @@ to 0.2), `feature_map` (to `"sqrt"`) or `init` (to `"box"`), and compare the AUC
 frames: `evaluate(trackers.create("color-hog-ipca", preset="paper", seed=0, **change), clip,
 max_frames=80)`, with `change` the one setting changed (`{}` for the preset itself).
 --- solution
-The two σ. Over the first 80 frames the preset scores AUC 0.309; σ = 0.2 for both features
-raises it to 0.664, the square-root feature map to 0.513 and the start around the box to
-0.549, so the preset's wide σ = 0.4 costs most. The mean IoU with the ground truth, frames 0–39 and
-40–79, says where each setting acts:
+σ, only just ahead of the start. Over the first 80 frames σ = 0.2 for both features lifts the
+preset's AUC the most, the start around the box almost as much and the square-root feature
+map least, so the preset's wide σ = 0.4 costs most. The mean IoU with the ground truth, frames
+0–39 and 40–79, says where each setting acts:
 
 | run | AUC | mean IoU, frames 0–39 | mean IoU, frames 40–79 |
 |---|---|---|---|
-| `preset="paper"` | 0.309 | 0.594 | 0.045 |
-| σ = 0.2 | 0.664 | 0.813 | 0.542 |
-| `feature_map="sqrt"` | 0.513 | 0.594 | 0.445 |
-| `init="box"` | 0.549 | 0.784 | 0.340 |
+| `preset="paper"` | 0.545 | 0.588 | 0.520 |
+| σ = 0.2 | 0.692 | 0.796 | 0.612 |
+| `feature_map="sqrt"` | 0.562 | 0.588 | 0.556 |
+| `init="box"` | 0.685 | 0.795 | 0.593 |
 
-The preset loses the target once it starts learning at $T = 40$. σ acts on every frame: before
-$T$ it sharpens the weights of the colour and HOG likelihoods (eq. 10–11 of the
-{doc}`case study <case_study_lee2012>`), after $T$ those of the subspace. The feature map acts
-only after $T$: its first 40 boxes are exactly the preset's, and after $T$ it keeps far more
-of the target (exercise 4.3 explains why raw histograms leave the weights nearly uniform). The start around the box improves the frames before $T$ but, still learning
-raw histograms, loses the target after $T$ as well, only later (mean IoU below 0.05 on frames
-60–79).
+In all four runs the failure layer judges the frames from 34, where the lights dim, to 59
+lost, and a lost frame is not learned: the subspaces are complete only at frame 65, not at
+frame $T$. σ acts on every frame: before the subspaces exist it sharpens the weights of the
+colour and HOG likelihoods (eq. 10–11 of the {doc}`case study <case_study_lee2012>`), after,
+those of the subspace. The start around the box also acts from the first frame, and both lift
+the first 40 frames well above the preset. The feature map acts only once the subspaces exist:
+its boxes up to that frame are exactly the preset's, and in the frames after it the square
+root keeps more of the target than the raw histograms (exercise 4.3 explains why raw
+histograms leave the weights nearly uniform).
 
-A good answer adds that this is one seed and 80 frames, of which only 40 learn. Over the whole
-clip (150 frames, 110 of them after $T$), averaged over seeds 0–2, the order changes: the
-square root lifts the mean AUC from 0.245 to 0.541, σ = 0.2 to 0.426 and the box start to
-0.310.
+A good answer adds that this is one seed and 80 frames, of which only the last 14 are weighed
+by the subspaces, and that σ and the start are nearly tied. Over the whole clip (150 frames),
+averaged over seeds 0–2, the order changes: the square root lifts the mean AUC most, σ = 0.2
+less, and the start around the box hardly at all:
+
+| run | mean AUC, whole clip, seeds 0–2 |
+|---|---|
+| `preset="paper"` | 0.399 |
+| `feature_map="sqrt"` | 0.483 |
+| σ = 0.2 | 0.458 |
+| `init="box"` | 0.400 |
 
 === 4.3 ★★ modify | Raw or square-rooted histograms? | after 02_particle_filters
 Run `color-hog-ipca` (seed 0) on the first 80 frames of `robot-corridor-day` with `anchor=0.0`
-(after the learning phase of $T = 40$ frames, the likelihood is the subspace's reconstruction
-error alone), once with `feature_map="sqrt"` and once with `feature_map="raw"`. Compare the
-mean effective sample size after frame $T$ (`result.extras["ess"][41:]`, the effective sample
-size of the {doc}`particle-filter chapter <02_particle_filters>`; 100 particles). Which feature
-map leaves the weights nearly uniform? Answer `"sqrt"` or `"raw"`, and say why.
+(once the subspaces are learned, the likelihood is their reconstruction error alone), once
+with `feature_map="sqrt"` and once with `feature_map="raw"`. The subspaces are built from the
+first $T = 40$ frames the tracker learns, and a frame judged lost is not learned, so they need
+not exist by frame $T$: `result.extras["learning"]` turns 1 on the frame that completes them.
+Compare the mean effective sample size over the frames after that one
+(`start = np.flatnonzero(result.extras["learning"] == 1)[0] + 1`, then
+`result.extras["ess"][start:]`; the effective sample size of the
+{doc}`particle-filter chapter <02_particle_filters>`; 100 particles). Which feature map leaves
+the weights nearly uniform? Answer `"sqrt"` or `"raw"`, and say why.
 --- solution
 `"raw"`. Raw histograms sum to 1 over hundreds of bins, so their Euclidean norm is far below
 1 (0.1–0.4 on the sample clips' targets) and every particle's reconstruction error is at most
 that norm: $\exp(-D^2 / 2\sigma^2)$ differs little between the particles and the weights are
 nearly uniform (ESS close to $N$): the likelihood no longer tells the particles apart. The
 square root has norm 1, and its errors spread over a range that σ can resolve.
+On this clip the failure layer judges the frames from 34, where the lights dim, to 59 lost,
+so the subspaces are complete only at frame 65; a mean from frame $T$ on would mix in frames
+weighed before learning, the same in both runs.
 
 === 4.4 ★★ pen and paper | Twice the distance
 With a single learned appearance $u = \sqrt{h_{ref}}$, show that
@@ -103,22 +119,33 @@ A good answer has three parts: a table of AUC and tracking rate for every $n_\ma
 without the anchor, on both clips; a measure of the seed-to-seed noise of the same runs; and a
 verdict for each comparison that weighs a difference against that noise.
 
-The sample clips, seed 0. With the anchor every $n_\mathrm{b}$ tracks the whole day clip (tracking rate
-1.0) and the AUC stays between 0.797 ($n_\mathrm{b} = 2$) and 0.818 ($n_\mathrm{b} = 8$); at night it lies between
-0.287 ($n_\mathrm{b} = 4$) and 0.353 ($n_\mathrm{b} = 16$). Without the anchor the runs swing further: by day from
-0.659 ($n_\mathrm{b} = 8$) to 0.814 ($n_\mathrm{b} = 2$), at night from 0.287 ($n_\mathrm{b} = 4$) to 0.562 ($n_\mathrm{b} = 16$).
+The sample clips, seed 0. With the anchor every $n_\mathrm{b}$ tracks nearly the whole day
+clip (tracking rate at least 0.97). The lowest and highest AUC over the five $n_\mathrm{b}$:
 
-The noise. Seeds 1 and 2 move one configuration as far as $n_\mathrm{b}$ does: at night with the anchor
-and $n_\mathrm{b} = 4$ the AUC is 0.287, 0.456 and 0.295 for seeds 0, 1 and 2, a range of 0.169, wider
-than the range over all five $n_\mathrm{b}$ at seed 0 (0.066); without the anchor $n_\mathrm{b} = 4$ at night gives
-0.287, 0.289 and 0.528.
+| clip | anchor | lowest AUC ($n_\mathrm{b}$) | highest AUC ($n_\mathrm{b}$) |
+|---|---|---|---|
+| day | 0.7 | 0.662 (16) | 0.731 (4) |
+| night | 0.7 | 0.287 (4) | 0.345 (2) |
+| day | 0 | 0.544 (1) | 0.729 (2) |
+| night | 0 | 0.287 (4) | 0.561 (8) |
+
+Without the anchor the runs swing further, on both clips.
+
+The noise. Seeds 1 and 2 move one configuration as far as $n_\mathrm{b}$ does: at night with
+the anchor and $n_\mathrm{b} = 4$ the AUC of seeds 0–2 ranges over 0.163, wider than the range
+over all five $n_\mathrm{b}$ at seed 0 (0.058); without the anchor the same $n_\mathrm{b}$ at
+night ranges over 0.241.
 
 The public sequences. The committed runs of the {doc}`lab notes <lab_notes_lee2012>` (seven
-sequences, seeds 0–2) hold
-two of these comparisons, paired by sequence and seed: $n_\mathrm{b} = 4$ minus $n_\mathrm{b} = 2$ with the anchor,
-mean AUC difference −0.043, 95 % interval [−0.104, +0.005]; $n_\mathrm{b} = 16$ minus $n_\mathrm{b} = 2$ learning
-unchecked, −0.022 [−0.091, +0.033]. Both intervals straddle 0: inconclusive. One sequence's AUC
-moves by up to 0.44 between seeds (Jogging1, with the library's default: anchor 0.7, $n_\mathrm{b} = 2$).
+sequences, seeds 0–2) hold two of these comparisons, paired by sequence and seed:
+
+| comparison | mean AUC difference | 95 % interval |
+|---|---|---|
+| $n_\mathrm{b} = 4$ minus $n_\mathrm{b} = 2$, with the anchor | −0.026 | [−0.087, +0.011] |
+| $n_\mathrm{b} = 16$ minus $n_\mathrm{b} = 2$, learning unchecked | −0.016 | [−0.083, +0.026] |
+
+Both intervals straddle 0: inconclusive. One sequence's AUC moves by up to 0.44 between seeds
+(Jogging1, with the library's default: anchor 0.7, $n_\mathrm{b} = 2$).
 
 The verdict: no $n_\mathrm{b}$ from 1 to 16 is established better than another. The two comparisons
 with a confidence interval are both inconclusive, and $n_\mathrm{b}$ = 1 and 8 were run on the sample
