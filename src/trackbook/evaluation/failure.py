@@ -293,6 +293,6 @@ def calibration_table(path=None) -> dict:
     return json.loads(path.read_text(encoding="utf-8"))
 
 
-__all__ = ["CALIBRATION_FILE", "Calibration", "calibration_table", "FailureDetector", "FailureParams",
-           "HYSTERESIS", "K_LOST_GRID", "RATIO_GRID", "calibrate", "params_for", "counted_on_target", "detection_rates", "load_calibration", "roc_auc",
-           "roc_curve"]
+__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "HYSTERESIS",
+           "K_LOST_GRID", "RATIO_GRID", "calibrate", "calibration_table", "counted_on_target",
+           "detection_rates", "load_calibration", "params_for", "roc_auc", "roc_curve"]
