@@ -13,7 +13,7 @@ import pytest
 
 from trackbook import trackers
 from trackbook.clips.failure_scenes import KINDS, calibration_set
-from trackbook.evaluation.failure import load_calibration
+from trackbook.evaluation.failure import floor_found, load_calibration
 from trackbook.trackers.failure import FailureParams
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -127,6 +127,21 @@ def test_the_script_calibrates_writes_and_prints(fakes, tmp_path, capsys):
     assert load_calibration(out) == {"test-template": p}
     assert 0 <= row["absent_lost"] <= 1 and 0 <= row["false_lost"] <= 1
     assert set(row["per_kind"]) == set(KINDS) and row["per_kind"]["blur"]["n_absent"] == 0
+    # the second pass: the first pass's found thresholds or the floored ones, run with the
+    # layer on; the row keeps the one it chose
+    both = row["with_layer"]
+    assert set(both) == {"first_pass", "floored"}
+    kept = both["floored" if row["found_floored"] else "first_pass"]
+    assert (kept["k_found"], kept["ratio_found"]) == (row["k_found"], row["ratio_found"])
+    def inf(v):
+        return float("inf") if v is None else v
+
+    first = dataclasses.replace(p, k_found=inf(both["first_pass"]["k_found"]),
+                                ratio_found=both["first_pass"]["ratio_found"])
+    assert (inf(both["floored"]["k_found"]), both["floored"]["ratio_found"]) == (
+        floor_found(first).k_found, floor_found(first).ratio_found)
+    for r in both.values():
+        assert 0 <= r["absent_lost"] <= 1 and 0 <= r["false_lost"] <= 1 and r["n_absent"] > 0
     # matching the patch anywhere: the best correlation is higher on target than without it
     assert row["roc_auc"] > 0.7
     printed = capsys.readouterr().out.splitlines()

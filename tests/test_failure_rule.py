@@ -2,12 +2,15 @@
 (``evaluation.failure``), on hand-made confidence series whose answers are known by
 construction."""
 
+import math
+
 import numpy as np
 import pytest
 from sklearn.metrics import roc_auc_score
 from sklearn.metrics import roc_curve as sk_roc_curve
 
-from trackbook.evaluation.failure import (calibrate, counted_on_target, detection_rates,
+from trackbook.evaluation.failure import (FOUND_K, FOUND_RATIO, calibrate, counted_on_target,
+                                          detection_rates, floor_found, judged_rates, objective,
                                           roc_auc, roc_curve)
 from trackbook.trackers.failure import (MAD_TO_SIGMA, FailureDetector, FailureParams, judge,
                                         robust_reference, threshold)
@@ -285,6 +288,44 @@ def test_detection_rates_by_hand():
     # absent: q = 4 lost, q = 2 not; on target: 30 prefix frames + one at q = 3.5 (lost)
     assert (r["n_absent"], r["n_absent_lost"], r["n_on"], r["n_false_lost"]) == (2, 1, 31, 1)
     assert r["absent_lost"] == 0.5 and r["false_lost"] == pytest.approx(1 / 31)
+
+
+def test_judged_rates_by_hand():
+    # two runs: ok as a tracker reported it, not replayed from a confidence
+    ok = [np.array([1, 1, 0, 0, 0, 1], bool), np.array([1, 0, 1, 1], bool)]
+    absent = [np.array([0, 0, 1, 1, 0, 0], bool), np.zeros(4, bool)]
+    on = [np.array([1, 1, 0, 0, 1, 1], bool), np.array([1, 1, 1, 1], bool)]
+    r = judged_rates(ok, absent, on, grace=1)
+    # run 1: absent frames 2, 3 both lost; on target (grace 1 after the absence): 0, 1, 5;
+    # frame 4 is the grace frame. Run 2: on target 0..3, frame 1 lost
+    assert (r["n_absent"], r["n_absent_lost"], r["n_on"], r["n_false_lost"]) == (2, 2, 7, 1)
+    assert r["absent_lost"] == 1.0 and r["false_lost"] == pytest.approx(1 / 7)
+
+
+def test_floor_found_raises_only_the_found_thresholds_of_the_tests_that_are_on():
+    assert (FOUND_RATIO, FOUND_K) == (0.8, 4.0)
+    ratio_only = FailureParams(k_lost=math.inf, k_found=math.inf, ratio_lost=0.4,
+                               ratio_found=0.5)
+    assert floor_found(ratio_only) == FailureParams(k_lost=math.inf, k_found=math.inf,
+                                                    ratio_lost=0.4, ratio_found=0.8)
+    spread_only = FailureParams(k_lost=20, k_found=10, m=2, window=12, warmup=3)
+    assert floor_found(spread_only) == FailureParams(k_lost=20, k_found=4, m=2, window=12,
+                                                     warmup=3)
+    # already stricter than the floor: unchanged
+    strict = FailureParams(k_lost=30, k_found=2, ratio_lost=0.85, ratio_found=0.9)
+    assert floor_found(strict) == strict
+    # a spread test looser than the floor's k: k_found = k_lost, never above it
+    assert floor_found(FailureParams(k_lost=3, k_found=3)).k_found == 3
+
+
+def test_objective_orders_by_false_losses_then_detection():
+    feasible_weak, feasible_strong = objective(0.5, 0.01), objective(0.9, 0.005)
+    infeasible = objective(1.0, 0.02)
+    assert feasible_strong > feasible_weak > infeasible
+    # beyond the target detection buys nothing; then the fewer false losses win
+    assert objective(0.96, 0.001) > objective(1.0, 0.002)
+    # without a feasible point, the fewest false losses win
+    assert objective(0.1, 0.015) > objective(1.0, 0.02)
 
 
 GRID = tuple(float(k) for k in range(1, 11))

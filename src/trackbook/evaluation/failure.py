@@ -34,6 +34,10 @@ RATIO_GRID = tuple(round(0.1 * j, 1) for j in range(10))
 #: below the reference as the lost ones, ``k_found = h k_lost`` and
 #: ``ratio_found = ratio_lost ** h`` (the same shrink of the distance in log units).
 HYSTERESIS = (0.5, 0.75, 1.0)
+#: The found thresholds :func:`floor_found` imposes, chosen before any measurement: back to
+#: four fifths of the reference (ratio test) and within 4 spreads of it (spread test).
+FOUND_RATIO = 0.8
+FOUND_K = 4.0
 
 
 def params_for(k_lost: float, ratio_lost: float, h: float, **fixed) -> FailureParams:
@@ -43,6 +47,33 @@ def params_for(k_lost: float, ratio_lost: float, h: float, **fixed) -> FailurePa
         raise ValueError(f"hysteresis h = {h!r}: give a number in (0, 1].")
     return FailureParams(k_lost=k_lost, k_found=h * k_lost, ratio_lost=ratio_lost,
                          ratio_found=ratio_lost ** h if ratio_lost > 0 else 0.0, **fixed)
+
+
+def floor_found(params: FailureParams, ratio: float = FOUND_RATIO,
+                k: float = FOUND_K) -> FailureParams:
+    """``params`` with found thresholds at least as strict as ``ratio`` times the reference
+    and ``k`` spreads below it, for the tests that are on (a test that is off stays off).
+
+    Why: :func:`calibrate` replays the rule on runs without the layer, where the tracker kept
+    learning after it would have been lost; with the layer on, a lost tracker stops learning,
+    so its confidence when the target comes back is that of its model before the loss, near
+    the reference. A background it stares at while lost can score above a loose found
+    threshold; a floor asks for a return to the level of the target. Which of the two
+    :func:`calibrate`'s result or this one a tracker keeps is measured with the layer on.
+    """
+    k_found = min(params.k_found, float(k)) if math.isfinite(params.k_lost) else params.k_found
+    ratio_found = max(params.ratio_found, float(ratio)) if params.ratio_lost > 0 else 0.0
+    return dataclasses.replace(params, k_found=k_found, ratio_found=ratio_found)
+
+
+def objective(absent_lost: float, false_lost: float, target: float = 0.95,
+              max_false: float = 0.01) -> tuple:
+    """The calibration's objective as a key, larger is better: first false losses at most
+    ``max_false`` (else the fewest), then ``min(absent_lost, target)``, then the fewest
+    false losses, then the most absent frames flagged."""
+    ok = false_lost <= max_false
+    return (ok, 0.0 if ok else -false_lost, min(absent_lost, target), -false_lost,
+            absent_lost)
 
 
 def _scores(values, name: str) -> np.ndarray:
@@ -169,12 +200,19 @@ def detection_rates(series, absent, on_target, params: FailureParams,
         and ``n_false_lost``. A share over no frames is NaN.
     """
     s, a, o = _check(series, absent, on_target)
-    grace = params.m if grace is None else int(grace)
     det = FailureDetector(params)
+    return judged_rates([det.run(x) for x in s], a, o, params.m if grace is None else grace)
+
+
+def judged_rates(ok, absent, on_target, grace: int) -> dict:
+    """The rates of :func:`detection_rates` from judgements already made: ``ok`` per frame
+    of each run (e.g. a tracker run with its layer on), with the same ``absent`` and
+    ``on_target`` masks and ``grace``."""
+    s, a, o = _check(ok, absent, on_target)
     n_abs = n_abs_lost = n_on = n_false = 0
     for x, ab, on in zip(s, a, o):
-        lost = ~det.run(x)
-        on = counted_on_target(ab, on, grace)
+        lost = x == 0
+        on = counted_on_target(ab, on, int(grace))
         n_abs += int(ab.sum())
         n_abs_lost += int((lost & ab).sum())
         n_on += int(on.sum())
@@ -266,9 +304,8 @@ def calibrate(series, absent, on_target, *, target: float = 0.95, max_false: flo
             for h in sorted({float(v) for v in hysteresis}):
                 p = params_for(k, ratio, h, m=m, window=window, warmup=warmup)
                 r = detection_rates(s, a, o, p, grace=grace)
-                fa, fl = r["absent_lost"], r["false_lost"]
-                ok = fl <= max_false
-                key = (ok, 0.0 if ok else -fl, min(fa, target), -fl, fa, k, -ratio, -h)
+                key = objective(r["absent_lost"], r["false_lost"], target, max_false) + (
+                    k, -ratio, -h)
                 if best_key is None or key > best_key:
                     best, best_key = (p, r), key
     p, r = best
@@ -282,17 +319,21 @@ def calibration_table(path=None) -> dict:
 
     Each row holds the chosen thresholds (``k_lost``, ``k_found``, ``ratio_lost``,
     ``ratio_found``, ``m``, ``window``, ``warmup``; a ``k`` of null is a spread test turned
-    off), what they reach on the calibration scenes (``absent_lost``, ``false_lost``,
-    ``meets_target``), the confidence's ROC area and thinned curve (``roc_auc``, ``roc``), the
-    same per kind of scene (``per_kind``) and, when the real sequences were present, on them
-    (``real_roc_auc``, ``real_roc``: on target against off target). ``load_calibration``
-    gives only the thresholds.
+    off), what the first pass's thresholds reach on the calibration scenes, replayed
+    (``absent_lost``, ``false_lost``, ``meets_target``), the confidence's ROC area and thinned curve (``roc_auc``, ``roc``), the
+    same per kind of scene (``per_kind``), the second pass with the layer on (``found_floored``:
+    whether the found thresholds kept are :func:`floor_found`'s; ``with_layer``: both
+    candidates' found thresholds and rates) and, when the real sequences were present, on
+    them (``real_roc_auc``, ``real_roc``: on target against off target).
+    ``load_calibration`` gives only the thresholds.
     """
     path = Path(CALIBRATION_FILE if path is None else path)
     load_calibration(path)                       # the same checks and error as the thresholds
     return json.loads(path.read_text(encoding="utf-8"))
 
 
-__all__ = ["CALIBRATION_FILE", "Calibration", "FailureDetector", "FailureParams", "HYSTERESIS",
-           "K_LOST_GRID", "RATIO_GRID", "calibrate", "calibration_table", "counted_on_target",
-           "detection_rates", "load_calibration", "params_for", "roc_auc", "roc_curve"]
+__all__ = ["CALIBRATION_FILE", "FOUND_K", "FOUND_RATIO", "Calibration", "FailureDetector",
+           "FailureParams", "HYSTERESIS", "K_LOST_GRID", "RATIO_GRID", "calibrate",
+           "calibration_table", "counted_on_target", "detection_rates", "floor_found",
+           "judged_rates", "load_calibration", "objective", "params_for", "roc_auc",
+           "roc_curve"]
