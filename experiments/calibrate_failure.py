@@ -39,9 +39,9 @@ of on-target frames flagged (false losses) / ROC AUC of the confidence.
     PYTHONPATH=src python experiments/calibrate_failure.py [--quick] [--no-mil]
         [--per-kind N] [--seed S] [--trackers a,b] [--out FILE] [--force]
 
-``--quick`` uses 2 scenes per kind (a smoke test); the default is 6. One scene per kind (about
-380 frames) takes about 3 minutes for the thirteen trackers on one core, 40 s of it
-``opencv-mil``: ``--quick`` about 7 minutes, the default about 20.
+``--quick`` uses 2 scenes per kind (a smoke test); the default is 6. The default took about
+16 minutes on two cores for the twenty trackers: 3 recording the runs, 3 the grid, 8 the
+second pass (``opencv-mil`` 2 of them), 2 the real sequences.
 """
 
 from __future__ import annotations
