@@ -186,39 +186,71 @@ KNOWN_RECOVERY: dict = {
     ('color-pf-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('color-pf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
     ('color-pf-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
+    ('color-hog-pf-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('color-hog-pf-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('color-hog-pf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('color-hog-ipca-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('color-hog-ipca-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('color-hog-ipca-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('color-hog-ipca-redetect', 'cut-5'): 'IoU > 0.5 first 11 frames after the return',
+    ('hsi-color-pf-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('hsi-color-pf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('hog-pf-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('hog-pf-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('hog-pf-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('hog-pf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
-    ('hog-pf-redetect', 'cut-5'): 'IoU > 0.5 first 14 frames after the return',
+    ('hog-pf-redetect', 'cut-5'): 'IoU > 0.5 first 21 frames after the return',
+    ('covariance-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('covariance-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
+    ('covariance-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('covariance-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('kalman-covariance-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('kalman-covariance-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
+    ('kalman-covariance-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('kalman-covariance-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('kalman-covariance-manoeuvre-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('kalman-covariance-manoeuvre-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
+    ('kalman-covariance-manoeuvre-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('kalman-covariance-manoeuvre-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('condensation-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('condensation-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
+    ('condensation-mean-shift-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('condensation-mean-shift-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
+    ('mean-shift-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
     ('mean-shift-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('mean-shift-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
     ('camshift-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('camshift-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('mosse-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('mosse-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
+    ('mosse-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('mosse-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('mosse-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
     ('mosse-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
     ('mosse-redetect', 'edge-exit'): 'IoU > 0.5 never after the return',
     ('mosse-redetect', 'occluder'): 'IoU > 0.5 never after the return',
+    ('kcf-redetect', 'exit-1'): 'IoU > 0.5 first 13 frames after the return',
     ('kcf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('kcf-redetect', 'cut-5'): 'IoU > 0.5 first 12 frames after the return',
     ('kcf-redetect', 'occluder'): 'IoU > 0.5 never after the return',
+    ('dsst-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
     ('dsst-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('dsst-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('staple-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('staple-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('staple-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
+    ('bacf-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('bacf-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('bacf-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
     ('bacf-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
     ('bacf-redetect', 'edge-exit'): 'IoU > 0.5 never after the return',
     ('bacf-redetect', 'leave-and-return'): 'IoU > 0.5 never after the return',
+    ('median-flow-redetect', 'exit-0'): 'IoU > 0.5 never after the return',
+    ('median-flow-redetect', 'exit-1'): 'IoU > 0.5 never after the return',
+    ('median-flow-redetect', 'occlusion-2'): 'IoU > 0.5 never after the return',
     ('median-flow-redetect', 'occlusion-3'): 'IoU > 0.5 never after the return',
     ('median-flow-redetect', 'cut-4'): 'IoU > 0.5 never after the return',
     ('median-flow-redetect', 'cut-5'): 'IoU > 0.5 never after the return',
@@ -263,8 +295,9 @@ def test_the_matrix_is_not_the_calibration_set():
 
 @lru_cache(maxsize=None)
 def scene(key: str):
-    """``(clip, absent, back)``: ``back`` is the first frame the whole target is in view again
-    after its last absent frame (None if it never comes back)."""
+    """``(clip, absent, back)``: ``back`` is the first frame with the target in view again
+    after its last absent frame, 99 % of it at least (its anti-aliased edge keeps the share
+    of a target that is wholly back just under 1 in some scenes); None if it never is."""
     if key == "leave-and-return":            # 12 frames in view, 18 gone, back 88 px left
         clip = leave_and_return(12, 18, 20)
         absent = ~np.isfinite(clip.groundtruth).all(axis=1)
@@ -277,7 +310,7 @@ def scene(key: str):
     back = None
     if absent.any():
         after = np.flatnonzero((np.arange(len(absent)) > np.flatnonzero(absent)[-1])
-                               & (np.asarray(sc.visible) >= 0.999))
+                               & (np.asarray(sc.visible) >= 0.99))
         back = int(after[0]) if after.size else None
     return sc.clip, absent, back
 
