@@ -17,11 +17,11 @@ but more than a tenth (under a tenth the target is absent) is neither: a rule ma
 target lost in a picture that dark, and need not.
 
 That first pass replays the rule on runs without the layer, where the tracker kept learning
-after it would have been lost; it cannot see what a lost tracker does with the layer on (it
-stops learning, so a returning target scores near the reference, and a background may pass a
-loose found threshold). So a second pass runs each tracker with its layer on over the same
-scenes, with the found thresholds chosen and with ``floor_found``'s (at least 0.8 of the
-reference, at most 4 spreads below it), and keeps the better by the same objective, the
+after it would have been lost; it cannot see what the layer does (a lost tracker stops
+learning, a background it stares at may pass a loose found threshold, and blank frames and an
+algorithm's own rule count as lost). So a second pass runs each tracker with its layer on over the same
+scenes, with the found thresholds chosen and, where it changes them, with ``floor_found``'s
+(``ratio_found`` at least 0.8, ``k_found`` at most 4, for the tests in use), and keeps the better by the same objective, the
 first on a tie (``found_floored`` and ``with_layer`` in each row: both candidates' rates, on
 target judged with the box the tracker reports).
 
