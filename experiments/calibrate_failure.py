@@ -128,14 +128,19 @@ def run_with_confidence(names, clip, seed: int = 0):
         if i > 0:
             conf[index[id(tracker)], i] = confidence_of(tracker)
 
+    return in_lockstep(made, clip, on_frame=hook), conf
+
+
+def in_lockstep(made, clip, on_frame=None):
+    """The results of the trackers ``made`` over ``clip`` in lockstep; each is closed after
+    (``opencv-mil`` runs in a child process)."""
     try:
-        results = evaluate_many([(t, None, {}) for t in made], clip, on_frame=hook)
+        return evaluate_many([(t, None, {}) for t in made], clip, on_frame=on_frame)
     finally:
         for t in made:
             close = getattr(t, "close", None)
             if callable(close):
                 close()
-    return results, conf
 
 
 def record(names, scenes, seed: int = 0, log=None) -> dict:
@@ -215,14 +220,8 @@ def with_layer(name: str, candidates, scenes, seed: int = 0) -> list[dict]:
     ok = [[] for _ in candidates]
     absent, on = [[] for _ in candidates], [[] for _ in candidates]
     for sc in scenes:
-        made = [trackers.create(name, seed=seed, failure=p) for p in candidates]
-        try:
-            results = evaluate_many([(t, None, {}) for t in made], sc.clip)
-        finally:
-            for t in made:
-                close = getattr(t, "close", None)
-                if callable(close):
-                    close()
+        results = in_lockstep([trackers.create(name, seed=seed, failure=p)
+                               for p in candidates], sc.clip)
         ab = np.asarray(sc.absent, bool)[1:]
         for j, r in enumerate(results):
             iou = np.nan_to_num(box_iou(r.boxes, sc.clip.groundtruth), nan=0.0)[1:]
@@ -239,7 +238,8 @@ def choose_found(name: str, row: dict, scenes, seed: int = 0, target: float = 0.
     by the calibration's objective with the layer on (a tie keeps the first pass's); the row
     gets the chosen thresholds, ``found_floored`` and ``with_layer`` (both candidates'
     thresholds and rates)."""
-    first = _params(row)
+    # the row as summarise made it: its thresholds are floats (inf, not yet JSON's null)
+    first = FailureParams(**{f.name: row[f.name] for f in dataclasses.fields(FailureParams)})
     floored = floor_found(first)
     cands = [first] if floored == first else [first, floored]
     t0 = time.perf_counter()
@@ -260,11 +260,6 @@ def choose_found(name: str, row: dict, scenes, seed: int = 0, target: float = 0.
     if floored == first:
         out["with_layer"]["floored"] = out["with_layer"]["first_pass"]
     return out
-
-
-def _params(row: dict) -> FailureParams:
-    fields = [f.name for f in dataclasses.fields(FailureParams)]
-    return FailureParams(**{k: math.inf if row[k] is None else row[k] for k in fields})
 
 
 def summarise(name: str, runs, **options) -> dict:

@@ -55,11 +55,12 @@ def floor_found(params: FailureParams, ratio: float = FOUND_RATIO,
     and ``k`` spreads below it, for the tests that are on (a test that is off stays off).
 
     Why: :func:`calibrate` replays the rule on runs without the layer, where the tracker kept
-    learning after it would have been lost; with the layer on, a lost tracker stops learning,
-    so its confidence when the target comes back is that of its model before the loss, near
-    the reference. A background it stares at while lost can score above a loose found
-    threshold; a floor asks for a return to the level of the target. Which of the two
-    :func:`calibrate`'s result or this one a tracker keeps is measured with the layer on.
+    learning after it would have been lost; with the layer on, a lost tracker stops learning
+    and scores what it sees with its model from before the loss, and a background it stares
+    at while lost can score above a loose found threshold. A floor asks the confidence to
+    come back near its level before the loss. Which of the two, :func:`calibrate`'s result or
+    this one, a tracker keeps is measured with the layer on (``experiments/
+    calibrate_failure.py``); the floor can also delay a true return.
     """
     k_found = min(params.k_found, float(k)) if math.isfinite(params.k_lost) else params.k_found
     ratio_found = max(params.ratio_found, float(ratio)) if params.ratio_lost > 0 else 0.0
@@ -320,11 +321,12 @@ def calibration_table(path=None) -> dict:
     Each row holds the chosen thresholds (``k_lost``, ``k_found``, ``ratio_lost``,
     ``ratio_found``, ``m``, ``window``, ``warmup``; a ``k`` of null is a spread test turned
     off), what the first pass's thresholds reach on the calibration scenes, replayed
-    (``absent_lost``, ``false_lost``, ``meets_target``), the confidence's ROC area and thinned curve (``roc_auc``, ``roc``), the
-    same per kind of scene (``per_kind``), the second pass with the layer on (``found_floored``:
-    whether the found thresholds kept are :func:`floor_found`'s; ``with_layer``: both
-    candidates' found thresholds and rates) and, when the real sequences were present, on
-    them (``real_roc_auc``, ``real_roc``: on target against off target).
+    (``absent_lost``, ``false_lost``, ``meets_target``), the confidence's ROC area and
+    thinned curve (``roc_auc``, ``roc``), the same per kind of scene (``per_kind``), the
+    second pass with the layer on (``found_floored``: whether the found thresholds kept are
+    :func:`floor_found`'s; ``with_layer``: both candidates' found thresholds and rates) and,
+    when the real sequences were present, on them (``real_roc_auc``, ``real_roc``: on target
+    against off target).
     ``load_calibration`` gives only the thresholds.
     """
     path = Path(CALIBRATION_FILE if path is None else path)
