@@ -13,7 +13,9 @@ import pytest
 
 import trackbook
 from trackbook import clips, trackers
+from trackbook.evaluation import metrics
 from trackbook.filters import bacf as bf
+from trackbook.trackers.base import whole_frame_boxes
 
 from . import _scenarios as S
 
@@ -222,6 +224,46 @@ def test_redetect_finds_the_target_again_after_a_jump():
     far = b + np.array([-100.0, -80.0, 0, 0])
     s = t._score_boxes(frames[8], np.array([far, b]))
     assert s[1] > s[0]
+
+
+def test_a_box_scores_the_strongest_answer_near_it_against_the_whole_frame():
+    """The re-detection score by a slow loop: the largest whole-frame response within
+    ``exclude`` cells of the box's centre cell (clipped at the edges), less the response's
+    mean, over its standard deviation."""
+    frames, boxes = _growing_clip(n=6, grow=1.0)
+    t = trackers.create("bacf-redetect", seed=0)
+    t.init(frames[0], boxes[0])
+    t.update(frames[1])
+    full = t._full_response(frames[2])
+    unit = t._cell * t._scale
+    half = t._exclude // 2
+    test = np.array([boxes[2], (0.0, 0.0, 20.0, 16.0), (300.0, 5.0, 20.0, 16.0),
+                     (-40.0, 50.0, 20.0, 16.0)])
+    expected = []
+    for x, y, w, h in test:
+        i = min(max(int(round((y + h / 2) / unit - 0.5)), 0), full.shape[0] - 1)
+        j = min(max(int(round((x + w / 2) / unit - 0.5)), 0), full.shape[1] - 1)
+        best = max(full[a, b] for a in range(max(i - half, 0), min(i + half, full.shape[0] - 1) + 1)
+                   for b in range(max(j - half, 0), min(j + half, full.shape[1] - 1) + 1))
+        expected.append((best - full.mean()) / full.std())
+    np.testing.assert_allclose(t._score_boxes(frames[2], test), expected, rtol=1e-6)
+
+
+def test_a_target_back_at_the_frame_edge_outscores_every_box_on_background():
+    """The hand-built exit: the target leaves across the right edge and comes back at the
+    left. On its first frame wholly back, the box on it outscores every box of the search's
+    grid that misses it (IoU < 0.1): a PSR per padded window ranked background first there."""
+    sc = S.scenario("edge-exit")
+    gt = np.asarray(sc.clip.groundtruth, float)
+    t = trackers.create("bacf-redetect", seed=0)
+    t.init(sc.clip.frames[0], gt[0])
+    for i in range(1, sc.back):
+        t.update(sc.clip.frames[i])
+    frame = sc.clip.frames[sc.back]
+    grid = whole_frame_boxes(frame.shape, gt[sc.back, 2:], t.redetect_boxes)
+    away = grid[metrics.iou(grid, np.tile(gt[sc.back], (len(grid), 1))) < 0.1]
+    s = t._score_boxes(frame, np.vstack([gt[sc.back][None], away]))
+    assert s[0] > s[1:].max()
 
 
 @pytest.mark.parametrize("centre", [(40, 30), (5, 5), (75, 55), (-10, 70), (200, 200)])

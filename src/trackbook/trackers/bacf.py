@@ -19,8 +19,8 @@ BACF prints no failure rule. The confidence is the peak-to-sidelobe ratio of the
 response, judged by the failure-detection layer; the model learns only on frames judged on
 target. ``bacf-redetect`` adds the re-detection layer: while lost, the filter (the
 target-sized h, zero elsewhere) is correlated with the FHOG of the whole frame at the current
-scale in one FFT, and each candidate box is scored by the PSR of that response in the window
-around it.
+scale in one FFT, and each candidate box is scored by the strongest response near its centre,
+in standard deviations of the whole frame's response above its mean.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                              # doctest: +SKIP
@@ -35,11 +35,13 @@ import dataclasses
 import cv2
 import numpy as np
 import scipy.fft as sfft
+from scipy import ndimage
 
 from ..features.fhog import fhog
 from ..filters import bacf as bf
 from ..filters import correlation as cf
 from ..params import param
+from ._per_frame import PerFrame
 from .base import Tracker, centred_response, readonly, redetecting
 from .registry import register
 
@@ -224,7 +226,7 @@ class BacfTracker(Tracker):
         self._centre = (x + w / 2.0, y + h / 2.0)
         self._scale = self._s0
         self._initial = self._s0
-        self._full_of = None
+        self._full_of = PerFrame()
         xf = self._spectra(frame, self._centre, [self._scale])[0]
         self._model_xf = xf
         self._train()
@@ -279,36 +281,40 @@ class BacfTracker(Tracker):
     def _full_response(self, frame):
         """The filter h correlated with the FHOG of the whole frame at the current scale (one
         FFT; cached for the frame): the score of the target centred on each cell."""
-        key = (id(frame), self._scale)
-        if self._full_of != key:
-            H, W = frame.shape[:2]
-            s = self._scale
-            size = (max(int(round(W / s)), 2 * self._cell), max(int(round(H / s)), 2 * self._cell))
-            interp = cv2.INTER_AREA if s > 1 else cv2.INTER_LINEAR
-            small = cv2.resize(frame, size, interpolation=interp)
-            feats = np.moveaxis(fhog(small, self._cell), -1, 0)
-            self._full = bf.correlate_full(self._h, self._mask, feats)
-            self._full_of = key
-        return self._full
+        return self._full_of.get(frame, self.frame_index,
+                                 lambda: self._correlate_frame(frame), self._scale)
+
+    def _correlate_frame(self, frame):
+        H, W = frame.shape[:2]
+        s = self._scale
+        size = (max(int(round(W / s)), 2 * self._cell), max(int(round(H / s)), 2 * self._cell))
+        interp = cv2.INTER_AREA if s > 1 else cv2.INTER_LINEAR
+        small = cv2.resize(frame, size, interpolation=interp)
+        feats = np.moveaxis(fhog(small, self._cell), -1, 0)
+        return bf.correlate_full(self._h, self._mask, feats)
 
     def _score_boxes(self, frame, boxes):
-        """The PSR, for each box, of the whole-frame response in the window around its centre
-        (the model untouched): the re-detection layer's score."""
+        """For each box, the whole-frame response's highest value within ``exclude`` cells of
+        its centre, less the frame's mean response, over the frame's standard deviation (the
+        model untouched): the re-detection layer's score.
+
+        One response for the whole frame, one mean and one deviation: the boxes are ranked
+        by how strongly the filter answers at them. (A PSR per window would not rank them:
+        a window reaching past the frame's edge is padded with zeros, which changes its
+        sidelobe, so a box on background could outscore the box on the target.) The
+        neighbourhood lets a box a few cells off the peak, as the grid's are, score it.
+        """
         boxes = np.asarray(boxes, dtype=float)
         full = self._full_response(frame)
-        c = self._cells
+        sd = float(full.std())
+        if not sd > 0:                       # nothing answers anywhere: no box is better
+            return np.zeros(len(boxes))
         unit = self._cell * self._scale                     # frame px per cell
-        cx = (boxes[:, 0] + boxes[:, 2] / 2.0) / unit - 0.5
-        cy = (boxes[:, 1] + boxes[:, 3] / 2.0) / unit - 0.5
-        pad = np.pad(full, c, mode="constant")
-        r0 = np.round(cy).astype(int) - c // 2 + c
-        c0 = np.round(cx).astype(int) - c // 2 + c
-        r0 = np.clip(r0, 0, pad.shape[0] - c)
-        c0 = np.clip(c0, 0, pad.shape[1] - c)
-        ii = r0[:, None, None] + np.arange(c)[None, :, None]
-        jj = c0[:, None, None] + np.arange(c)[None, None, :]
-        windows = pad[ii, jj]
-        return np.atleast_1d(cf.psr(windows, self._exclude))
+        rows, cols = full.shape
+        cx = np.round((boxes[:, 0] + boxes[:, 2] / 2.0) / unit - 0.5).astype(int)
+        cy = np.round((boxes[:, 1] + boxes[:, 3] / 2.0) / unit - 0.5).astype(int)
+        near = ndimage.maximum_filter(full, size=self._exclude, mode="nearest")
+        return (near[np.clip(cy, 0, rows - 1), np.clip(cx, 0, cols - 1)] - full.mean()) / sd
 
     # -- drawing ------------------------------------------------------------------------------
     @property

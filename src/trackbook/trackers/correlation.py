@@ -44,6 +44,7 @@ from ..features.gradient_cells import orientation_cells
 from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..params import NOT_PRINTED, param
+from ._per_frame import PerFrame
 from .base import Tracker, centred_response, readonly, redetecting
 from .registry import register
 
@@ -161,10 +162,9 @@ class _CorrelationTracker(Tracker):
     def _gray(self, frame):
         """The frame in grey levels (float32), converted once per frame: ``_locate`` and
         ``_learn`` see the same frame."""
-        if self._gray_of is not frame:
-            self._gray_cache = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32)
-            self._gray_of = frame
-        return self._gray_cache
+        return self._gray_of.get(
+            frame, self.frame_index,
+            lambda: cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32))
 
     # -- the two halves of a frame ----------------------------------------------------------
     def _init(self, frame, box):
@@ -172,7 +172,7 @@ class _CorrelationTracker(Tracker):
         self._size = (w, h)
         self._centre = (x + w / 2.0, y + h / 2.0)
         self._setup_geometry(w, h)
-        self._gray_of = None
+        self._gray_of = PerFrame()
         self._train_first(self._gray(frame))
         self.confidence = float("inf")
         self.response = np.zeros(self._response_shape)

@@ -54,6 +54,7 @@ from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..filters import staple as st
 from ..params import param
+from ._per_frame import PerFrame
 from .base import Tracker, centred_response, readonly, redetecting
 from .registry import register
 
@@ -237,10 +238,9 @@ class StapleTracker(Tracker):
         return f.reshape(len(boxes), -1).T * self._scale_window[None, :]
 
     def _grey(self, frame):
-        if self._grey_of is not frame:
-            self._grey_cache = cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32)
-            self._grey_of = frame
-        return self._grey_cache
+        return self._grey_of.get(
+            frame, self.frame_index,
+            lambda: cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32))
 
     # -- the two learners on a batch of centres --------------------------------------------
     def _responses(self, frame, centres):
@@ -269,7 +269,7 @@ class StapleTracker(Tracker):
         self._size0 = np.array([w, h])
         self._centre = (x + w / 2.0, y + h / 2.0)
         self.scale = 1.0
-        self._grey_of = None
+        self._grey_of = PerFrame()
         self._grey_sequence = bool(np.array_equal(frame[..., 0], frame[..., 1])
                                    and np.array_equal(frame[..., 1], frame[..., 2]))
         self._n_cells = self.params.n_bins ** (1 if self._grey_sequence else 3)
