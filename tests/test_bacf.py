@@ -226,25 +226,33 @@ def test_redetect_finds_the_target_again_after_a_jump():
     assert s[1] > s[0]
 
 
-def test_a_box_scores_the_strongest_answer_near_it_against_the_whole_frame():
-    """The re-detection score by a slow loop: the largest whole-frame response within
-    ``exclude`` cells of the box's centre cell (clipped at the edges), less the response's
-    mean, over its standard deviation."""
+@pytest.mark.parametrize("exclude", [None, 4])
+def test_a_box_scores_the_strongest_answer_near_it_against_the_whole_frame(exclude):
+    """The re-detection score by a slow loop: the largest whole-frame response in the cells
+    at most ``exclude // 2`` rows and columns from the cell holding the box's centre (cell
+    ``i`` covers frame pixels ``[i u, (i + 1) u)``, ``u`` the frame pixels per cell; cells
+    past the response's edge are left out), less the response's mean, over its standard
+    deviation. An even ``exclude`` (a target a few cells wide) keeps the square centred."""
     frames, boxes = _growing_clip(n=6, grow=1.0)
     t = trackers.create("bacf-redetect", seed=0)
     t.init(frames[0], boxes[0])
     t.update(frames[1])
+    if exclude is not None:
+        t._exclude = exclude
     full = t._full_response(frames[2])
     unit = t._cell * t._scale
     half = t._exclude // 2
-    test = np.array([boxes[2], (0.0, 0.0, 20.0, 16.0), (300.0, 5.0, 20.0, 16.0),
-                     (-40.0, 50.0, 20.0, 16.0)])
+    R, C = full.shape
+    # centres off the cells' borders; boxes past each of the four edges, and one inside
+    test = np.array([boxes[2], (-30.0, 50.3, 20.0, 16.0), (C * unit + 5.1, 40.3, 20.0, 16.0),
+                     (50.3, -25.0, 20.0, 16.0), (70.3, R * unit - 3.1, 20.0, 16.0),
+                     (1.3, 1.3, 2.0, 2.0)])
     expected = []
     for x, y, w, h in test:
-        i = min(max(int(round((y + h / 2) / unit - 0.5)), 0), full.shape[0] - 1)
-        j = min(max(int(round((x + w / 2) / unit - 0.5)), 0), full.shape[1] - 1)
-        best = max(full[a, b] for a in range(max(i - half, 0), min(i + half, full.shape[0] - 1) + 1)
-                   for b in range(max(j - half, 0), min(j + half, full.shape[1] - 1) + 1))
+        i = min(max(int(np.floor((y + h / 2) / unit)), 0), R - 1)
+        j = min(max(int(np.floor((x + w / 2) / unit)), 0), C - 1)
+        best = max(full[a, b] for a in range(R) for b in range(C)
+                   if abs(a - i) <= half and abs(b - j) <= half)
         expected.append((best - full.mean()) / full.std())
     np.testing.assert_allclose(t._score_boxes(frames[2], test), expected, rtol=1e-6)
 

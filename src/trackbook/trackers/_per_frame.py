@@ -7,6 +7,10 @@ of them alone: a caller may hand the same buffer every frame, refilled in place 
 ``cv2.VideoCapture.read(image=buffer)`` does), so the object alone would return the last
 frame's value; and an array's ``id`` is given to a new one once the old is freed, so the ``id``
 alone would too.
+
+The value must depend on nothing that changes within one ``update`` other than what is passed
+as ``extra``: bacf's whole-frame response depends on its filter, which is safe only because
+the filter learns on frames judged on target and the response is used on frames judged lost.
 """
 
 from __future__ import annotations

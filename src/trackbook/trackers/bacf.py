@@ -19,8 +19,9 @@ BACF prints no failure rule. The confidence is the peak-to-sidelobe ratio of the
 response, judged by the failure-detection layer; the model learns only on frames judged on
 target. ``bacf-redetect`` adds the re-detection layer: while lost, the filter (the
 target-sized h, zero elsewhere) is correlated with the FHOG of the whole frame at the current
-scale in one FFT, and each candidate box is scored by the strongest response near its centre,
-in standard deviations of the whole frame's response above its mean.
+scale in one FFT, and each candidate box is scored by the strongest response within
+``exclude // 2`` cells of its centre, in standard deviations of the whole frame's response
+above its mean.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                              # doctest: +SKIP
@@ -294,15 +295,16 @@ class BacfTracker(Tracker):
         return bf.correlate_full(self._h, self._mask, feats)
 
     def _score_boxes(self, frame, boxes):
-        """For each box, the whole-frame response's highest value within ``exclude`` cells of
-        its centre, less the frame's mean response, over the frame's standard deviation (the
-        model untouched): the re-detection layer's score.
+        """For each box, the whole-frame response's highest value in the square of side
+        ``2 (exclude // 2) + 1`` cells centred on the cell of its centre (the square the PSR
+        leaves out around a peak), less the frame's mean response, over the frame's standard
+        deviation (the model untouched): the re-detection layer's score.
 
         One response for the whole frame, one mean and one deviation: the boxes are ranked
         by how strongly the filter answers at them. (A PSR per window would not rank them:
         a window reaching past the frame's edge is padded with zeros, which changes its
-        sidelobe, so a box on background could outscore the box on the target.) The
-        neighbourhood lets a box a few cells off the peak, as the grid's are, score it.
+        sidelobe, so a box on background could outscore the box on the target.) The square
+        lets a box a few cells off the peak, as the grid's are, score it.
         """
         boxes = np.asarray(boxes, dtype=float)
         full = self._full_response(frame)
@@ -313,7 +315,7 @@ class BacfTracker(Tracker):
         rows, cols = full.shape
         cx = np.round((boxes[:, 0] + boxes[:, 2] / 2.0) / unit - 0.5).astype(int)
         cy = np.round((boxes[:, 1] + boxes[:, 3] / 2.0) / unit - 0.5).astype(int)
-        near = ndimage.maximum_filter(full, size=self._exclude, mode="nearest")
+        near = ndimage.maximum_filter(full, size=2 * (self._exclude // 2) + 1, mode="nearest")
         return (near[np.clip(cy, 0, rows - 1), np.clip(cx, 0, cols - 1)] - full.mean()) / sd
 
     # -- drawing ------------------------------------------------------------------------------
