@@ -217,19 +217,18 @@ def with_layer(name: str, candidates, scenes, seed: int = 0) -> list[dict]:
     :func:`~trackbook.evaluation.failure.judged_rates` per candidate. On target is as in
     :attr:`Run.on_target`, with the box the tracker reports: a run that stops learning when
     lost is judged on what it does, not on what the algorithm alone would have done."""
-    ok = [[] for _ in candidates]
-    absent, on = [[] for _ in candidates], [[] for _ in candidates]
+    ok, on = [[] for _ in candidates], [[] for _ in candidates]
+    absent = []                                   # the scene's, the same for every candidate
     for sc in scenes:
         results = in_lockstep([trackers.create(name, seed=seed, failure=p)
                                for p in candidates], sc.clip)
-        ab = np.asarray(sc.absent, bool)[1:]
+        absent.append(np.asarray(sc.absent, bool)[1:])
         for j, r in enumerate(results):
             iou = np.nan_to_num(box_iou(r.boxes, sc.clip.groundtruth), nan=0.0)[1:]
             ok[j].append(np.asarray(r.ok, bool)[1:])
-            absent[j].append(ab)
-            on[j].append(on_target(iou, ab, np.asarray(sc.visible)[1:],
+            on[j].append(on_target(iou, absent[-1], np.asarray(sc.visible)[1:],
                                    np.asarray(sc.light)[1:]))
-    return [judged_rates(ok[j], absent[j], on[j], p.m) for j, p in enumerate(candidates)]
+    return [judged_rates(ok[j], absent, on[j], p.m) for j, p in enumerate(candidates)]
 
 
 def choose_found(name: str, row: dict, scenes, seed: int = 0, target: float = 0.95,

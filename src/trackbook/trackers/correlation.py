@@ -41,6 +41,7 @@ import cv2
 import numpy as np
 
 from ..features.gradient_cells import orientation_cells
+from ..features.hog import to_gray
 from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..params import NOT_PRINTED, param
@@ -164,7 +165,7 @@ class _CorrelationTracker(Tracker):
         ``_learn`` see the same frame."""
         return self._gray_of.get(
             frame, self.frame_index,
-            lambda: cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32))
+            lambda: to_gray(frame))
 
     # -- the two halves of a frame ----------------------------------------------------------
     def _init(self, frame, box):

@@ -50,6 +50,7 @@ import cv2
 import numpy as np
 
 from ..features.gradient_cells import orientation_cells
+from ..features.hog import to_gray
 from ..features.patches import sample_patches
 from ..filters import correlation as cf
 from ..filters import staple as st
@@ -240,7 +241,7 @@ class StapleTracker(Tracker):
     def _grey(self, frame):
         return self._grey_of.get(
             frame, self.frame_index,
-            lambda: cv2.cvtColor(frame, cv2.COLOR_BGR2GRAY).astype(np.float32))
+            lambda: to_gray(frame))
 
     # -- the two learners on a batch of centres --------------------------------------------
     def _responses(self, frame, centres):
