@@ -256,6 +256,13 @@ def axes(prob, half=0.5):
             np.sqrt(max((a + c - root) / 2, 0.0)))
 
 
+def noisy_or(p, b, lab):
+    """14.4 as the appendix solves it: s_i = sum_j ln(1 - p_ij) per bag, p_i = 1 - e^(s_i)."""
+    with np.errstate(divide="ignore"):        # a certain instance (p = 1): ln 0 = -inf
+        s = np.bincount(b, weights=np.log1p(-p), minlength=len(lab))
+        return 1 - np.exp(s), float(np.sum(np.where(lab == 1, np.log1p(-np.exp(s)), s)))
+
+
 def rts_step(x, P, x_next_s, P_next_s, F, Q, transposed=False):
     """One RTS backward step written out (17.4); ``transposed`` puts F where Fᵀ belongs."""
     P_pred = F @ P @ F.T + Q
@@ -405,9 +412,7 @@ RIGHT_AND_WRONG = {
              lambda on, off: float(np.mean([a > b for a in on for b in off]))),
     "13.4": (axes, lambda p: axes(p, half=1.0)),                           # forgets the 1/2
     # 14.4: the noisy-OR by bag; wrong: the mean of the instances instead of the noisy-OR
-    "14.4": (lambda p, b, lab: (lambda s: (1 - np.exp(s), float(np.sum(
-                 np.where(lab == 1, np.log1p(-np.exp(s)), s)))))(
-                 np.bincount(b, weights=np.log1p(-p), minlength=len(lab))),
+    "14.4": (noisy_or,
              lambda p, b, lab: (lambda q: (q, float(np.sum(
                  lab * np.log(q) + (1 - lab) * np.log1p(-q)))))(
                  np.bincount(b, weights=p, minlength=len(lab)) / np.bincount(b))),
