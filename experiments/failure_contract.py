@@ -34,7 +34,7 @@ from tests import test_failure_contract as T  # noqa: E402
 def absent_share(name, keys) -> float:
     lost = total = 0
     for k in keys:
-        ok, _ = T.run(name, k)
+        ok, _, _ = T.run(name, k)
         absent = T.scene(k)[1].copy()
         absent[0] = False
         lost, total = lost + int((~ok[absent]).sum()), total + int(absent.sum())
@@ -47,7 +47,7 @@ def recovery(name, keys):
         back = T.scene(k)[2]
         if back is None:
             continue
-        _, iou = T.run(name, k)
+        _, iou, _ = T.run(name, k)
         hit = np.flatnonzero(iou[back:] > 0.5)
         if not hit.size:
             return None

@@ -118,6 +118,27 @@ def test_the_lookalike_appears_while_the_target_is_covered():
             assert np.all(iou(alike[shown], clip.groundtruth[shown]) < 0.5)
 
 
+def test_a_shrinking_target_shrinks_goes_and_grows_back_before_the_last_12_frames():
+    # every shrink scene of the calibration set, of the contract's matrix and of SEEDS: its
+    # size (the box's longer side) never grows until it is gone, is at most 4 px on the frame
+    # before, comes back at most 4 px, never shrinks again, and is whole for the last 12
+    # frames (a schedule cut short once let the target jump back to full size, then vanish)
+    cal = fs.calibration_set(seed=0, per_kind=6, kinds=("shrink",))
+    matrix = fs.calibration_set(seed=1, per_kind=2, kinds=("shrink",))
+    drawn = [cal[j] for j in range(len(cal))] + [matrix[j] for j in range(len(matrix))] \
+        + [fs.render_scene("shrink", s) for s in SEEDS]
+    for sc in drawn:
+        gt, absent = np.asarray(sc.clip.groundtruth, float), np.asarray(sc.absent, bool)
+        side = np.nanmax(gt[:, 2:], axis=1)
+        gone = np.flatnonzero(absent)
+        first, last = gone[0], gone[-1]
+        assert np.array_equal(gone, np.arange(first, last + 1))     # one stretch
+        assert np.all(np.diff(side[:first]) <= 1e-9) and side[first - 1] <= 4
+        assert side[last + 1] <= 4 and np.all(np.diff(side[last + 1:]) >= -1e-9)
+        assert last + 1 <= len(side) - 12
+        np.testing.assert_allclose(side[-12:], side[0], atol=1e-9)
+
+
 def test_the_share_in_view():
     for kind in ("exit", "occlusion"):
         for s in SEEDS:

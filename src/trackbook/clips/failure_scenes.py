@@ -239,8 +239,16 @@ def _plan(kind: str, rng, size, n) -> _Plan:
     elif kind == "shrink":
         smin = 3.0 / max(target.size)                                # <= 4 px: then gone
         down, up = int(rng.integers(6, 15)), int(rng.integers(6, 15))
+        # shrink, stay gone, grow back: all of it before the last 12 frames (cutting the
+        # schedule short instead let the target jump back to full size before or after
+        # its absence); room >= 7, so each ramp keeps 2 frames and the gap at least 3
+        room = n - a - _START
+        gap = min(gap, room - 4)
+        if down + gap + up > room:
+            spare = room - gap
+            down = int(min(max(2, round(spare * down / (down + up))), spare - 2))
+            up = spare - down
         s = np.r_[np.geomspace(1, smin, down), np.full(gap, smin), np.geomspace(smin, 1, up)]
-        s = s[:n - a - _START]
         p.scale[a:a + s.size] = s
         p.shown[a + down:a + down + gap] = False
     elif kind == "blur":
