@@ -120,23 +120,29 @@ def test_the_lookalike_appears_while_the_target_is_covered():
 
 def test_a_shrinking_target_shrinks_goes_and_grows_back_before_the_last_12_frames():
     # every shrink scene of the calibration set, of the contract's matrix and of SEEDS: its
-    # size (the box's longer side) never grows until it is gone, is at most 4 px on the frame
-    # before, comes back at most 4 px, never shrinks again, and is whole for the last 12
-    # frames (a schedule cut short once let the target jump back to full size, then vanish)
+    # size (the box's longer side) never grows until it is gone, passes through at least two
+    # sizes between whole and 4 px on the way down and again on the way up (a ramp of 4
+    # frames or more), and the target is whole for the last 12 frames (a schedule cut short
+    # once let the target jump back to full size; squeezed into what was left, it shrank
+    # from full size to 3 px in one frame)
     cal = fs.calibration_set(seed=0, per_kind=6, kinds=("shrink",))
     matrix = fs.calibration_set(seed=1, per_kind=2, kinds=("shrink",))
     drawn = [cal[j] for j in range(len(cal))] + [matrix[j] for j in range(len(matrix))] \
         + [fs.render_scene("shrink", s) for s in SEEDS]
     for sc in drawn:
         gt, absent = np.asarray(sc.clip.groundtruth, float), np.asarray(sc.absent, bool)
-        side = np.nanmax(gt[:, 2:], axis=1)
+        side = gt[:, 2:].max(axis=1)                       # NaN on the absent frames
         gone = np.flatnonzero(absent)
         first, last = gone[0], gone[-1]
         assert np.array_equal(gone, np.arange(first, last + 1))     # one stretch
-        assert np.all(np.diff(side[:first]) <= 1e-9) and side[first - 1] <= 4
-        assert side[last + 1] <= 4 and np.all(np.diff(side[last + 1:]) >= -1e-9)
-        assert last + 1 <= len(side) - 12
-        np.testing.assert_allclose(side[-12:], side[0], atol=1e-9)
+        down, up = side[:first], side[last + 1:]
+        assert np.all(np.diff(down) <= 1e-9) and down[-1] <= 4
+        assert up[0] <= 4 and np.all(np.diff(up) >= -1e-9)
+        whole = side[0]
+        assert np.sum((down < whole - 1e-9) & (down > down[-1] + 1e-9)) >= 2
+        assert np.sum((up < whole - 1e-9) & (up > up[0] + 1e-9)) >= 2
+        assert len(up) >= 12 + 3
+        np.testing.assert_allclose(side[-12:], whole, atol=1e-9)
 
 
 def test_the_share_in_view():

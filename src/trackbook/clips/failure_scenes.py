@@ -210,7 +210,7 @@ def _plan(kind: str, rng, size, n) -> _Plan:
               bg_index=np.zeros(n, int), target=target,
               centre=_wander(rng, n, start, speed, lo, hi), scale=np.ones(n),
               shown=np.ones(n, bool), gain=np.ones(n), noise=float(rng.uniform(0, 4)))
-    # the event starts at frame a (12 frames in full view before it, room for >= 6 frames
+    # the event starts at frame a (12 frames in full view before it, room for >= 7 frames
     # of it and 12 after it) and lasts gap frames
     a = int(rng.integers(_START + 4, n - 2 * _START + 6))
     gap = min(int(rng.integers(6, 15)), n - a - _START)
@@ -239,15 +239,22 @@ def _plan(kind: str, rng, size, n) -> _Plan:
     elif kind == "shrink":
         smin = 3.0 / max(target.size)                                # <= 4 px: then gone
         down, up = int(rng.integers(6, 15)), int(rng.integers(6, 15))
-        # shrink, stay gone, grow back: all of it before the last 12 frames (cutting the
-        # schedule short instead let the target jump back to full size before or after
-        # its absence); room >= 7, so each ramp keeps 2 frames and the gap at least 3
+        # shrink, stay gone, grow back, all before the last 12 frames (cutting the schedule
+        # short instead let the target jump back to full size): the event starts earlier
+        # when it would not fit, never before frame 16; only a clip too short even then has
+        # its three parts shortened in proportion, the ramps to no fewer than 4 frames, the
+        # absence to no fewer than 3 (room >= 12 here, as n >= 40)
+        a = max(_START + 4, min(a, n - _START - (down + gap + up)))
         room = n - a - _START
-        gap = min(gap, room - 4)
         if down + gap + up > room:
-            spare = room - gap
-            down = int(min(max(2, round(spare * down / (down + up))), spare - 2))
-            up = spare - down
+            f = room / (down + gap + up)
+            down, up = max(4, int(down * f)), max(4, int(up * f))
+            while down + up > room - 3:
+                if down >= up:
+                    down -= 1
+                else:
+                    up -= 1
+            gap = min(gap, room - down - up)
         s = np.r_[np.geomspace(1, smin, down), np.full(gap, smin), np.geomspace(smin, 1, up)]
         p.scale[a:a + s.size] = s
         p.shown[a + down:a + down + gap] = False
