@@ -242,8 +242,8 @@ def _plan(kind: str, rng, size, n) -> _Plan:
         # shrink, stay gone, grow back, all before the last 12 frames (cutting the schedule
         # short instead let the target jump back to full size): the event starts earlier
         # when it would not fit, never before frame 16; only a clip too short even then has
-        # its three parts shortened in proportion, the ramps to no fewer than 4 frames, the
-        # absence to no fewer than 3 (room >= 12 here, as n >= 40)
+        # its ramps shortened in proportion, to no fewer than 4 frames, and the absence to
+        # what is left, no fewer than 3 (room >= 12 here, as n >= 40)
         a = max(_START + 4, min(a, n - _START - (down + gap + up)))
         room = n - a - _START
         if down + gap + up > room:
