@@ -379,11 +379,12 @@ def test_lost_while_the_target_is_absent(name, key):
                            f"{int(absent.sum())} absent frames")
 
 
-def share_held(box, target) -> float:
-    """The share of the target's box (x, y, w, h) inside ``box``."""
-    w = min(box[0] + box[2], target[0] + target[2]) - max(box[0], target[0])
-    h = min(box[1] + box[3], target[1] + target[3]) - max(box[1], target[1])
-    return max(w, 0.0) * max(h, 0.0) / (target[2] * target[3])
+def share_held(boxes, targets) -> np.ndarray:
+    """Per row, the share of the target's box (x, y, w, h) inside the box."""
+    b, t = np.asarray(boxes, float), np.asarray(targets, float)
+    w = np.minimum(b[:, 0] + b[:, 2], t[:, 0] + t[:, 2]) - np.maximum(b[:, 0], t[:, 0])
+    h = np.minimum(b[:, 1] + b[:, 3], t[:, 1] + t[:, 3]) - np.maximum(b[:, 1], t[:, 1])
+    return np.clip(w, 0, None) * np.clip(h, 0, None) / (t[:, 2] * t[:, 3])
 
 
 def slid_off_unflagged(name: str, key: str) -> tuple[bool, str]:
@@ -394,9 +395,8 @@ def slid_off_unflagged(name: str, key: str) -> tuple[bool, str]:
     clip, absent, _ = scene(key)
     went = int(np.flatnonzero(absent[1:])[0]) + 1
     ok, _, boxes = run(name, key)
-    gt = np.asarray(clip.groundtruth, float)
-    held = [share_held(boxes[i], gt[i]) for i in range(went)]
-    last = max(i for i in range(went) if held[i] > 0)          # frame 0: the given box
+    held = share_held(boxes[:went], np.asarray(clip.groundtruth, float)[:went])
+    last = int(np.flatnonzero(held > 0)[-1])                   # frame 0: the given box
     unflagged = bool(ok[last:went].all())
     return held[-1] == 0 and unflagged, (
         f"its box held {held[-1]:.0%} of the target on frame {went - 1}, the last before it "
