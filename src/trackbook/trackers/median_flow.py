@@ -28,10 +28,17 @@ detector) and the flow restarts from the best.
 The book's addition ``normalise`` gives each frame's grey levels one mean and standard
 deviation before the flow, so a camera's exposure change does not break brightness constancy.
 
-Confidence: ``state().confidence`` is minus the median FB error (pixels) of the grid on a
-frame where the flow placed the box; where it did not (a flat frame, a median FB above
-``fb_threshold`` or infinite because more than half the points were lost, fewer than two
-points kept) it is minus the frame's diagonal, the largest distance in the frame.
+Confidence: the forward-backward error certifies that the points moved as the flow says, not
+that they belong to the target: on a textured background the points follow while the target
+is gone, their error is as small as on the target, so it cannot say "the target is not here"
+(the chapter "Template matching and optical flow" shows it on ``occluder``). ``state().confidence`` is therefore the failure
+layer's generic one, as for ``edge-ray-pf``: the Bhattacharyya coefficient rho between the
+kernel colour histogram of the box the flow placed and that of the first box
+(:meth:`~trackbook.trackers.generic_confidence.ColourCheck.match`), in [0, 1]; where the flow
+placed no box (a flat frame, a median FB above ``fb_threshold`` or infinite because more than
+half the points were lost, fewer than two points kept), that of the box the flow started
+from. The colour never moves the box, and Median Flow's own rule (step 2) still fails a frame
+whatever the colour says; ``fb_error`` keeps the frame's median FB error.
 
 >>> from trackbook import trackers, clips
 >>> clip = clips.load("red-cube")                                       # doctest: +SKIP
@@ -52,6 +59,7 @@ from ..features.patches import sample_patches
 from ..filters import template_matching as tm
 from ..params import NOT_PRINTED, param
 from .base import Tracker, redetecting
+from .generic_confidence import ColourCheck
 from .registry import register
 
 
@@ -125,7 +133,7 @@ class MedianFlowTracker(Tracker):
         x, y, w, h = box
         self._template = cv2.getRectSubPix(g, (max(int(round(w)), 3), max(int(round(h)), 3)),
                                            (x + w / 2.0 - 0.5, y + h / 2.0 - 0.5))
-        self._diag = float(np.hypot(*frame.shape[:2]))
+        self._colour = ColourCheck(frame, box)
         self._located = None
         self.fb_error = float("inf")
         self.points = np.zeros((0, 2))
@@ -167,21 +175,25 @@ class MedianFlowTracker(Tracker):
 
     def _locate(self, frame):
         """One Median Flow step from the last frame judged on target (its pyramid and box) to
-        ``frame``. Returns the box, minus the median FB error (minus the diagonal where the
-        flow placed no box) and whether Median Flow's own rule passed (median FB at most
-        ``fb_threshold``, at least two points kept)."""
+        ``frame``. Returns the box, its colour match with the first box (the confidence; of
+        the box the flow started from where it placed none) and whether Median Flow's own
+        rule passed (median FB at most ``fb_threshold``, at least two points kept)."""
         self.points = np.zeros((0, 2))
         self.fb_error = float("inf")
         self._located = None
         if self._is_flat(frame):
-            return self._from, -self._diag, False
+            return self._from, self._match(frame, self._from), False
         pyr = lk.pyramid(self._grey(frame), self.params.levels)
         box = self._flow(pyr, self._from)
         if box is None:
             self.points = np.zeros((0, 2))
-            return self._from, -self._diag, False
+            return self._from, self._match(frame, self._from), False
         self._located = pyr
-        return box, -self.fb_error, True
+        return box, self._match(frame, box), True
+
+    def _match(self, frame, box) -> float:
+        """The confidence: rho of ``box``'s colour histogram against the first box's."""
+        return float(self._colour.match(frame, np.asarray(box, float)[None])[0])
 
     def _learn(self, frame, box):
         """The next flow starts from this frame and ``box``."""
