@@ -355,20 +355,6 @@ def test_lost_while_the_target_is_absent(name, key):
                            f"{int(absent.sum())} absent frames")
 
 
-@pytest.mark.parametrize("name", ["median-flow", "median-flow-redetect"])
-def test_median_flow_flags_the_lookalike_scenes_it_is_not_held_to(name):
-    """Its confidence is the colour match, so the look-alike scenes are not held against it;
-    but the flow, not a colour search, moves its box, so the copy does not capture it (the
-    README says so)."""
-    keys = [k for k in SCENES if kind(k) == "lookalike" and scene(k)[1][1:].any()]
-    assert keys and "median-flow" in COLOUR_ONLY
-    for k in keys:
-        ok, _, _ = run(name, k)
-        absent = scene(k)[1].copy()
-        absent[0] = False
-        assert (~ok[absent]).mean() >= 0.95, f"{name} on {k}: take it out of the README"
-
-
 def share_held(boxes, targets) -> np.ndarray:
     """Per row, the share of the target's box (x, y, w, h) inside the box."""
     b, t = np.asarray(boxes, float), np.asarray(targets, float)
