@@ -15,8 +15,9 @@ left). ``experiments/failure_contract.py`` prints the whole table. The contract:
    and every scenario -- except the look-alike for a tracker that sees only colour (a
    histogram cannot tell the target from a copy with its colours: reported, documented);
 2. ``ok=False`` on at most 1 % of the frames where the box is on the target (IoU > 0.5) on the
-   sample clips and the real sequences (read from the committed runs, kept fresh by
-   ``tests/test_results_fresh.py``), and on a long run on a small clip;
+   sample clips and on a long run on a small clip (the canonical names) and on the real
+   sequences (every name), read from the committed runs, kept fresh by
+   ``tests/test_results_fresh.py``;
 3. with the re-detection layer (the ``-redetect`` names), IoU > 0.5 within 10 frames of the
    target's return.
 
@@ -270,6 +271,9 @@ FALSE_LOSSES: dict = {
     ('real', 'edge-ray-pf'): 'ok=False on 18 of the 465 frames with IoU > 0.5',
     ('real', 'mosse'): 'ok=False on 80 of the 324 frames with IoU > 0.5',
     ('real', 'median-flow'): 'ok=False on 19 of the 528 frames with IoU > 0.5',
+    ('real', 'edge-ray-pf-redetect'): 'ok=False on 26 of the 493 frames with IoU > 0.5',
+    ('real', 'mosse-redetect'): 'ok=False on 20 of the 625 frames with IoU > 0.5',
+    ('real', 'median-flow-redetect'): 'ok=False on 16 of the 539 frames with IoU > 0.5',
     ('real', 'opencv-mil'): 'ok=False on 97 of the 514 frames with IoU > 0.5',
     ('small-long', 'condensation'): 'ok=False on 6.1% of the frames with IoU > 0.5',
 }
@@ -407,8 +411,8 @@ def test_redetection_finds_the_target_within_10_frames_of_its_return(name, key):
                                       f"after the return (frame {back})")
 
 
-def _false_loss_cells(where):
-    for n in CANONICAL:
+def _false_loss_cells(where, names=CANONICAL):
+    for n in names:
         reason = FALSE_LOSSES.get((where, n))
         yield pytest.param(n, marks=[pytest.mark.xfail(strict=True, reason=reason)]
                            if reason else [])
@@ -464,7 +468,7 @@ def test_no_false_losses_on_the_sample_clips(name):
     assert not worst, f"{name} reports ok=False with IoU > 0.5 on more than 1 %: {worst}"
 
 
-@pytest.mark.parametrize("name", list(_false_loss_cells("real")))
+@pytest.mark.parametrize("name", list(_false_loss_cells("real", CANONICAL + REDETECTING)))
 def test_no_false_losses_on_the_real_sequences(name):
     counts = _committed(REAL_RESULT, name).values()
     lost, on = sum(c[0] for c in counts), sum(c[1] for c in counts)
