@@ -31,9 +31,10 @@ deviation before the flow, so a camera's exposure change does not break brightne
 Confidence: the forward-backward error certifies that the points moved as the flow says, not
 that they belong to the target: on a textured background the points follow while the target
 is gone, their error is as small as on the target, so it cannot say "the target is not here"
-(the chapter "Template matching and optical flow" shows it on ``occluder``). ``state().confidence`` is therefore the failure
-layer's generic one, as for ``edge-ray-pf``: the Bhattacharyya coefficient rho between the
-kernel colour histogram of the box the flow placed and that of the first box
+(the chapter "Template matching and optical flow" shows it on ``occluder``).
+``state().confidence`` is therefore the failure layer's generic one, as for ``edge-ray-pf``:
+the Bhattacharyya coefficient rho between the kernel colour histogram of the box the flow
+placed and that of the first box
 (:meth:`~trackbook.trackers.generic_confidence.ColourCheck.match`), in [0, 1]; where the flow
 placed no box (a flat frame, a median FB above ``fb_threshold`` or infinite because more than
 half the points were lost, fewer than two points kept), that of the box the flow started
