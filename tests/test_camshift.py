@@ -222,22 +222,24 @@ def test_confidence_is_m00_relative_to_the_first_frame():
 
 
 def test_lost_keeps_the_last_box_and_finds_it_again():
-    frames, box0 = _square_frames(12)
+    frames, box0 = _square_frames(16)
     grey = [f.copy() for f in frames]
-    for f in grey[4:8]:                       # the square is painted over with background grey
+    for f in grey[7:11]:                      # the square is painted over with background grey
         f[:] = np.random.default_rng(1).integers(90, 111, f.shape, dtype=np.uint8)
     t = trackers.create("camshift")
+    # six frames on the square first: the layer's reference is warmed up before the loss
+    assert t.failure_params.warmup <= 6
     t.init(grey[0], box0)
     boxes = [t.update(f) for f in grey[1:]]
-    last = boxes[2][1]
-    for ok, box in boxes[3:7]:
+    last = boxes[5][1]
+    for ok, box in boxes[6:10]:
         assert not ok and box == last
         assert t.state().confidence is not None
-    # the square is back from frame 8: the failure layer believes it after m frames in a row
+    # the square is back from frame 11: the failure layer believes it after m frames in a row
     m = t.failure_params.m
-    assert [ok for ok, _ in boxes[7:]] == [False] * (m - 1) + [True] * (len(boxes) - 6 - m)
-    ok, box = boxes[10]                       # frame 11, the box on the square
-    assert ok and box[0] + box[2] / 2 == pytest.approx(20 + 5 * 11 + 12, abs=1.0)
+    assert [ok for ok, _ in boxes[10:]] == [False] * (m - 1) + [True] * (len(boxes) - 9 - m)
+    ok, box = boxes[13]                       # frame 14, the box on the square
+    assert ok and box[0] + box[2] / 2 == pytest.approx(20 + 5 * 14 + 12, abs=1.0)
 
 
 def test_scale_follows_the_target():

@@ -1,4 +1,4 @@
-"""Frames that carry no information are reported lost.
+"""Frames that carry no information are reported lost, and so are boxes mostly out of view.
 
 Every tracker is started on a textured frame (the ``red-cube`` sample) and then shown an
 all-black, an all-white and a constant grey frame: each must answer ``ok=False`` with a finite,
@@ -12,6 +12,8 @@ import numpy as np
 import pytest
 
 from trackbook import clips, trackers
+from trackbook.evaluation import metrics
+from trackbook.trackers.failure import MIN_IN_VIEW, FailureParams, in_view
 
 NAMES = trackers.available(reference=False)
 
@@ -57,6 +59,76 @@ def test_identical_black_frames_do_not_walk_with_ok(name):
         ok, b = t.update(frame)
         assert ok is False
         assert np.all(np.isfinite(b)) and b[2] > 0 and b[3] > 0
+
+
+def _in_view_by_pixels(box, shape):
+    """The share of an integer box's pixels inside the frame, counted one by one."""
+    x, y, w, h = (int(v) for v in box)
+    inside = sum(0 <= i < shape[1] and 0 <= j < shape[0]
+                 for i in range(x, x + w) for j in range(y, y + h))
+    return inside / (w * h)
+
+
+@pytest.mark.parametrize("box,share", [((0, 0, 10, 10), 1.0), ((-10, 0, 20, 10), 0.5),
+                                       ((95, 95, 10, 10), 0.25), ((100, 0, 5, 5), 0.0),
+                                       ((-3, -4, 10, 8), 0.35)])
+def test_in_view_by_hand(box, share):
+    assert in_view(box, (100, 100, 3)) == pytest.approx(share)
+    assert in_view(box, (100, 100, 3)) == pytest.approx(_in_view_by_pixels(box, (100, 100)))
+
+
+def test_a_box_less_than_half_in_view_never_overlaps_a_target_in_view_by_more_than_half():
+    """The bound that makes the out-of-view rule cost no frame on target: for a target box
+    inside the frame, IoU <= the share of the tracker's box in view."""
+    rng = np.random.default_rng(0)
+    shape = (120, 160, 3)
+    b = np.column_stack([rng.uniform(-60, 180, 2000), rng.uniform(-60, 140, 2000),
+                         rng.uniform(2, 80, 2000), rng.uniform(2, 80, 2000)])
+    g = np.column_stack([rng.uniform(0, 100, 2000), rng.uniform(0, 70, 2000),
+                         rng.uniform(2, 60, 2000), rng.uniform(2, 50, 2000)])
+    g[:, 2] = np.minimum(g[:, 2], shape[1] - g[:, 0])
+    g[:, 3] = np.minimum(g[:, 3], shape[0] - g[:, 1])
+    v = np.array([in_view(x, shape) for x in b])
+    iou = metrics.iou(b, g)
+    assert np.all(iou <= v + 1e-12)
+    assert (v < MIN_IN_VIEW).sum() > 100 and (v >= MIN_IN_VIEW).sum() > 100
+
+
+class _Leaving(trackers.Tracker):
+    """A tracker written in halves whose box walks 8 px right each frame, always sure of it."""
+
+    name = "test-leaving"
+
+    def _init(self, frame, box):
+        self._box = np.asarray(box, float)
+
+    def _locate(self, frame):
+        return self._box + (8, 0, 0, 0), 1.0
+
+    def _learn(self, frame, box):
+        self._box = np.asarray(box, float)
+
+    def _relocate(self, frame, box):
+        self._box = np.asarray(box, float)
+
+
+@pytest.mark.parametrize("failure", [True, False], ids=["layer", "no-layer"])
+def test_a_box_that_leaves_the_frame_is_lost_once_less_than_half_is_in_view(failure):
+    frame = np.random.default_rng(1).integers(0, 256, (60, 80, 3), dtype=np.uint8)
+    t = _Leaving(failure=FailureParams() if failure else False)
+    t.init(frame, (22, 20, 20, 20))
+    shares, oks = [], []
+    for _ in range(12):
+        ok, _ = t.update(frame)
+        shares.append(in_view(t._box, frame.shape))
+        oks.append(ok)
+    shares, oks = np.array(shares), np.array(oks)
+    # after update k the box is at x = 30 + 8 k: in view up to k = 3, half out at k = 5
+    assert shares[3] == 1.0 and shares[5] == 0.5 and shares[6] < 0.5
+    if failure:
+        assert oks[:6].all() and not oks[6:].any()
+    else:
+        assert oks.all()                    # the algorithm alone: the rule belongs to the layer
 
 
 LIGHT_FAILING = {(True, 0.4): "the layer (ratio_lost = 0.5) calls the darkened cube lost: its "

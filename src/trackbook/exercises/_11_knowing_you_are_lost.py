@@ -78,4 +78,22 @@ $(1 - \eta)^n = 0.98^{35} \approx 0.49$: half of the model is background. While 
 gone, the model comes to match the background, so the confidence creeps back up and a rule on
 the confidence is fooled into "found"; when the target returns, half of the model no longer
 matches it. A tracker judged lost that stops learning keeps $(1 - \eta)^0 = 1$ of its model.
+
+=== 11.6 ★ pen and paper | A box that has left the frame
+The layer calls a frame lost, whatever the confidence says, when less than half of the
+tracker's box $b$ lies inside the frame $F$. Show that such a box has
+$\operatorname{IoU}(b, g) < 1/2$ with every box $g$ inside the frame: the box the tracker
+found is never on target (IoU > 0.5). Is the bound tight? And which exit does the rule not
+catch?
+--- solution
+The union contains $b$, and $b \cap g \subseteq b \cap F$ because $g \subseteq F$, so
+$\operatorname{IoU}(b, g) = |b \cap g| / |b \cup g| \le |b \cap g| / |b| \le |b \cap F| / |b|
+< 1/2$. Tight, as a limit: with $g = b \cap F$ both inequalities are equalities, so IoU
+equals the share in view. $b = (-10.5, 0, 20, 10)$ in a frame that starts at $x = 0$ has
+$9.5 \times 10 = 95$ of its 200 px$^2$ in view; with $g = (0, 0, 9.5, 10)$,
+$|b \cap g| = 95$, $|b \cup g| = 200$, IoU $= 0.475$. Moving $b$ right brings both to
+$1/2$, where the box is exactly half in view, which the rule does not flag. The rule misses a box that stops at the border with
+most of it inside (a tracker that keeps its box in the frame never triggers it): there the
+box scores the background beside the border, and only the confidence can say the target has
+gone.
 """

@@ -8,9 +8,10 @@ tracker: the params dataclass, the seeded ``numpy.random.Generator`` (re-created
 last line of defence against a NaN or empty box and, for a tracker written in halves, the two
 layers that stand between locating and learning:
 
-- the **failure-detection layer** (always on): the frame's confidence is judged by
-  :class:`~trackbook.trackers.failure.FailureDetector` with the tracker's calibrated
-  thresholds; a frame judged lost keeps the last box and teaches the model nothing;
+- the **failure-detection layer** (on unless ``failure=False``): the frame's confidence is
+  judged by :class:`~trackbook.trackers.failure.FailureDetector` with the tracker's calibrated
+  thresholds (a located box less than half in view, or no box at all, is lost whatever the
+  confidence says); a frame judged lost keeps the last box and teaches the model nothing;
 - the **re-detection layer** (opt-in, the ``-redetect`` names): while lost, the tracker's own
   appearance model scores boxes over the whole frame and the search restarts from the best.
 """
@@ -24,7 +25,7 @@ import numpy as np
 
 from .._checks import check_box_in_frame, check_frame, check_seed, positional_seed_error
 from ..params import make_params
-from .failure import FailureDetector, FailureParams, calibrated_params
+from .failure import MIN_IN_VIEW, FailureDetector, FailureParams, calibrated_params, in_view
 
 
 def readonly_attr(name: str, doc: str | None = None) -> property:
@@ -301,10 +302,15 @@ class Tracker:
 
         1. ``_locate`` finds the target near where it was and says how sure it is; a frame
            whose values span at most ``flat_range`` grey levels is lost whatever it says
-           (nothing to match).
+           (nothing to match), with the layer or without it.
         2. The failure layer judges the confidence against the tracker's own recent ones
            (:class:`~trackbook.trackers.failure.FailureDetector`); a paper's own rule, the
-           third value ``_locate`` may return (MOSSE's PSR < 7), can only add a loss.
+           third value ``_locate`` may return (MOSSE's PSR < 7), can only add a loss, and so
+           can a located box less than half inside the frame
+           (:func:`~trackbook.trackers.failure.in_view`: the target has left the view) or no
+           box at all (NaN or empty: the algorithm found no estimate). The layer judges each
+           of these as a frame with no confidence, so, like any loss, it takes ``m`` good
+           frames to undo.
         3. On target: ``_learn`` moves the tracker to the box and updates the model. Lost: the
            last box is reported, the model learns nothing, the local search follows its own
            answer (:meth:`_follow`) and, for a ``-redetect`` name only, the whole frame is
@@ -316,13 +322,15 @@ class Tracker:
         conf = float(conf)
         self._judged_confidence = conf
         flat = self._is_flat(frame)
-        # A flat frame, or one the algorithm's own rule calls lost, is judged as a frame with no
-        # confidence at all (NaN: lost), so that its confidence never enters the reference
-        # the next frames are judged against.
-        judged = True if self._detector is None else \
-            self._detector.step(float("nan") if flat or not own_ok else conf)
         box = np.asarray(box, dtype=float).reshape(4)
         good = bool(np.all(np.isfinite(box)) and box[2] > 0 and box[3] > 0)
+        # A flat frame, no box, a box mostly outside the frame (a target that left across the
+        # border cannot be half in a box that is not), or a frame the algorithm's own rule calls
+        # lost is judged as a frame with no confidence at all (NaN: lost), so that its
+        # confidence never enters the reference the next frames are judged against.
+        seen = good and in_view(box, frame.shape) >= MIN_IN_VIEW
+        judged = True if self._detector is None else \
+            self._detector.step(conf if own_ok and seen and not flat else float("nan"))
         if own_ok and judged and good and not flat:
             self._learn(frame, box)
             return True, box

@@ -26,6 +26,9 @@ import numpy as np
 #: read by :func:`calibrated_params` when a tracker is made.
 CALIBRATION_FILE = Path(__file__).resolve().parents[1] / "data" / "failure_calibration.json"
 
+#: A box with less than this share of its area inside the frame is out of view (:func:`in_view`).
+MIN_IN_VIEW = 0.5
+
 #: 1 / Phi^-1(3/4): scales the median absolute deviation to a Gaussian's standard deviation.
 MAD_TO_SIGMA = 1.482602218505602
 #: sqrt(pi / 2): scales the mean absolute deviation to a Gaussian's standard deviation.
@@ -260,6 +263,44 @@ class FailureDetector:
         return np.array([self.step(c) for c in np.asarray(confidences, float).ravel()], bool)
 
 
+def in_view(box, frame_shape) -> float:
+    r"""The share of ``box = (x, y, w, h)``'s area that lies inside a frame of ``frame_shape``.
+
+    .. math::
+
+        v(b) = \frac{|b \cap F|}{|b|}
+
+    with :math:`F` the frame. The layer judges a frame lost, whatever the confidence says, when
+    the box the algorithm located has :math:`v(b) <` :data:`MIN_IN_VIEW` = 1/2: most of what
+    it scores there is outside the picture (a target that left across the border, a box that
+    slid after it). Such a box is never on target: for a ground-truth box :math:`g` inside the
+    frame (:math:`b \cup g \supseteq b`, and :math:`b \cap g \subseteq b \cap F`),
+
+    .. math::
+
+        \operatorname{IoU}(b, g) = \frac{|b \cap g|}{|b \cup g|} \le \frac{|b \cap g|}{|b|}
+        \le \frac{|b \cap F|}{|b|} = v(b) < \tfrac12 .
+
+    The bound is about the located box. On a lost frame ``update`` reports the last box judged
+    on target, which may still overlap the target by more than half; counted on that box, a
+    frame this rule flags can be a false loss. A ground-truth box that reaches outside the
+    frame (an annotation not clipped to it) can also overlap a box less than half in view by
+    more than half.
+
+    Examples
+    --------
+    >>> in_view((-10, 0, 20, 10), (100, 100, 3))
+    0.5
+    """
+    x, y, w, h = (float(v) for v in box)
+    if not w > 0 or not h > 0:
+        return 0.0
+    height, width = frame_shape[:2]
+    dx = min(x + w, width) - max(x, 0.0)
+    dy = min(y + h, height) - max(y, 0.0)
+    return max(dx, 0.0) * max(dy, 0.0) / (w * h)
+
+
 def load_calibration(path=None) -> dict:
     """``{tracker name: FailureParams}`` from a calibration file.
 
@@ -308,5 +349,6 @@ def judge(confidences, params: FailureParams | None = None) -> np.ndarray:
     return FailureDetector(params).run(confidences)
 
 
-__all__ = ["CALIBRATION_FILE", "FailureDetector", "FailureParams", "calibrated_params", "judge",
-           "load_calibration", "robust_reference", "threshold"]
+__all__ = ["CALIBRATION_FILE", "MIN_IN_VIEW", "FailureDetector", "FailureParams",
+           "calibrated_params", "in_view", "judge", "load_calibration", "robust_reference",
+           "threshold"]
