@@ -242,6 +242,26 @@ def test_lost_keeps_the_last_box_and_finds_it_again():
     assert ok and box[0] + box[2] / 2 == pytest.approx(20 + 5 * 14 + 12, abs=1.0)
 
 
+def test_a_loss_during_the_layers_warm_up_ends_on_the_first_frame_back():
+    """The same, with the square gone after three frames: the layer's reference holds fewer
+    than ``warmup`` confidences, so the frames without a target are reported lost (no box)
+    but the layer has not declared a loss, and the first frame with the square is on
+    target at once (README, "What `ok` promises")."""
+    frames, box0 = _square_frames(12)
+    grey = [f.copy() for f in frames]
+    for f in grey[4:8]:
+        f[:] = np.random.default_rng(1).integers(90, 111, f.shape, dtype=np.uint8)
+    t = trackers.create("camshift")
+    assert t.failure_params.warmup > 3
+    t.init(grey[0], box0)
+    boxes = [t.update(f) for f in grey[1:]]
+    last = boxes[2][1]
+    assert all(not ok and box == last for ok, box in boxes[3:7])
+    assert all(ok for ok, _ in boxes[7:])
+    ok, box = boxes[10]                       # frame 11, the box on the square
+    assert ok and box[0] + box[2] / 2 == pytest.approx(20 + 5 * 11 + 12, abs=1.0)
+
+
 def test_scale_follows_the_target():
     """The square doubles its side: M00 quadruples, the box's side doubles."""
     rng = np.random.default_rng(0)

@@ -78,8 +78,9 @@ def test_in_view_by_hand(box, share):
 
 
 def test_a_box_less_than_half_in_view_never_overlaps_a_target_in_view_by_more_than_half():
-    """The bound that makes the out-of-view rule cost no frame on target: for a target box
-    inside the frame, IoU <= the share of the tracker's box in view."""
+    """The bound behind the out-of-view rule: for a target box inside the frame, IoU <= the
+    share of the tracker's box in view, so a box found less than half in view is never on
+    target."""
     rng = np.random.default_rng(0)
     shape = (120, 160, 3)
     b = np.column_stack([rng.uniform(-60, 180, 2000), rng.uniform(-60, 140, 2000),
@@ -110,6 +111,23 @@ class _Leaving(trackers.Tracker):
 
     def _relocate(self, frame, box):
         self._box = np.asarray(box, float)
+
+
+def test_a_box_that_leaves_during_the_warm_up_is_lost_too_and_not_learned():
+    """The detector calls the first ``warmup`` frames ok whatever they score; a box that is
+    out of view by then is still lost, and the tracker does not move to it."""
+    frame = np.random.default_rng(1).integers(0, 256, (60, 80, 3), dtype=np.uint8)
+    t = _Leaving(failure=FailureParams(warmup=5))
+    t.init(frame, (50, 20, 20, 20))
+    oks, reported = [], []
+    for _ in range(6):
+        ok, box = t.update(frame)
+        oks.append(ok)
+        reported.append(box[0])
+    # found at x = 58 (all in view), 66 (0.7 of it), then 74 (0.3), 82, ...: out of view
+    # on the third frame, two frames before the reference holds five values
+    assert oks == [True, True] + [False] * 4
+    assert reported == [58.0, 66.0] + [66.0] * 4   # the last box judged on target
 
 
 @pytest.mark.parametrize("failure", [True, False], ids=["layer", "no-layer"])

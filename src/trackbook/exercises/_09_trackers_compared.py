@@ -10,8 +10,9 @@ r["preset"] == "book"]`). Which verdicts change compared with the AUC's (on the 
 {doc}`The four papers' claims, checked <case_studies_compared>`)? In what is the
 precision at 20 px closer to the AUC than to the tracking rate?
 --- solution
-Two of the seven change, each inconclusive by the AUC with an interval that only just crosses
-0: Cho and Kang's `condensation-mean-shift > condensation` (its interval ends just below
+Two of the seven change. Both are inconclusive by the AUC with an interval that only just
+crosses 0 (as are three of the other five); precision at 20 px moves these two across: Cho and
+Kang's `condensation-mean-shift > condensation` (its interval ends just below
 0) holds, and Kim et al.'s `hog-pf > hsi-color-pf` (its interval ends just above 0) fails;
 the other five are inconclusive by both. Precision at 20 px, like the
 AUC, credits a tracker that stays near the target with a loose box: it only asks whether the

@@ -91,8 +91,9 @@ $\operatorname{IoU}(b, g) = |b \cap g| / |b \cup g| \le |b \cap g| / |b| \le |b 
 < 1/2$. Tight, as a limit: with $g = b \cap F$ both inequalities are equalities, so IoU
 equals the share in view. $b = (-10.5, 0, 20, 10)$ in a frame that starts at $x = 0$ has
 $9.5 \times 10 = 95$ of its 200 px$^2$ in view; with $g = (0, 0, 9.5, 10)$,
-$|b \cap g| = 95$, $|b \cup g| = 200$, IoU $= 0.475$. Moving $b$ right brings both to
-$1/2$, where the box is exactly half in view, which the rule does not flag. The rule misses a box that stops at the border with
+$|b \cap g| = 95$, $|b \cup g| = 200$, IoU $= 0.475$. At $b = (-10, 0, 20, 10)$ with
+$g = b \cap F = (0, 0, 10, 10)$ both reach $1/2$; that box is exactly half in view, which
+the rule does not flag. The rule misses a box that stops at the border with
 most of it inside (a tracker that keeps its box in the frame never triggers it): there the
 box scores the background beside the border, and only the confidence can say the target has
 gone.

@@ -310,7 +310,8 @@ class Tracker:
            (:func:`~trackbook.trackers.failure.in_view`: the target has left the view) or no
            box at all (NaN or empty: the algorithm found no estimate). The layer judges each
            of these as a frame with no confidence, so, like any loss, it takes ``m`` good
-           frames to undo.
+           frames to undo once the layer's reference is warmed up (during its first
+           ``warmup`` confident frames such a frame is lost, and the next may be on target).
         3. On target: ``_learn`` moves the tracker to the box and updates the model. Lost: the
            last box is reported, the model learns nothing, the local search follows its own
            answer (:meth:`_follow`) and, for a ``-redetect`` name only, the whole frame is
@@ -331,7 +332,9 @@ class Tracker:
         seen = good and in_view(box, frame.shape) >= MIN_IN_VIEW
         judged = True if self._detector is None else \
             self._detector.step(conf if own_ok and seen and not flat else float("nan"))
-        if own_ok and judged and good and not flat:
+        # The detector calls every frame of its warm-up ok, a NaN one too: the out-of-view
+        # rule must still hold there. It is the layer's, so failure=False leaves it out.
+        if own_ok and judged and (good if self._detector is None else seen) and not flat:
             self._learn(frame, box)
             return True, box
         if good and not flat:
