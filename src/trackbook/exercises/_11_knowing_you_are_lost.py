@@ -107,8 +107,8 @@ thresholds, with no hysteresis band. Write it for `condensation`: subclass its c
 warm-up and while the layer says on target, a box past an edge whose confidence is below
 `threshold(r, s, k_found, ratio_found)` comes back as `(box, conf, False)`: the optional
 third value of `_locate` is the algorithm's own verdict, `False` for lost (`condensation`'s
-`_locate` returns only the first two). The layer is `self._detector` (a `FailureDetector`; `None` with
-`failure=False`): `self._detector.lost` says whether it is lost, and
+`_locate` returns only the first two). The layer is `self._detector` (a `FailureDetector`;
+`None` with `failure=False`): `self._detector.lost` says whether it is lost, and
 `self._detector.reference` is the reference $(r, s)$ the coming frame is judged against; the
 thresholds are `self.failure_params`, and `threshold` comes from `trackbook.trackers.failure`.
 For the warm-up, `self.frame_index > self.failure_params.warmup` will do (it is exact while
@@ -142,17 +142,16 @@ reference, found at $\phi_\text{found} = 0.8$ of it, $m = 3$ frames in a row. On
 scene the stricter rule flags every absent frame, where `condensation` flags none. It fires
 once, on frame 23, six frames after the box first crossed the edge behind the leaving target:
 the box is half in view and $\rho$ has dropped into the band between the two thresholds. The
-reference frozen at that loss keeps the tracker lost to the clip's end.
-Without the loss, the frames on the background are judged on target and enter the reference,
-which sinks to them.
+reference frozen at that loss keeps the tracker lost to the clip's end. Without the loss, the
+frames on the background are judged on target and enter the reference, which sinks to them.
 
 On `robot-corridor-day` the rule costs 5 false losses of the 129 frames with the box on the
 target (none of 138 without): 3.9 %, over the contract's 1 %. With the lights dimmed, the box
 slides down the target until, at frame 37, it reaches 1 px past the bottom edge with $\rho$
 at 0.53 of its reference. That loss is not itself false (the box found there, and the box
-reported, overlap the target with IoU under 0.5), but the found threshold is not met for $m$ frames in a row until the
-lights come back, and the box reported meanwhile, the last judged on target, still overlaps
-the target by more than half on 5 of those frames.
+reported, overlap the target with IoU under 0.5), but the found threshold is not met for $m$
+frames in a row until the lights come back, and the box reported meanwhile, the last judged
+on target, still overlaps the target by more than half on 5 of those frames.
 
 The rule gives up the band that lets a tracker ride through a dip wherever the box touches
 the edge, and a single pixel is enough: the box at frame 37 is 99 % in view. Before making it
