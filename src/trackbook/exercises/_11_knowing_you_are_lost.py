@@ -132,7 +132,8 @@ def strict_at_the_edge(name):
             out = x < 0 or y < 0 or x + w > W or y + h > H
             if out and not d.lost and self.frame_index > p.warmup:
                 r, s = d.reference
-                ok = ok and conf >= threshold(r, s, p.k_found, p.ratio_found)
+                found = threshold(r, s, p.k_found, p.ratio_found)
+                ok = ok and conf >= found
             return box, conf, ok
 
     return Strict(seed=0)
