@@ -13,7 +13,8 @@ import pytest
 
 from trackbook import clips, trackers
 from trackbook.evaluation import metrics
-from trackbook.trackers.failure import MIN_IN_VIEW, FailureParams, in_view
+from trackbook.trackers.failure import (MIN_IN_VIEW, FailureDetector, FailureParams, in_view,
+                                        reaches_out)
 
 NAMES = trackers.available(reference=False)
 
@@ -147,6 +148,107 @@ def test_a_box_that_leaves_the_frame_is_lost_once_less_than_half_is_in_view(fail
         assert oks[:6].all() and not oks[6:].any()
     else:
         assert oks.all()                    # the algorithm alone: the rule belongs to the layer
+
+
+def test_a_frame_stepped_without_learning_is_judged_but_kept_out_of_the_reference():
+    """By hand: after 10, 11, 10, 11, 10 (median 10, MAD 0, so the spread is
+    1.2533 x mean|c - 10| = 1.2533 x 0.4 = 0.5013) the lost level is 10 - 4 x 0.5013 = 7.995.
+    A 9 is on target either way; learned, it enters the reference, whose spread becomes
+    1.4826 x median(0, 1, 0, 1, 0, 1) = 1.4826 x 0.5 = 0.7413 and the lost level
+    10 - 4 x 0.7413 = 7.035; not learned, the reference is as it was. A 7.5 is then lost only
+    if the 9 was not learned."""
+    p = FailureParams(k_lost=4, k_found=1, m=2, window=10, warmup=3)
+    for learn, expected in [(True, (10.0, 0.7413)), (False, (10.0, 0.5013))]:
+        d = FailureDetector(p)
+        assert all(d.step(v) for v in [10, 11, 10, 11, 10])
+        assert d.step(9, learn=learn) is True
+        assert d.reference == pytest.approx(expected, abs=1e-4), learn
+        assert d.step(7.5) is learn
+
+
+def test_frames_of_the_warm_up_enter_the_reference_even_unlearned():
+    """A reference must exist before it can be kept clean: a target that starts across the
+    border would otherwise never warm the layer up, and no frame of it could be lost."""
+    d = FailureDetector(FailureParams(k_lost=4, k_found=1, m=2, window=10, warmup=3))
+    assert all(d.step(v, learn=False) for v in [10, 11, 10])
+    assert len(d._ref) == 3
+    assert d.step(10, learn=False) and len(d._ref) == 3
+    assert d.step(2, learn=False) is False
+
+
+def test_a_frame_that_ends_a_loss_unlearned_stays_out_of_the_reference():
+    """A target coming back across the edge: the frame that ends the loss is stepped with
+    ``learn=False`` and must not enter the reference either (m = 1: one frame ends it)."""
+    d = FailureDetector(FailureParams(k_lost=4, k_found=1, m=1, window=10, warmup=3))
+    assert all(d.step(v) for v in [10, 11, 10, 11, 10])
+    assert d.step(2) is False
+    assert d.step(10.5, learn=False) is True
+    assert list(d._ref) == [10, 11, 10, 11, 10]
+    assert d.step(10.5) is True and list(d._ref) == [10, 11, 10, 11, 10, 10.5]
+
+
+def test_a_box_flush_with_the_edge_by_arithmetic_does_not_reach_out():
+    """x = cx - w/2 with cx = W - w/2 lands a rounding error past the edge for many widths;
+    a millionth of a pixel is rounding, a thousandth is reaching out."""
+    W, H = 320, 240
+    widths = np.random.default_rng(0).uniform(1, 100, 2000)
+    xs = (W - widths / 2) - widths / 2
+    assert np.any(xs + widths > W)                       # the rounding does happen
+    assert not any(reaches_out((x, 100, w, 40), (H, W, 3)) for x, w in zip(xs, widths))
+    assert all(reaches_out((x + 1e-3, 100, w, 40), (H, W, 3)) for x, w in zip(xs, widths))
+    assert reaches_out((-1e-3, 0, 10, 10), (H, W, 3)) and reaches_out((0, -1e-3, 10, 10), (H, W, 3))
+
+
+@pytest.mark.parametrize("box,out", [
+    ((64.05920704482398, 27.70888466262316, 3.0077026728735397, 1.8098541408979256), False),
+    ((0.0, 0.0, 200.0, 200.0), False), ((-0.5, 10, 20, 20), True), ((10, -0.5, 20, 20), True),
+    ((180.5, 10, 20, 20), True), ((10, 180.5, 20, 20), True)])
+def test_reaches_out_compares_edges_not_a_share_in_view(box, out):
+    """The first box lies well inside a 200 x 200 frame, yet its share in view, computed in
+    floating point, is a rounding error short of 1: "reaches out" must not be ``in_view < 1``."""
+    assert reaches_out(box, (200, 200, 3)) is out
+    if box[0] > 60:
+        assert in_view(box, (200, 200, 3)) < 1
+
+
+class _Scripted(trackers.Tracker):
+    """A tracker written in halves that finds the boxes and confidences it is given."""
+
+    name = "test-scripted"
+
+    def _init(self, frame, box):
+        self._script = iter(self.script)
+
+    def _locate(self, frame):
+        return next(self._script)
+
+    def _learn(self, frame, box):
+        pass
+
+
+@pytest.mark.parametrize("x", [40.0, 62.0], ids=["inside", "past-the-right-edge"])
+def test_a_slow_fall_across_the_edge_does_not_lower_the_reference(x):
+    """Five frames at 10 and 11, then the confidence falls by 0.1 a frame from 10 to 5 with
+    the box inside the frame or reaching 2 px past its right edge (0.9 of it in view); lost
+    below 0.7 of the reference's median. Inside, each value enters the reference and the lost
+    level sinks with it (the median is 6.45 at the end): no frame is lost. Past the edge the
+    median stays 10, and the first value under 7 (6.9) is lost."""
+    frame = np.random.default_rng(2).integers(0, 256, (60, 80, 3), dtype=np.uint8)
+    t = _Scripted(failure=FailureParams(k_lost=np.inf, k_found=np.inf, ratio_lost=0.7,
+                                        ratio_found=0.8, m=2, window=30, warmup=5))
+    inside = np.array([40.0, 20.0, 20.0, 20.0])
+    fall = np.round(10 - 0.1 * np.arange(51), 1)                       # 10, 9.9, ..., 5
+    t.script = [(inside, c) for c in (10, 11, 10, 11, 10)] + [
+        (np.array([x, 20, 20, 20]), c) for c in fall]
+    t.init(frame, inside)
+    oks = np.array([t.update(frame)[0] for _ in range(len(t.script))])
+    median = t._detector.reference[0]
+    if x == 40.0:
+        assert oks.all() and median == pytest.approx(6.45)
+    else:
+        assert in_view((x, 20, 20, 20), frame.shape) == pytest.approx(0.9)
+        assert oks[:5].all() and fall[np.flatnonzero(~oks[5:])[0]] == 6.9
+        assert median == 10.0
 
 
 LIGHT_FAILING = {(True, 0.4): "the layer (ratio_lost = 0.5) calls the darkened cube lost: its "

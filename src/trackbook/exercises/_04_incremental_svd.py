@@ -134,14 +134,14 @@ Without the anchor the runs swing further, on both clips.
 The noise. Seeds 1 and 2 move one configuration as far as $n_\mathrm{b}$ does: at night with
 the anchor and $n_\mathrm{b} = 4$ the AUC of seeds 0–2 ranges over 0.163, wider than the range
 over all five $n_\mathrm{b}$ at seed 0 (0.058); without the anchor the same $n_\mathrm{b}$ at
-night ranges over 0.241.
+night ranges over 0.240.
 
 The public sequences. The committed runs of the {doc}`lab notes <lab_notes_lee2012>` (seven
 sequences, seeds 0–2) hold two of these comparisons, paired by sequence and seed:
 
 | comparison | mean AUC difference | 95 % interval |
 |---|---|---|
-| $n_\mathrm{b} = 4$ minus $n_\mathrm{b} = 2$, with the anchor | −0.028 | [−0.089, +0.010] |
+| $n_\mathrm{b} = 4$ minus $n_\mathrm{b} = 2$, with the anchor | −0.026 | [−0.087, +0.011] |
 | $n_\mathrm{b} = 16$ minus $n_\mathrm{b} = 2$, learning unchecked | −0.017 | [−0.083, +0.026] |
 
 Both intervals straddle 0: inconclusive. One sequence's AUC moves by up to 0.44 between seeds

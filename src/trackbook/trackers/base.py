@@ -11,7 +11,9 @@ layers that stand between locating and learning:
 - the **failure-detection layer** (on unless ``failure=False``): the frame's confidence is
   judged by :class:`~trackbook.trackers.failure.FailureDetector` with the tracker's calibrated
   thresholds (a located box less than half in view, or no box at all, is lost whatever the
-  confidence says); a frame judged lost keeps the last box and teaches the model nothing;
+  confidence says, and after the warm-up the confidence of one that reaches past the frame's
+  edge does not enter the reference); a frame judged lost keeps the last box and teaches the
+  model nothing;
 - the **re-detection layer** (opt-in, the ``-redetect`` names): while lost, the tracker's own
   appearance model scores boxes over the whole frame and the search restarts from the best.
 """
@@ -25,7 +27,8 @@ import numpy as np
 
 from .._checks import check_box_in_frame, check_frame, check_seed, positional_seed_error
 from ..params import make_params
-from .failure import MIN_IN_VIEW, FailureDetector, FailureParams, calibrated_params, in_view
+from .failure import (MIN_IN_VIEW, FailureDetector, FailureParams, calibrated_params,
+                      in_view, reaches_out)
 
 
 def readonly_attr(name: str, doc: str | None = None) -> property:
@@ -312,6 +315,9 @@ class Tracker:
            of these as a frame with no confidence, so, like any loss, it takes ``m`` good
            frames to undo once the layer's reference is warmed up (during its first
            ``warmup`` confident frames such a frame is lost, and the next may be on target).
+           A located box that reaches past the frame's edge
+           (:func:`~trackbook.trackers.failure.reaches_out`) is judged as usual, but after
+           the warm-up its confidence does not enter the reference.
         3. On target: ``_learn`` moves the tracker to the box and updates the model. Lost: the
            last box is reported, the model learns nothing, the local search follows its own
            answer (:meth:`_follow`) and, for a ``-redetect`` name only, the whole frame is
@@ -330,8 +336,12 @@ class Tracker:
         # lost is judged as a frame with no confidence at all (NaN: lost), so that its
         # confidence never enters the reference the next frames are judged against.
         seen = good and in_view(box, frame.shape) >= MIN_IN_VIEW
+        # Part of what a box reaching past the edge scores is not in the picture: a target
+        # leaving slowly would lower the reference frame by frame, until the background the
+        # box rests on after it left passed. Judged, but kept out of the reference.
         judged = True if self._detector is None else \
-            self._detector.step(conf if own_ok and seen and not flat else float("nan"))
+            self._detector.step(conf if own_ok and seen and not flat else float("nan"),
+                                learn=not (good and reaches_out(box, frame.shape)))
         # The detector calls every frame of its warm-up ok, a NaN one too: the out-of-view
         # rule must still hold there. It is the layer's, so failure=False leaves it out.
         if own_ok and judged and (good if self._detector is None else seen) and not flat:

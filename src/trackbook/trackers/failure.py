@@ -64,7 +64,8 @@ class FailureParams:
     m : int
         Frames in a row at or above the found thresholds needed to recover (>= 1).
     window : int
-        How many of the last frames judged ok make the reference (>= 2).
+        How many of the last confidences learned make the reference (>= 2): those of frames
+        judged ok, except the ones stepped with ``learn=False`` after the warm-up.
     warmup : int
         Finite confidences the reference must hold before the rule may declare a loss
         (1 <= warmup <= window): a reference of one or two values has no spread to speak of.
@@ -153,7 +154,8 @@ class FailureDetector:
     r"""Judge each frame on target or lost from the tracker's confidence alone.
 
     With :math:`r_t, s_t` the median and the scaled MAD (:func:`robust_reference`) of the
-    confidences of the last ``window`` frames judged ok before frame :math:`t`, and
+    last ``window`` confidences learned before frame :math:`t` (those of frames judged ok,
+    but see ``learn`` below), and
     :math:`\theta` the threshold of :func:`threshold`:
 
     .. math::
@@ -169,7 +171,11 @@ class FailureDetector:
     :math:`\phi_\text{lost} \le \phi_\text{found}`, and :math:`r, s` frozen at the loss while
     lost (a reference that learned from lost frames would drift down to them and declare the
     target found). A frame judged ok adds its confidence to the reference; a lost one does
-    not. Until the reference holds ``warmup`` finite values, every frame is ok.
+    not, nor does one stepped with ``learn=False`` once the warm-up is over (the base class
+    asks this of a located box that reaches past the frame's edge, :func:`reaches_out`). So
+    the reference can be older than ``window`` frames: a target that stays across the edge
+    after the warm-up is judged against what it scored before, however long it stays.
+    Until the reference holds ``warmup`` finite values, every frame is ok.
 
     Why two tests: trackers' confidences differ in scale *and* sign (a peak-to-sidelobe
     ratio in [0, 50], a Bhattacharyya coefficient in [0, 1], a negated distance in
@@ -233,23 +239,32 @@ class FailureDetector:
         """The judgement of the last frame."""
         return not self.lost
 
-    def step(self, confidence) -> bool:
-        """Judge the next frame from its confidence; returns ``ok``."""
+    def step(self, confidence, learn: bool = True) -> bool:
+        """Judge the next frame from its confidence; returns ``ok``.
+
+        ``learn=False`` judges the frame as usual but, if it is on target (or ends a loss),
+        keeps its confidence out of the reference, so it does not lower (or raise) the
+        standard the next frames are judged by; during the warm-up it enters all the same,
+        since the reference must first exist. A lost frame never enters it.
+        """
         c = float(confidence)
         p = self.params
         if not self.lost:
-            if len(self._ref) >= p.warmup:
+            warm = len(self._ref) >= p.warmup
+            if warm:
                 r, s = robust_reference(self._ref)
                 if not c >= threshold(r, s, p.k_lost, p.ratio_lost):  # NaN: lost
                     self.lost, self._frozen, self._run = True, (r, s), 0
                     return False
-            self._learn(c)
+            if learn or not warm:
+                self._learn(c)
             return True
         r, s = self._frozen
         self._run = self._run + 1 if c >= threshold(r, s, p.k_found, p.ratio_found) else 0
         if self._run >= p.m:
             self.lost = False
-            self._learn(c)
+            if learn:
+                self._learn(c)
             return True
         return False
 
@@ -301,6 +316,36 @@ def in_view(box, frame_shape) -> float:
     return max(dx, 0.0) * max(dy, 0.0) / (w * h)
 
 
+#: How far past an edge, in pixels, a box must reach to count as reaching out
+#: (:func:`reaches_out`): a box placed flush with the edge by arithmetic (``x = cx - w / 2``)
+#: can land a rounding error past it.
+EDGE_TOLERANCE = 1e-6
+
+
+def reaches_out(box, frame_shape) -> bool:
+    """Whether ``box = (x, y, w, h)`` reaches past an edge of a frame of ``frame_shape`` by
+    more than :data:`EDGE_TOLERANCE` pixels; for a box with finite coordinates and
+    ``w, h > 0`` (the layer asks only of those).
+
+    The layer keeps the confidence of such a box out of the reference
+    (:meth:`FailureDetector.step` with ``learn=False``): part of what it scores is not in the
+    picture (a target leaving across the border, or a box resting there after it left), and
+    a reference that learned it would sink with a slow exit until the background the box
+    rests on passed. Compared edge by edge (``x < 0``, ``x + w > W``, ...), not as
+    :func:`in_view` ``< 1``: the share in view is computed in floating point and can fall a
+    rounding error short of 1 for a box well inside the frame.
+
+    Examples
+    --------
+    >>> reaches_out((0, 0, 10, 10), (10, 10, 3)), reaches_out((0.5, 0, 10, 10), (10, 10, 3))
+    (False, True)
+    """
+    x, y, w, h = (float(v) for v in box)
+    height, width = frame_shape[:2]
+    t = EDGE_TOLERANCE
+    return x < -t or y < -t or x + w > width + t or y + h > height + t
+
+
 def load_calibration(path=None) -> dict:
     """``{tracker name: FailureParams}`` from a calibration file.
 
@@ -349,6 +394,6 @@ def judge(confidences, params: FailureParams | None = None) -> np.ndarray:
     return FailureDetector(params).run(confidences)
 
 
-__all__ = ["CALIBRATION_FILE", "MIN_IN_VIEW", "FailureDetector", "FailureParams",
-           "calibrated_params", "in_view", "judge", "load_calibration", "robust_reference",
-           "threshold"]
+__all__ = ["CALIBRATION_FILE", "EDGE_TOLERANCE", "MIN_IN_VIEW", "FailureDetector",
+           "FailureParams", "calibrated_params", "in_view", "judge", "load_calibration",
+           "reaches_out", "robust_reference", "threshold"]
