@@ -286,7 +286,8 @@ def test_the_readme_names_the_trackers_that_keep_every_absent_cell():
     held = [n for n in keep if n not in COLOUR_ONLY]
     assert held == ["hog-pf"], held
     assert ("the confidence of all but `hog-pf` sees only colour, so the look-alike scenes are "
-            "not held against those five; `hog-pf`'s sees gradients and keeps them too") in readme
+            "not held against those five; `hog-pf`'s sees gradients, so they are held against "
+            "it, and it flags them too") in readme
 
 
 def test_the_matrix_is_not_the_calibration_set():

@@ -146,10 +146,11 @@ the box is half in view and $\rho$ has dropped into the band between the two thr
 reference frozen at that loss keeps the tracker lost to the clip's end. Without the loss,
 $\rho$ on the absent frames lies between 0.41 and 0.70 of the reference: under the found
 level, but above the lost one, so each of them passes as on target. (The library keeps the
-confidence of a box past the edge out of the reference, so the reference stays near 0.99
-through the absent frames. But from frame 34 the box lies wholly inside the frame, on the
-background; its confidences enter, and by frame 50 the reference has sunk to 0.69, near
-them. The band lets the background through either way.)
+confidence of a box past the edge out of the reference: the box rests across the edge from
+frame 17 to 33, and the reference stays near 0.99 to the last absent frame, 41. From frame
+34 the box lies wholly inside the frame, on the background, and its confidences enter; after
+the target's return the reference sinks to them, 0.69 by frame 50. The absent frames pass
+all the same: 0.41–0.70 of the reference lies inside the band between 0.3 and 0.8.)
 
 On `robot-corridor-day` the rule costs 5 false losses of the 129 frames with the box on the
 target (none of 138 without): 3.9 %, over the contract's 1 %. With the lights dimmed, the box

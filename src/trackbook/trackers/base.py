@@ -337,8 +337,8 @@ class Tracker:
         # confidence never enters the reference the next frames are judged against.
         seen = good and in_view(box, frame.shape) >= MIN_IN_VIEW
         # Part of what a box reaching past the edge scores is not in the picture: a target
-        # leaving slowly would lower the reference frame by frame, until the background the
-        # box rests on after it left passed. Judged, but kept out of the reference.
+        # leaving slowly would pull the reference (and the found level frozen at a loss)
+        # toward the background's score. Judged, but kept out of the reference.
         judged = True if self._detector is None else \
             self._detector.step(conf if own_ok and seen and not flat else float("nan"),
                                 learn=not (good and reaches_out(box, frame.shape)))

@@ -64,8 +64,8 @@ class FailureParams:
     m : int
         Frames in a row at or above the found thresholds needed to recover (>= 1).
     window : int
-        How many of the last confidences learned make the reference (>= 2): those of frames
-        judged ok, except the ones stepped with ``learn=False`` after the warm-up.
+        How many of the last confidences added to the reference make it (>= 2): the finite
+        ones of frames judged ok, except those stepped with ``learn=False`` after the warm-up.
     warmup : int
         Finite confidences the reference must hold before the rule may declare a loss
         (1 <= warmup <= window): a reference of one or two values has no spread to speak of.
@@ -154,8 +154,8 @@ class FailureDetector:
     r"""Judge each frame on target or lost from the tracker's confidence alone.
 
     With :math:`r_t, s_t` the median and the scaled MAD (:func:`robust_reference`) of the
-    last ``window`` confidences learned before frame :math:`t` (those of frames judged ok,
-    but see ``learn`` below), and
+    last ``window`` confidences added to the reference before frame :math:`t` (those of frames
+    judged ok, but see ``learn`` below), and
     :math:`\theta` the threshold of :func:`threshold`:
 
     .. math::
@@ -172,9 +172,10 @@ class FailureDetector:
     lost (a reference that learned from lost frames would drift down to them and declare the
     target found). A frame judged ok adds its confidence to the reference; a lost one does
     not, nor does one stepped with ``learn=False`` once the warm-up is over (the base class
-    asks this of a located box that reaches past the frame's edge, :func:`reaches_out`). So
-    the reference can be older than ``window`` frames: a target that stays across the edge
-    after the warm-up is judged against what it scored before, however long it stays.
+    asks this of a located box that reaches past the frame's edge, :func:`reaches_out`). The
+    reference can then span more than the last ``window`` frames, as it does after a loss: a
+    target that stays across the edge after the warm-up is judged against what it scored
+    before, however long it stays.
     Until the reference holds ``warmup`` finite values, every frame is ok.
 
     Why two tests: trackers' confidences differ in scale *and* sign (a peak-to-sidelobe
@@ -316,7 +317,7 @@ def in_view(box, frame_shape) -> float:
     return max(dx, 0.0) * max(dy, 0.0) / (w * h)
 
 
-#: How far past an edge, in pixels, a box must reach to count as reaching out
+#: How far past an edge, in pixels, a box must reach (more than this) to count as reaching out
 #: (:func:`reaches_out`): a box placed flush with the edge by arithmetic (``x = cx - w / 2``)
 #: can land a rounding error past it.
 EDGE_TOLERANCE = 1e-6
@@ -330,8 +331,9 @@ def reaches_out(box, frame_shape) -> bool:
     The layer keeps the confidence of such a box out of the reference
     (:meth:`FailureDetector.step` with ``learn=False``): part of what it scores is not in the
     picture (a target leaving across the border, or a box resting there after it left), and
-    a reference that learned it would sink with a slow exit until the background the box
-    rests on passed. Compared edge by edge (``x < 0``, ``x + w > W``, ...), not as
+    a reference that learned it would be pulled toward the background's score by a slow
+    exit. Compared edge by edge (``x < -t``, ``x + w > W + t``, ..., with ``t`` =
+    :data:`EDGE_TOLERANCE`), not as
     :func:`in_view` ``< 1``: the share in view is computed in floating point and can fall a
     rounding error short of 1 for a box well inside the frame.
 
