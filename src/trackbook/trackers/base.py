@@ -11,9 +11,8 @@ layers that stand between locating and learning:
 - the **failure-detection layer** (on unless ``failure=False``): the frame's confidence is
   judged by :class:`~trackbook.trackers.failure.FailureDetector` with the tracker's calibrated
   thresholds (a located box less than half in view, or no box at all, is lost whatever the
-  confidence says, and after the warm-up the confidence of one that reaches past the frame's
-  edge does not enter the reference); a frame judged lost keeps the last box and teaches the
-  model nothing;
+  confidence says; one past the frame's edge is kept out of the reference after the warm-up);
+  a frame judged lost keeps the last box and teaches the model nothing;
 - the **re-detection layer** (opt-in, the ``-redetect`` names): while lost, the tracker's own
   appearance model scores boxes over the whole frame and the search restarts from the best.
 """
@@ -315,9 +314,8 @@ class Tracker:
            of these as a frame with no confidence, so, like any loss, it takes ``m`` good
            frames to undo once the layer's reference is warmed up (during its first
            ``warmup`` confident frames such a frame is lost, and the next may be on target).
-           A located box that reaches past the frame's edge
-           (:func:`~trackbook.trackers.failure.reaches_out`) is judged as usual, but after
-           the warm-up its confidence does not enter the reference.
+           A located box past the frame's edge (:func:`~trackbook.trackers.failure.reaches_out`)
+           is judged as usual, its confidence kept out of the reference after the warm-up.
         3. On target: ``_learn`` moves the tracker to the box and updates the model. Lost: the
            last box is reported, the model learns nothing, the local search follows its own
            answer (:meth:`_follow`) and, for a ``-redetect`` name only, the whole frame is
@@ -333,12 +331,10 @@ class Tracker:
         good = bool(np.all(np.isfinite(box)) and box[2] > 0 and box[3] > 0)
         # A flat frame, no box, a box mostly outside the frame (a target that left across the
         # border cannot be half in a box that is not), or a frame the algorithm's own rule calls
-        # lost is judged as a frame with no confidence at all (NaN: lost), so that its
-        # confidence never enters the reference the next frames are judged against.
+        # lost is judged as one with no confidence (NaN: lost), which never enters the reference.
         seen = good and in_view(box, frame.shape) >= MIN_IN_VIEW
-        # Part of what a box reaching past the edge scores is not in the picture: a target
-        # leaving slowly would pull the reference (and the found level frozen at a loss)
-        # toward the background's score. Judged, but kept out of the reference.
+        # Part of what a box past the edge scores is not in the picture; a slow exit would pull
+        # the reference toward the background's score. Judged, but kept out of the reference.
         judged = True if self._detector is None else \
             self._detector.step(conf if own_ok and seen and not flat else float("nan"),
                                 learn=not (good and reaches_out(box, frame.shape)))
