@@ -23,6 +23,9 @@ left). ``experiments/failure_contract.py`` prints the whole table. The contract:
 
 Where a tracker misses the contract today, the cell is an expected failure with the measured
 number (``KNOWN_ABSENT``, ``KNOWN_RECOVERY``, ``FALSE_LOSSES``), strict: the day it passes, the mark has to go.
+Which of a canonical tracker's missed scenes other settings of the layer could meet while
+keeping item 2 on the sample clips and the real sequences, ``experiments/failure_bound.py``
+estimates (``tests/test_failure_bound.py``).
 """
 
 from __future__ import annotations
