@@ -11,8 +11,8 @@ every frame (the confidence, NaN where the box is mostly out of view, the frame 
 the algorithm's own rule fails, and whether the frame may enter the reference) while the
 tracker runs as if every frame the layer judges were on target (the layer's own losses --
 out of view, flat frame, the algorithm's own rule -- still stop it learning; a tracker's
-confidence is finite, so a NaN given to the layer is one of those). It replays each of the calibration's
-candidate settings on those records: the grid of
+confidence is finite, so a NaN given to the layer is one of those). It replays each of the
+calibration's candidate settings on those records: the grid of
 :func:`trackbook.evaluation.failure.calibrate` (``k_lost`` x ``ratio_lost`` x hysteresis,
 ``m``, ``window`` and ``warmup`` fixed at 3, 30 and 5), and each point with the found
 thresholds of its second pass (:func:`~trackbook.evaluation.failure.floor_found`): 546 in
